@@ -1,0 +1,231 @@
+"""One scene: a point in Pi-space with its excitation, validated.
+
+The dimensionless groups (Buckingham; repeating variables a_p, T_p, M_b):
+
+========  =====================  =========================================  ================
+group     definition             meaning                                    valid range
+========  =====================  =========================================  ================
+Pi1       u_max / (a_p T_p^2)    peak sliding displacement (the result)     >= 0
+Pi2       mu_k g / a_p           kinetic friction strength                  0 < Pi2 < inf
+Pi3       T_b / T_p              isolation-to-pulse period ratio, 0 = fixed 0 <= Pi3 <= 1e4
+Pi4       xi_b                   isolation damping ratio (>= 1 overdamped)  0 <= Pi4 <= 1e3
+Pi5       mu_k / mu_s            kinetic-to-static friction ratio           0 < Pi5 <= 1
+Pi6       beta a_p T_p           Stribeck transition sharpness              0 <= Pi6 <= 1e12
+Pi7       gamma g T_p            viscous contact group (see note)           0 <= Pi7 <= 1e6
+Pi8       m_EC / M_b             contents-to-isolated mass ratio            0 <= Pi8 <= 1e3
+========  =====================  =========================================  ================
+
+T_b = 2 pi sqrt(M_b / k_b) and xi_b = c_b / (2 sqrt(k_b M_b)) use the isolated
+mass M_b alone (the block is excluded), as in the paper.
+
+Note on Pi7
+-----------
+The paper prints ``Pi7 = gamma a_p T_p``.  With the Stribeck law of Eq. 1
+taken literally, the viscous term adds ``gamma |v| m_EC g`` to the friction
+force; in units of ``m_EC a_p`` and with ``v = a_p T_p v'`` it is
+``(gamma g T_p) |v'|``.  The group that governs the response is therefore
+``gamma g T_p``; the printed one only agrees when ``a_p = g``.  isoslide uses
+``Pi7 = gamma g T_p`` and :func:`paper_groups` reports the printed one, so the
+similarity report can show it failing.  ``Pi6 = beta a_p T_p`` holds as printed.
+
+Note on Pi6 = 0
+---------------
+Taken literally, ``beta = 0`` makes ``sech(beta v) = 1``: the friction is
+``mu_s`` at every speed, i.e. Coulomb friction with coefficient ``mu_s =
+mu_k / Pi5``.  With the default ``Pi5 = 1`` this is Coulomb friction with
+``mu_k``, the paper's Coulomb case.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .pulses import Pulse, get_pulse
+
+G_STANDARD = 9.80665
+"""Standard gravity, m/s^2."""
+
+PI_RANGES = {
+    "pi2": (0.0, math.inf, False, False),
+    "pi3": (0.0, 1e4, True, True),
+    "pi4": (0.0, 1e3, True, True),
+    "pi5": (0.0, 1.0, False, True),
+    "pi6": (0.0, 1e12, True, True),
+    "pi7": (0.0, 1e6, True, True),
+    "pi8": (0.0, 1e3, True, True),
+}
+"""Valid range of each input group: (low, high, low inclusive, high inclusive)."""
+
+
+def _range_text(lo, hi, lo_in, hi_in) -> str:
+    return f"{lo:g} {'<=' if lo_in else '<'} value {'<=' if hi_in else '<'} {hi:g}"
+
+
+def check_range(name: str, value, lo: float, hi: float, lo_in: bool = True, hi_in: bool = True) -> float:
+    """Return ``float(value)`` or raise ``ValueError`` naming the parameter, value and range."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} is not a number; allowed range: "
+                         f"{_range_text(lo, hi, lo_in, hi_in)}") from None
+    ok = math.isfinite(x) and (x >= lo if lo_in else x > lo) and (x <= hi if hi_in else x < hi)
+    if not ok:
+        raise ValueError(f"{name} = {value!r} is out of range; allowed range: "
+                         f"{_range_text(lo, hi, lo_in, hi_in)}")
+    return x
+
+
+@dataclass(frozen=True)
+class PhysicalScale:
+    """Scales of a scene built from physical units (SI).
+
+    Attributes
+    ----------
+    a_p : float
+        Pulse acceleration amplitude, m/s^2.
+    T_p : float
+        Pulse period, s.
+    M_b : float
+        Isolated mass, kg.
+    g : float
+        Gravitational acceleration, m/s^2.
+    """
+
+    a_p: float
+    T_p: float
+    M_b: float
+    g: float = G_STANDARD
+
+    @property
+    def length(self) -> float:
+        """Characteristic length ``L_p = a_p T_p**2``, m."""
+        return self.a_p * self.T_p**2
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated point of Pi-space with its excitation.
+
+    Parameters
+    ----------
+    pi2 : float
+        ``mu_k g / a_p``, kinetic friction over pulse amplitude, > 0.
+    pi3 : float
+        ``T_b / T_p``; 0 means a fixed base (floor = ground).
+    pi4 : float
+        ``xi_b``, isolation damping ratio (>= 1 is over-damped and valid).
+    pi5 : float, default 1
+        ``mu_k / mu_s`` in (0, 1]; 1 is Coulomb friction.
+    pi6 : float, default 0
+        ``beta a_p T_p``, Stribeck transition sharpness.
+    pi7 : float, default 0
+        ``gamma g T_p``, viscous contact group (see module note).
+    pi8 : float, default 1e-5
+        ``m_EC / M_b``, contents-to-isolated mass ratio.
+    pulse : str or Pulse, default "ricker"
+        Excitation shape; see :mod:`isoslide.pulses`.
+    scale : PhysicalScale or None
+        Set by :meth:`from_physical`, so results can be given in metres.
+    """
+
+    pi2: float
+    pi3: float
+    pi4: float = 0.0
+    pi5: float = 1.0
+    pi6: float = 0.0
+    pi7: float = 0.0
+    pi8: float = 1e-5
+    pulse: Pulse | str = "ricker"
+    scale: PhysicalScale | None = field(default=None, compare=False)
+
+    def __post_init__(self):
+        for name, (lo, hi, lo_in, hi_in) in PI_RANGES.items():
+            object.__setattr__(self, name, check_range(name, getattr(self, name), lo, hi, lo_in, hi_in))
+        object.__setattr__(self, "pulse", _resolve_pulse(self.pulse))
+
+    @classmethod
+    def from_physical(cls, a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0,
+                      g=G_STANDARD, pulse="ricker") -> "Scene":
+        """Build a scene from physical parameters in SI units.
+
+        Parameters
+        ----------
+        a_p : float
+            Pulse acceleration amplitude, m/s^2 (> 0).
+        T_p : float
+            Pulse period, s (> 0).
+        M_b : float
+            Isolated mass (base + superstructure), kg (> 0).
+        T_b : float
+            Nominal isolation period ``2 pi sqrt(M_b/k_b)``, s; 0 = fixed base.
+        xi_b : float
+            Isolation damping ratio ``c_b / (2 sqrt(k_b M_b))``.
+        m_ec : float
+            Mass of the sliding contents, kg (>= 0).
+        mu_s, mu_k : float
+            Static and kinetic friction coefficients, ``0 < mu_k <= mu_s``.
+        beta : float
+            Stribeck transition constant, s/m.
+        gamma : float
+            Viscous contact constant, s/m.
+        g : float
+            Gravitational acceleration, m/s^2.
+        pulse : str or Pulse
+            Excitation shape.
+        """
+        a_p = check_range("a_p", a_p, 0.0, math.inf, False, False)
+        T_p = check_range("T_p", T_p, 0.0, math.inf, False, False)
+        M_b = check_range("M_b", M_b, 0.0, math.inf, False, False)
+        T_b = check_range("T_b", T_b, 0.0, math.inf, True, False)
+        xi_b = check_range("xi_b", xi_b, 0.0, math.inf, True, False)
+        m_ec = check_range("m_ec", m_ec, 0.0, math.inf, True, False)
+        mu_s = check_range("mu_s", mu_s, 0.0, math.inf, False, False)
+        mu_k = check_range("mu_k", mu_k, 0.0, mu_s, False, True)
+        beta = check_range("beta", beta, 0.0, math.inf, True, False)
+        gamma = check_range("gamma", gamma, 0.0, math.inf, True, False)
+        g = check_range("g", g, 0.0, math.inf, False, False)
+        return cls(
+            pi2=mu_k * g / a_p, pi3=T_b / T_p, pi4=xi_b, pi5=mu_k / mu_s,
+            pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b, pulse=pulse,
+            scale=PhysicalScale(a_p, T_p, M_b, g),
+        )
+
+    @property
+    def static_level(self) -> float:
+        """``mu_s g / a_p = Pi2 / Pi5``: floor acceleration (units of a_p) that breaks stick."""
+        return self.pi2 / self.pi5
+
+    @property
+    def fixed_base(self) -> bool:
+        return self.pi3 == 0.0
+
+    @property
+    def rate_independent(self) -> bool:
+        """True when friction does not depend on sliding speed (plain Coulomb)."""
+        return self.pi7 == 0.0 and (self.pi5 == 1.0 or self.pi6 == 0.0)
+
+    def pis(self) -> dict:
+        """The input groups as a dict ``{"pi2": ..., ..., "pi8": ...}``."""
+        return {k: getattr(self, k) for k in PI_RANGES}
+
+
+def _resolve_pulse(pulse) -> Pulse:
+    if isinstance(pulse, Pulse):
+        return pulse
+    as_pulse = getattr(pulse, "as_pulse", None)
+    if callable(as_pulse):  # a record object that knows its own scales
+        return as_pulse()
+    return get_pulse(pulse)
+
+
+def paper_groups(a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0, g=G_STANDARD) -> dict:
+    """The eight groups exactly as the paper prints them (Eq. 5), for comparison.
+
+    Differs from :class:`Scene` only in ``pi7 = gamma a_p T_p`` (printed)
+    instead of ``gamma g T_p`` (the group that holds for Eq. 1).
+    """
+    return {
+        "pi2": mu_k * g / a_p, "pi3": T_b / T_p, "pi4": xi_b, "pi5": mu_k / mu_s,
+        "pi6": beta * a_p * T_p, "pi7": gamma * a_p * T_p, "pi8": m_ec / M_b,
+    }
