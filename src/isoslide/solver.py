@@ -1,14 +1,115 @@
-"""Exact event-driven stick-slip solver (work in progress: kernel lands next)."""
+"""Solve a scene: exact stick-slip response and peak sliding ``Pi1``.
+
+:func:`solve` runs the smallest model that is exact for the scene
+(:func:`plan` says which) through the compiled kernel of
+:mod:`isoslide.kernel`; :func:`solve_many` does the same for many scenes and
+skips the block entirely where the floor can never reach the static threshold.
+
+Accuracy knob
+-------------
+``rtol`` is the target relative error of ``Pi1`` (default ``1e-6``).  It sets
+the local tolerance of the Dormand-Prince 8(5,3) integrator to
+``rtol * INTEGRATOR_FACTOR`` (relative) and ``rtol * INTEGRATOR_FACTOR *
+ATOL_SCALE`` (absolute, units of a_p T_p^2); the factor was calibrated so that
+the error stays below ``rtol`` over the test and benchmark scene sets (see
+``tests/test_accuracy_knob.py`` and ``python -m isoslide.bench``).  Transition
+times are located to round-off whatever ``rtol`` is, and exact zeros (no
+sliding) are exactly zero.
+
+Models (``Solution.model``, joined by ``+``)
+--------------------------------------------
+``fixed-base``
+    ``Pi3 = 0``: floor = ground; the base is not integrated and ``Pi4``,
+    ``Pi8`` have no effect.
+``no-slide``
+    The floor demand never reaches ``mu_s g``: ``Pi1 = 0`` exactly.  In a
+    batch, decided once per base (``Pi3, Pi4, Pi8, pulse``) from the peak
+    demand of the stuck system, with no block integration at all.
+``coulomb``
+    Friction independent of speed (``Pi7 = 0`` and ``Pi5 = 1`` or
+    ``Pi6 = 0``): the Stribeck terms are not evaluated.
+``one-way``
+    The block's back-reaction on the base is dropped (``Pi8 = 0``): used when
+    ``Pi8 = 0``, or, for Coulomb friction, when the a-posteriori bound below
+    is under ``rtol / 10`` of ``Pi1``.  For rate-independent friction the map
+    from floor velocity to block velocity is non-expansive, so
+    ``|dPi1| <= 2 T sup|dv_floor|``, and the back-reaction changes the floor
+    velocity by at most ``Pi8 (Pi2/Pi5) int |h'|`` (``h`` the base's impulse
+    response); ``T`` is taken as twice the decoupled response's duration.
+``stribeck``
+    The full Stribeck law with two-way coupling (the general model).
+"""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
 
 import numpy as np
+
+from . import kernel
+from .scene import Scene
+
+DEFAULT_RTOL = 1e-6
+INTEGRATOR_FACTOR = 1e-3
+ATOL_SCALE = 1e-3
+H_MAX_PULSE = 0.05
+H_RESTART = 1e-4
+DEFAULT_HORIZON = 200.0
+"""Follow-up after the pulse, in isolation periods (pulse periods for a fixed base)."""
+
+
+@dataclass(frozen=True)
+class History:
+    """Time history of a solve (dimensionless unless a scale is given).
+
+    Attributes
+    ----------
+    tau : ndarray
+        Time ``t / T_p``.
+    x, xd : ndarray
+        Base displacement relative to the ground (``a_p T_p^2``) and velocity (``a_p T_p``).
+    u, ud : ndarray
+        Sliding displacement relative to the floor (``a_p T_p^2``) and velocity (``a_p T_p``).
+    phase : ndarray
+        0 while stuck, +1 / -1 while sliding in the positive / negative direction.
+    """
+
+    tau: np.ndarray
+    x: np.ndarray
+    xd: np.ndarray
+    u: np.ndarray
+    ud: np.ndarray
+    phase: np.ndarray
 
 
 @dataclass(frozen=True)
 class Solution:
+    """Result of :func:`solve`.
+
+    Attributes
+    ----------
+    pi1 : float
+        ``u_max / (a_p T_p^2)``: peak of ``|u_s|`` over the whole response.
+    u_max : float
+        Peak sliding displacement in metres for a scene made by
+        :meth:`Scene.from_physical`, else equal to ``pi1``.
+    pi1_residual, u_residual : float
+        Signed permanent (final) sliding displacement, dimensionless and in metres.
+    tau_peak, t_peak : float
+        Time of the peak, in units of T_p and in seconds (pulse time origin).
+    settled : bool
+        True when no further sliding is possible (see :mod:`isoslide.kernel`).
+    model : str
+        Which reduced model ran (see module docstring).
+    tau_end : float
+        Time at which the integration stopped (units of T_p).
+    n_steps, n_events : int
+        Integrator steps (incl. rejected and event-location steps) and stick/slip transitions.
+    history : History or None
+        Time history when requested.
+    """
+
     pi1: float
     u_max: float
     pi1_residual: float
@@ -20,11 +121,13 @@ class Solution:
     tau_end: float
     n_steps: int
     n_events: int
-    history: object = None
+    history: History | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
 class Batch:
+    """Results of :func:`solve_many`, one entry per scene, in order."""
+
     pi1: np.ndarray
     pi1_residual: np.ndarray
     tau_peak: np.ndarray
@@ -34,10 +137,244 @@ class Batch:
     n_steps: np.ndarray
     n_events: np.ndarray
 
+    def __len__(self):
+        return self.pi1.shape[0]
 
-def solve(scene, rtol=None, history=False, method="exact", **options):
-    raise NotImplementedError("solver kernel not landed yet")
+
+def _check_rtol(rtol):
+    rtol = DEFAULT_RTOL if rtol is None else rtol
+    if not (isinstance(rtol, (int, float)) and math.isfinite(rtol) and 1e-13 <= rtol <= 1e-1):
+        raise ValueError(f"rtol = {rtol!r} is out of range; allowed range: 1e-13 <= rtol <= 0.1")
+    return float(rtol)
 
 
-def solve_many(scenes, rtol=None, method="exact", **options):
-    raise NotImplementedError("solver kernel not landed yet")
+def _model_array(scene: Scene, pi8: float, coulomb: bool, thr: float | None = None) -> np.ndarray:
+    m = np.zeros(kernel.N_M)
+    fixed = scene.pi3 == 0.0
+    if not fixed:
+        w = 2.0 * math.pi / scene.pi3
+        m[kernel.M_W2] = w * w
+        m[kernel.M_CW] = 2.0 * scene.pi4 * w
+    m[kernel.M_P8] = pi8
+    m[kernel.M_THR] = scene.static_level if thr is None else thr
+    m[kernel.M_PI2] = scene.pi2
+    m[kernel.M_PI6] = scene.pi6
+    m[kernel.M_PI7] = scene.pi7
+    m[kernel.M_FIXED] = 1.0 if fixed else 0.0
+    m[kernel.M_COULOMB] = 1.0 if coulomb else 0.0
+    return m
+
+
+def _horizon(scene: Scene, horizon: float) -> float:
+    pulse = scene.pulse
+    return pulse.tau_end + horizon * max(scene.pi3, 1.0)
+
+
+def _run(scene: Scene, pi8: float, coulomb: bool, rtol: float, hist_cap: int = 0,
+         horizon: float = DEFAULT_HORIZON, track_max: bool = False):
+    pulse = scene.pulse
+    irtol = rtol * INTEGRATOR_FACTOR
+    m = _model_array(scene, pi8, coulomb, thr=math.inf if track_max else None)
+    h_free = max(scene.pi3, 1.0) / 8.0
+    return kernel.run(m, pulse.code, pulse.param_array, pulse.breakpoint_array,
+                      pulse.tau_start, pulse.tau_end, _horizon(scene, horizon),
+                      H_MAX_PULSE, h_free, irtol, irtol * ATOL_SCALE, track_max, hist_cap, H_RESTART)
+
+
+def _impulse_velocity_l1(scene: Scene, pi8: float) -> float:
+    """Bound on int_0^inf |h'(tau)| dtau for the base oscillator (h: displacement impulse response)."""
+    w = 2.0 * math.pi / scene.pi3
+    z = scene.pi4
+    if z == 0.0:
+        return math.inf
+    if z < 1.0:
+        return (1.0 + z / math.sqrt(1.0 - z * z)) / (z * w)
+    if z == 1.0:
+        return 2.0 / (math.e * w)
+    r1 = -w * (z - math.sqrt(z * z - 1.0))
+    r2 = -w * (z + math.sqrt(z * z - 1.0))
+    t = math.log(r2 / r1) / (r1 - r2)
+    return 2.0 * (math.exp(r1 * t) - math.exp(r2 * t)) / (r1 - r2)
+
+
+def plan(scene: Scene) -> dict:
+    """Which model the scene requires before any integration.
+
+    Returns a dict with ``fixed`` (bool), ``coulomb`` (bool) and
+    ``oneway_possible`` (bool: the one-way bound may pass).
+    """
+    fixed = scene.pi3 == 0.0
+    coulomb = scene.rate_independent
+    return {"fixed": fixed, "coulomb": coulomb, "oneway_possible": (not fixed) and coulomb}
+
+
+def _label(fixed, noslide, coulomb, oneway):
+    parts = []
+    if fixed:
+        parts.append("fixed-base")
+    if noslide:
+        parts.append("no-slide")
+    else:
+        parts.append("coulomb" if coulomb else "stribeck")
+        if oneway and not fixed:
+            parts.append("one-way")
+    return "+".join(parts)
+
+
+def _history(h: np.ndarray) -> History:
+    return History(tau=h[:, 0].copy(), x=h[:, 1].copy(), xd=h[:, 2].copy(), u=h[:, 3].copy(),
+                   ud=h[:, 4].copy(), phase=h[:, 5].astype(np.int8))
+
+
+def solve(scene: Scene, rtol: float | None = None, history: bool = False, method: str = "exact",
+          horizon: float = DEFAULT_HORIZON, model: str = "auto", **options) -> Solution:
+    """Peak sliding of one scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (see :class:`isoslide.Scene` for every Pi-group).
+    rtol : float, optional
+        Target relative error of ``Pi1`` (default ``1e-6``), see module docstring.
+    history : bool
+        Return the time history (every accepted step and every transition).
+    method : {"exact", "regularized", "reference"}
+        ``"exact"``: the compiled event-driven solver (this module);
+        ``"regularized"``: the paper's method, signum replaced by a stiff
+        elastic-plastic spring (option ``stiffness``), see
+        :mod:`isoslide.regularized`; ``"reference"``: plain SciPy
+        event-driven solver, see :mod:`isoslide.reference`.
+    horizon : float
+        How long to follow a scene that does not settle, after the pulse, in
+        isolation periods (pulse periods for a fixed base).
+    model : {"auto", "full"}
+        ``"full"`` disables every reduction except the fixed base (used to
+        test the reductions against the full model).
+
+    Returns
+    -------
+    Solution
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be an isoslide.Scene, got {type(scene).__name__}")
+    if method == "regularized":
+        from .regularized import solve_regularized
+        return _from_peer(scene, solve_regularized(scene, history=history, **options), "regularized")
+    if method == "reference":
+        from .reference import solve_reference
+        return _from_peer(scene, solve_reference(scene, history=history, **options), "reference")
+    if method != "exact":
+        raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', 'regularized', 'reference'")
+    if options:
+        raise TypeError(f"unexpected options for method='exact': {sorted(options)}")
+    if model not in ("auto", "full"):
+        raise ValueError(f"model = {model!r} is invalid; allowed: 'auto', 'full'")
+    if not (math.isfinite(horizon) and horizon > 0):
+        raise ValueError(f"horizon = {horizon!r} is out of range; allowed range: 0 < horizon < inf")
+    rtol = _check_rtol(rtol)
+    pl = plan(scene)
+    fixed = pl["fixed"]
+    coulomb = pl["coulomb"] and model == "auto"
+    hist_cap = 200_000 if history else 0
+    pi8 = 0.0 if fixed else scene.pi8
+    oneway = pi8 == 0.0
+    out = None
+    if model == "auto" and pl["oneway_possible"] and pi8 > 0.0:
+        l1 = _impulse_velocity_l1(scene, pi8)
+        span = scene.pulse.tau_end - scene.pulse.tau_start
+        if 2.0 * 2.0 * span * pi8 * scene.static_level * l1 <= 0.1 * rtol:
+            trial = _run(scene, 0.0, coulomb, rtol, hist_cap, horizon)
+            ints, floats, _ = trial
+            T = 2.0 * (floats[kernel.F_TEND] - scene.pulse.tau_start)
+            bound = 2.0 * T * pi8 * scene.static_level * l1
+            if bound <= 0.1 * rtol * floats[kernel.F_UMAX] or ints[kernel.R_SLIPPED] == 0 and bound < 1e-300:
+                out, oneway = trial, True
+    if out is None:
+        out = _run(scene, pi8, coulomb, rtol, hist_cap, horizon)
+    ints, floats, hist = out
+    noslide = ints[kernel.R_SLIPPED] == 0
+    return _solution(scene, ints, floats, _label(fixed, noslide, coulomb, oneway),
+                     _history(hist) if history else None)
+
+
+def _solution(scene, ints, floats, label, hist=None) -> Solution:
+    pi1 = float(floats[kernel.F_UMAX])
+    res = float(floats[kernel.F_URES])
+    tpk = float(floats[kernel.F_TPEAK])
+    L = scene.scale.length if scene.scale is not None else 1.0
+    Tp = scene.scale.T_p if scene.scale is not None else 1.0
+    return Solution(pi1=pi1, u_max=pi1 * L, pi1_residual=res, u_residual=res * L, tau_peak=tpk,
+                    t_peak=tpk * Tp, settled=bool(ints[kernel.R_SETTLED]), model=label,
+                    tau_end=float(floats[kernel.F_TEND]), n_steps=int(ints[kernel.R_STEPS]),
+                    n_events=int(ints[kernel.R_EVENTS]), history=hist)
+
+
+def _from_peer(scene, res, label) -> Solution:
+    """Wrap a peer solver's result (dict-like or dataclass) as a Solution."""
+    get = (lambda k, d=None: res.get(k, d)) if isinstance(res, dict) else (lambda k, d=None: getattr(res, k, d))
+    pi1 = float(get("pi1"))
+    L = scene.scale.length if scene.scale is not None else 1.0
+    Tp = scene.scale.T_p if scene.scale is not None else 1.0
+    resid = float(get("pi1_residual", math.nan))
+    tpk = float(get("tau_peak", math.nan))
+    return Solution(pi1=pi1, u_max=pi1 * L, pi1_residual=resid, u_residual=resid * L, tau_peak=tpk,
+                    t_peak=tpk * Tp, settled=bool(get("settled", True)), model=label,
+                    tau_end=float(get("tau_end", math.nan)), n_steps=int(get("n_steps", -1) or -1),
+                    n_events=int(get("n_events", -1) or -1), history=get("history"))
+
+
+def peak_stuck_demand(scene: Scene, rtol: float | None = None, horizon: float = DEFAULT_HORIZON) -> float:
+    """Rigorous upper bound of the floor acceleration demand of the stuck system, units of a_p.
+
+    If ``Pi2/Pi5`` is at least this value the block can never slide
+    (``Pi1 = 0`` exactly).  Depends on ``Pi3, Pi4, Pi8`` and the pulse only.
+    """
+    rtol = _check_rtol(rtol)
+    pi8 = 0.0 if scene.pi3 == 0.0 else scene.pi8
+    ints, floats, _ = _run(scene, pi8, True, rtol, 0, horizon, track_max=True)
+    return float(floats[kernel.F_AMAX])
+
+
+def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZON,
+               model: str = "auto") -> Batch:
+    """Solve many scenes (the parameter sweeps use this).
+
+    Scenes that share a base (``Pi3, Pi4, Pi8`` and pulse) share one
+    computation of the stuck system's peak demand; every scene whose static
+    threshold ``Pi2/Pi5`` exceeds it is answered ``Pi1 = 0`` (model
+    ``no-slide``) without integrating anything.
+
+    Returns
+    -------
+    Batch
+    """
+    scenes = list(scenes)
+    n = len(scenes)
+    rtol = _check_rtol(rtol)
+    pi1 = np.zeros(n)
+    res = np.zeros(n)
+    tpk = np.zeros(n)
+    settled = np.zeros(n, dtype=bool)
+    models = np.empty(n, dtype=object)
+    tend = np.zeros(n)
+    nsteps = np.zeros(n, dtype=np.int64)
+    nev = np.zeros(n, dtype=np.int64)
+    demand: dict = {}
+    for i, sc in enumerate(scenes):
+        if not isinstance(sc, Scene):
+            raise TypeError(f"scenes[{i}] must be an isoslide.Scene, got {type(sc).__name__}")
+        key = (sc.pi3, sc.pi4, 0.0 if sc.pi3 == 0 else sc.pi8, sc.pulse)
+        if model == "auto":
+            if key not in demand:
+                demand[key] = peak_stuck_demand(sc, rtol, horizon)
+            if sc.static_level > demand[key] * (1.0 + 1e-9):
+                models[i] = _label(sc.pi3 == 0.0, True, False, False)
+                settled[i] = True
+                tpk[i] = sc.pulse.tau_start
+                tend[i] = sc.pulse.tau_start
+                continue
+        s = solve(sc, rtol=rtol, horizon=horizon, model=model)
+        pi1[i], res[i], tpk[i], settled[i] = s.pi1, s.pi1_residual, s.tau_peak, s.settled
+        models[i], tend[i], nsteps[i], nev[i] = s.model, s.tau_end, s.n_steps, s.n_events
+    return Batch(pi1=pi1, pi1_residual=res, tau_peak=tpk, settled=settled, model=models.astype(str),
+                 tau_end=tend, n_steps=nsteps, n_events=nev)

@@ -1,0 +1,497 @@
+"""Compiled event-driven stick-slip kernel (numba).
+
+Dimensionless equations (tau = t/T_p, lengths in units of a_p T_p^2, primes
+are d/dtau).  ``x`` is the base displacement relative to the ground, ``u`` the
+block's sliding displacement relative to the floor, ``p(tau)`` the ground
+acceleration, ``w = 2 pi / Pi3``, ``z = Pi4``, ``F = 2 z w x' + w^2 x``.
+
+Friction level in units of ``a_p`` (Eq. 1 with n = 1, literally)::
+
+    phi(v) = (Pi2/Pi5) sech(Pi6 v) + Pi2 (1 - sech(Pi6 v)) + Pi7 |v|
+
+STICK (u' = 0)::
+
+    x'' = -p - F / (1 + Pi8),      a_req = -F / (1 + Pi8)   (fixed base: a_req = p)
+
+  the block stays stuck while ``|a_req| <= Pi2/Pi5`` (true stick, no creep).
+
+SLIP in direction ``s = sign(u')``::
+
+    x'' = -p - F + Pi8 s phi(|u'|)
+    u'' = F - (1 + Pi8) s phi(|u'|)          (fixed base: u'' = -p - s phi)
+
+When ``u'`` returns to zero the block sticks if ``|a_req| <= Pi2/Pi5``,
+otherwise it reverses at once.  Phases are integrated with the explicit
+Dormand-Prince 8(5,3) pair (coefficients from SciPy); every transition is
+located by a safeguarded Newton iteration on the step length, re-stepping from
+the last accepted point, so it is found to round-off.  Steps end exactly on the
+pulse breakpoints.
+
+Stopping (settlement): after the pulse (``tau >= tau_end``, ``p = 0``) the
+total energy of the stuck system ``E = (1+Pi8) x'^2/2 + w^2 x^2/2`` can only
+decrease.  Over all states with energy ``E``, the largest possible demand is
+``max |F|/(1+Pi8) = sqrt(2 E ((2 z w)^2/(1+Pi8) + w^2)) / (1+Pi8)``.  Once that
+bound is ``<= Pi2/Pi5`` while stuck, no further sliding is possible: the scene
+is *settled* and the integration stops.  With ``z = 0`` the bound is attained
+every half cycle, so a scene whose bound stays above the threshold never
+settles; it is followed to the horizon and flagged ``settled = False``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from scipy.integrate._ivp import dop853_coefficients as _dop
+
+from .pulses import accel_at, jerk_at
+
+NS = _dop.N_STAGES
+A = np.ascontiguousarray(_dop.A[:NS, :NS], dtype=np.float64)
+B = np.ascontiguousarray(_dop.B, dtype=np.float64)
+C = np.ascontiguousarray(_dop.C[:NS], dtype=np.float64)
+E3 = np.ascontiguousarray(_dop.E3, dtype=np.float64)
+E5 = np.ascontiguousarray(_dop.E5, dtype=np.float64)
+
+# indices into the model-parameter array ``m``
+M_W2, M_CW, M_P8, M_THR, M_PI2, M_PI6, M_PI7, M_FIXED, M_COULOMB = range(9)
+N_M = 9
+
+# integer results
+R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST = range(5)
+# float results
+F_UMAX, F_TPEAK, F_URES, F_TEND, F_AMAX, F_VMAX = range(6)
+
+NAN = math.nan
+
+
+@njit(cache=True)
+def friction(v, m):
+    """Friction level phi(|v|) in units of a_p (m: model parameters)."""
+    thr = m[M_THR]
+    if m[M_COULOMB] != 0.0:
+        return thr
+    av = abs(v)
+    e = math.exp(-m[M_PI6] * av)
+    sech = 2.0 * e / (1.0 + e * e)
+    pi2 = m[M_PI2]
+    return thr * sech + pi2 * (1.0 - sech) + m[M_PI7] * av
+
+
+@njit(cache=True)
+def deriv(stick, s, tau, y, m, code, params, out):
+    """Right-hand side of the current phase."""
+    if m[M_FIXED] != 0.0:
+        out[0] = 0.0
+        out[1] = 0.0
+        if stick:
+            out[2] = 0.0
+            out[3] = 0.0
+        else:
+            out[2] = y[3]
+            out[3] = -accel_at(code, params, tau) - s * friction(y[3], m)
+        return
+    p = accel_at(code, params, tau)
+    F = m[M_CW] * y[1] + m[M_W2] * y[0]
+    p8 = m[M_P8]
+    out[0] = y[1]
+    if stick:
+        out[1] = -p - F / (1.0 + p8)
+        out[2] = 0.0
+        out[3] = 0.0
+    else:
+        ph = friction(y[3], m)
+        out[1] = -p - F + p8 * s * ph
+        out[2] = y[3]
+        out[3] = F - (1.0 + p8) * s * ph
+
+
+@njit(cache=True)
+def a_req(tau, y, m, code, params):
+    """Floor acceleration (units of a_p) a stuck block needs: the stick demand."""
+    if m[M_FIXED] != 0.0:
+        return accel_at(code, params, tau)
+    return -(m[M_CW] * y[1] + m[M_W2] * y[0]) / (1.0 + m[M_P8])
+
+
+@njit(cache=True)
+def a_req_rate(tau, y, m, code, params, work):
+    """d a_req / d tau in stick."""
+    if m[M_FIXED] != 0.0:
+        return jerk_at(code, params, tau)
+    deriv(True, 0.0, tau, y, m, code, params, work)
+    return -(m[M_CW] * work[1] + m[M_W2] * y[1]) / (1.0 + m[M_P8])
+
+
+@njit(cache=True)
+def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
+    """One DOP853 step of length h from (tau, y) into ynew; returns the error norm."""
+    n = 4
+    if stick and m[M_FIXED] != 0.0:
+        for i in range(n):
+            ynew[i] = y[i]
+        return 0.0
+    ytmp = np.empty(n)
+    deriv(stick, s, tau, y, m, code, params, K[0])
+    for st in range(1, NS):
+        for i in range(n):
+            acc = 0.0
+            for j in range(st):
+                acc += A[st, j] * K[j, i]
+            ytmp[i] = y[i] + h * acc
+        deriv(stick, s, tau + C[st] * h, ytmp, m, code, params, K[st])
+    for i in range(n):
+        acc = 0.0
+        for j in range(NS):
+            acc += B[j] * K[j, i]
+        ynew[i] = y[i] + h * acc
+    deriv(stick, s, tau + h, ynew, m, code, params, K[NS])
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(n):
+        sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
+        a5 = 0.0
+        a3 = 0.0
+        for j in range(NS + 1):
+            a5 += E5[j] * K[j, i]
+            a3 += E3[j] * K[j, i]
+        e5 += (a5 / sc) ** 2
+        e3 += (a3 / sc) ** 2
+    if e5 == 0.0 and e3 == 0.0:
+        return 0.0
+    den = e5 + 0.01 * e3
+    return abs(h) * e5 / math.sqrt(den * n)
+
+
+@njit(cache=True)
+def _event_value(kind, sig, stick, s, tau, y, m, code, params, work):
+    """Event function and its tau-derivative.
+
+    kind 0: stick demand  g = sig * a_req - thr     (stick -> slip)
+    kind 1: slip speed    g = s * u'                 (slip ends)
+    kind 2: demand rate   g = sig * d a_req/dtau     (extremum of the demand)
+    """
+    if kind == 0:
+        g = sig * a_req(tau, y, m, code, params) - m[M_THR]
+        dg = sig * a_req_rate(tau, y, m, code, params, work)
+        return g, dg
+    if kind == 1:
+        deriv(False, s, tau, y, m, code, params, work)
+        return s * y[3], s * work[3]
+    # kind 2: derivative of the rate by a centred difference of the rate itself
+    r = sig * a_req_rate(tau, y, m, code, params, work)
+    return r, NAN
+
+
+@njit(cache=True)
+def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, m, code, params, atol, rtol, K, yout, work):
+    """Find h in (ha, hb] with g(step(tau, y, h)) = 0, ga and gb of opposite sign.
+
+    Safeguarded Newton (falls back to Illinois regula falsi when the
+    derivative is unavailable or leaves the bracket).  yout receives the state
+    at the root; returns the step length.
+    """
+    lo, glo, hi, ghi = ha, ga, hb, gb
+    hcur = hi
+    side = 0
+    # first guess: secant
+    for it in range(80):
+        if glo == ghi:
+            h = 0.5 * (lo + hi)
+        else:
+            h = lo - glo * (hi - lo) / (ghi - glo)
+        if not (lo < h < hi):
+            h = 0.5 * (lo + hi)
+        rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, yout)
+        g, dg = _event_value(kind, sig, stick, s, tau + h, yout, m, code, params, work)
+        hcur = h
+        if g == 0.0:
+            return h
+        # Newton refinement from h when it stays in the bracket
+        if (g > 0.0) == (glo > 0.0):
+            lo, glo = h, g
+            if side == -1:
+                ghi *= 0.5
+            side = -1
+        else:
+            hi, ghi = h, g
+            if side == 1:
+                glo *= 0.5
+            side = 1
+        if not math.isnan(dg) and dg != 0.0:
+            hn = h - g / dg
+            if lo < hn < hi:
+                rk_step(stick, s, tau, y, hn, m, code, params, atol, rtol, K, yout)
+                g2, dg2 = _event_value(kind, sig, stick, s, tau + hn, yout, m, code, params, work)
+                hcur = hn
+                if g2 == 0.0:
+                    return hn
+                if (g2 > 0.0) == (glo > 0.0):
+                    lo, glo = hn, g2
+                else:
+                    hi, ghi = hn, g2
+                if abs(hn - h) <= 4e-16 * (abs(tau) + abs(hn)):
+                    break
+        if hi - lo <= 4e-16 * (abs(tau) + abs(hi)):
+            break
+    # return the end of the bracket on the 'after the event' side
+    if hcur != hi:
+        rk_step(stick, s, tau, y, hi, m, code, params, atol, rtol, K, yout)
+    return hi
+
+
+@njit(cache=True)
+def _hermite_max(g0, d0, g1, d1, h):
+    """Largest value of the cubic Hermite interpolant of g on [0, h]."""
+    # p(t) = g0 + d0 t + c t^2 + e t^3 with t in [0, h]
+    c = (3.0 * (g1 - g0) / h - 2.0 * d0 - d1) / h
+    e = (d0 + d1 - 2.0 * (g1 - g0) / h) / (h * h)
+    best = max(g0, g1)
+    # p'(t) = d0 + 2 c t + 3 e t^2
+    if e == 0.0:
+        if c != 0.0:
+            t = -d0 / (2.0 * c)
+            if 0.0 < t < h:
+                best = max(best, g0 + d0 * t + c * t * t)
+        return best
+    disc = 4.0 * c * c - 12.0 * e * d0
+    if disc >= 0.0:
+        sq = math.sqrt(disc)
+        for t in ((-2.0 * c + sq) / (6.0 * e), (-2.0 * c - sq) / (6.0 * e)):
+            if 0.0 < t < h:
+                best = max(best, g0 + d0 * t + c * t * t + e * t * t * t)
+    return best
+
+
+@njit(cache=True)
+def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free,
+        rtol, atol, track_max, hist_cap, h_restart):
+    """Integrate one scene; see the module docstring.
+
+    Returns (ints, floats, hist, nhist) where ints = [steps, events, settled,
+    slipped, nhist], floats = [u_max, tau_peak, u_residual, tau_end,
+    max stuck demand (track_max only), max |u'|], hist = (nhist, 6) array of
+    [tau, x, x', u, u', phase] (phase 0 stick, +-1 slip).
+    """
+    thr = m[M_THR]
+    fixed = m[M_FIXED] != 0.0
+    y = np.zeros(4)
+    y1 = np.empty(4)
+    ye = np.empty(4)
+    K = np.empty((NS + 1, 4))
+    work = np.empty(4)
+    hist = np.empty((hist_cap if hist_cap > 0 else 1, 6))
+    nh = 0
+    tau = tau_start
+    stick = True
+    s = 0.0
+    just_started = False
+    umax = 0.0
+    tpeak = tau_start
+    steps = 0
+    events = 0
+    settled = False
+    slipped = False
+    amax = 0.0
+    vmax = 0.0
+    h = h_restart
+    ib = 0
+    nb = breakpoints.shape[0]
+    if hist_cap > 0:
+        hist[0, 0] = tau
+        hist[0, 1:5] = 0.0
+        hist[0, 5] = 0.0
+        nh = 1
+    hs = 0.0
+    while True:
+        # --- mode checks at the current (accepted) point -------------------
+        if stick:
+            ar = a_req(tau, y, m, code, params)
+            if track_max and abs(ar) > amax:
+                amax = abs(ar)
+            if abs(ar) > thr and not track_max:
+                stick = False
+                s = -1.0 if ar > 0.0 else 1.0
+                just_started = True
+                slipped = True
+                events += 1
+            elif tau >= tau_end:
+                if fixed:
+                    settled = True
+                    break
+                w2 = m[M_W2]
+                cw = m[M_CW]
+                mt = 1.0 + m[M_P8]
+                energy = 0.5 * mt * y[1] * y[1] + 0.5 * w2 * y[0] * y[0]
+                bound = math.sqrt(2.0 * energy * (cw * cw / mt + w2)) / mt
+                if track_max:
+                    if bound <= amax:
+                        settled = True
+                        break
+                elif bound <= thr:
+                    settled = True
+                    break
+        if tau >= tau_stop:
+            if track_max and stick and not fixed:
+                w2 = m[M_W2]
+                cw = m[M_CW]
+                mt = 1.0 + m[M_P8]
+                energy = 0.5 * mt * y[1] * y[1] + 0.5 * w2 * y[0] * y[0]
+                amax = max(amax, math.sqrt(2.0 * energy * (cw * cw / mt + w2)) / mt)
+            break
+        # --- step length -----------------------------------------------------
+        while ib < nb and breakpoints[ib] <= tau * (1.0 + 1e-15) + 1e-300:
+            ib += 1
+        hmax = h_max_pulse if tau < tau_end else h_max_free
+        h = min(h, hmax)
+        target = tau_stop
+        if ib < nb and breakpoints[ib] < target:
+            target = breakpoints[ib]
+        if stick and fixed:
+            h = hmax
+        hit_target = False
+        if tau + h >= target:
+            h = target - tau
+            hit_target = True
+        # --- attempt until accepted -------------------------------------------
+        while True:
+            err = rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, y1)
+            steps += 1
+            if err <= 1.0:
+                break
+            fac = max(0.2, 0.9 * err ** (-1.0 / 8.0))
+            h *= fac
+            hit_target = False
+        if err == 0.0:
+            hnext = 10.0 * h
+        else:
+            hnext = h * min(10.0, max(0.2, 0.9 * err ** (-1.0 / 8.0)))
+        # --- events inside the step -------------------------------------------
+        tnew = tau + h
+        if hit_target:
+            tnew = target
+        if stick:
+            found = False
+            if not track_max:
+                for sig in (1.0, -1.0):
+                    g0 = sig * a_req(tau, y, m, code, params) - thr
+                    g1 = sig * a_req(tnew, y1, m, code, params) - thr
+                    if g1 > 0.0:
+                        hs = locate(0, sig, True, s, tau, y, 0.0, g0, h, g1, m, code, params,
+                                    atol, rtol, K, ye, work)
+                        found = True
+                        break
+            for sig in (1.0, -1.0):
+                if found:
+                    break
+                d0 = sig * a_req_rate(tau, y, m, code, params, work)
+                d1 = sig * a_req_rate(tnew, y1, m, code, params, work)
+                if not (d0 > 0.0 and d1 < 0.0):
+                    continue
+                g0 = sig * a_req(tau, y, m, code, params) - thr
+                g1 = sig * a_req(tnew, y1, m, code, params) - thr
+                if not track_max and _hermite_max(g0, d0, g1, d1, h) < -1e-2 * thr:
+                    continue
+                hm = locate(2, sig, True, s, tau, y, 0.0, d0, h, d1, m, code, params,
+                            atol, rtol, K, ye, work)
+                am = sig * a_req(tau + hm, ye, m, code, params)
+                if track_max:
+                    if am > amax:
+                        amax = am
+                elif am - thr > 0.0:
+                    hs = locate(0, sig, True, s, tau, y, 0.0, g0, hm, am - thr, m, code, params,
+                                atol, rtol, K, ye, work)
+                    found = True
+            if found:
+                tau = tau + hs
+                for i in range(4):
+                    y[i] = ye[i]
+                ar = a_req(tau, y, m, code, params)
+                stick = False
+                s = -1.0 if ar > 0.0 else 1.0
+                just_started = True
+                slipped = True
+                events += 1
+                h = h_restart
+                if hist_cap > 0 and nh < hist_cap:
+                    hist[nh, 0] = tau
+                    hist[nh, 1:5] = y
+                    hist[nh, 5] = 0.0
+                    nh += 1
+                continue
+        else:
+            g1 = s * y1[3]
+            if g1 <= 0.0:
+                lo = 0.0
+                glo = 0.0
+                if just_started:
+                    # the slip began at this step's start, where g = 0: find an
+                    # interior point with g > 0 before bracketing the end of slip
+                    hp = h
+                    gp = g1
+                    for k in range(200):
+                        hp *= 0.5
+                        rk_step(stick, s, tau, y, hp, m, code, params, atol, rtol, K, ye)
+                        gp = s * ye[3]
+                        if gp > 0.0 or hp < 1e-300:
+                            break
+                    if gp > 0.0:
+                        lo = hp
+                        glo = gp
+                        hs = locate(1, 0.0, False, s, tau, y, lo, glo, h, g1, m, code, params,
+                                    atol, rtol, K, ye, work)
+                    else:
+                        hs = 0.0
+                        for i in range(4):
+                            ye[i] = y[i]
+                else:
+                    deriv(False, s, tau, y, m, code, params, work)
+                    glo = s * y[3]
+                    hs = locate(1, 0.0, False, s, tau, y, 0.0, glo, h, g1, m, code, params,
+                                atol, rtol, K, ye, work)
+                tau = tau + hs
+                for i in range(4):
+                    y[i] = ye[i]
+                y[3] = 0.0
+                events += 1
+                if abs(y[2]) > umax:
+                    umax = abs(y[2])
+                    tpeak = tau
+                ar = a_req(tau, y, m, code, params)
+                if abs(ar) <= thr:
+                    stick = True
+                    s = 0.0
+                    just_started = False
+                else:
+                    s = -1.0 if ar > 0.0 else 1.0
+                    just_started = True
+                h = h_restart
+                if hist_cap > 0 and nh < hist_cap:
+                    hist[nh, 0] = tau
+                    hist[nh, 1:5] = y
+                    hist[nh, 5] = s
+                    nh += 1
+                continue
+            just_started = False
+            if abs(y1[3]) > vmax:
+                vmax = abs(y1[3])
+        # --- accept -------------------------------------------------------------
+        tau = tnew
+        for i in range(4):
+            y[i] = y1[i]
+        if stick:
+            y[3] = 0.0
+        h = hnext
+        if hist_cap > 0 and nh < hist_cap:
+            hist[nh, 0] = tau
+            hist[nh, 1:5] = y
+            hist[nh, 5] = s
+            nh += 1
+    if not settled and not stick:
+        if abs(y[2]) > umax:
+            umax = abs(y[2])
+            tpeak = tau
+    ints = np.array([steps, events, 1 if settled else 0, 1 if slipped else 0, nh], dtype=np.int64)
+    floats = np.array([umax, tpeak, y[2], tau, amax, vmax])
+    return ints, floats, hist[:nh]
