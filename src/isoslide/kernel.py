@@ -185,12 +185,32 @@ def _event_value(kind, sig, stick, s, tau, y, m, code, params, work):
 
 
 @njit(cache=True)
+def verify(stick, s, tau, y, h, ycand, m, code, params, atol, rtol, K):
+    """Richardson check of one step: error of ``ycand`` against two half steps.
+
+    Used where the embedded error estimate is unreliable: on the step that
+    ends at a located transition and, for the Stribeck law, while the sliding
+    speed is inside the static-to-kinetic transition ``|u'| < 30 / Pi6``.
+    Returns the scaled error norm (accept when <= 1).
+    """
+    ya = np.empty(4)
+    yb = np.empty(4)
+    rk_step(stick, s, tau, y, 0.5 * h, m, code, params, atol, rtol, K, ya)
+    rk_step(stick, s, tau + 0.5 * h, ya, 0.5 * h, m, code, params, atol, rtol, K, yb)
+    e = 0.0
+    for i in range(4):
+        sc = atol + rtol * max(abs(y[i]), abs(ycand[i]))
+        e = max(e, abs(yb[i] - ycand[i]) / sc)
+    return e
+
+
+@njit(cache=True)
 def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, m, code, params, atol, rtol, K, yout, work):
     """Find h in (ha, hb] with g(step(tau, y, h)) = 0, ga and gb of opposite sign.
 
     Safeguarded Newton (falls back to Illinois regula falsi when the
     derivative is unavailable or leaves the bracket).  yout receives the state
-    at the root; returns the step length.
+    at the root; returns the step length and the error estimate of that step.
     """
     lo, glo, hi, ghi = ha, ga, hb, gb
     hcur = hi
@@ -207,7 +227,8 @@ def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, m, code, params, atol, r
         g, dg = _event_value(kind, sig, stick, s, tau + h, yout, m, code, params, work)
         hcur = h
         if g == 0.0:
-            return h
+            hi = h
+            break
         # Newton refinement from h when it stays in the bracket
         if (g > 0.0) == (glo > 0.0):
             lo, glo = h, g
@@ -226,19 +247,26 @@ def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, m, code, params, atol, r
                 g2, dg2 = _event_value(kind, sig, stick, s, tau + hn, yout, m, code, params, work)
                 hcur = hn
                 if g2 == 0.0:
-                    return hn
+                    hi = hn
+                    break
                 if (g2 > 0.0) == (glo > 0.0):
                     lo, glo = hn, g2
                 else:
                     hi, ghi = hn, g2
                 if abs(hn - h) <= 4e-16 * (abs(tau) + abs(hn)):
+                    hi = hn  # converged: the root is hn to round-off
                     break
         if hi - lo <= 4e-16 * (abs(tau) + abs(hi)):
             break
-    # return the end of the bracket on the 'after the event' side
-    if hcur != hi:
-        rk_step(stick, s, tau, y, hi, m, code, params, atol, rtol, K, yout)
-    return hi
+    # return the end of the bracket on the 'after the event' side, with the
+    # error estimate of that single step (the caller rejects inaccurate ones)
+    err = rk_step(stick, s, tau, y, hi, m, code, params, atol, rtol, K, yout)
+    if err <= 1.0 and kind != 2:
+        yv = yout.copy()
+        err = max(err, verify(stick, s, tau, y, hi, yv, m, code, params, atol, rtol, K))
+        for i in range(4):
+            yout[i] = yv[i]
+    return hi, err
 
 
 @njit(cache=True)
@@ -304,6 +332,10 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         hist[0, 5] = 0.0
         nh = 1
     hs = 0.0
+    herr = 0.0
+    zone = 0.0
+    if m[M_COULOMB] == 0.0 and m[M_PI6] > 0.0 and m[M_PI2] < thr:
+        zone = 30.0 / m[M_PI6]
     while True:
         # --- mode checks at the current (accepted) point -------------------
         if stick:
@@ -358,6 +390,9 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         while True:
             err = rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, y1)
             steps += 1
+            if err <= 1.0 and not stick and zone > 0.0 and min(abs(y[3]), abs(y1[3])) < zone:
+                err = max(err, verify(stick, s, tau, y, h, y1, m, code, params, atol, rtol, K))
+                steps += 2
             if err <= 1.0:
                 break
             fac = max(0.2, 0.9 * err ** (-1.0 / 8.0))
@@ -378,8 +413,8 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     g0 = sig * a_req(tau, y, m, code, params) - thr
                     g1 = sig * a_req(tnew, y1, m, code, params) - thr
                     if g1 > 0.0:
-                        hs = locate(0, sig, True, s, tau, y, 0.0, g0, h, g1, m, code, params,
-                                    atol, rtol, K, ye, work)
+                        hs, herr = locate(0, sig, True, s, tau, y, 0.0, g0, h, g1, m, code, params,
+                                          atol, rtol, K, ye, work)
                         found = True
                         break
             for sig in (1.0, -1.0):
@@ -393,16 +428,21 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 g1 = sig * a_req(tnew, y1, m, code, params) - thr
                 if not track_max and _hermite_max(g0, d0, g1, d1, h) < -1e-2 * thr:
                     continue
-                hm = locate(2, sig, True, s, tau, y, 0.0, d0, h, d1, m, code, params,
-                            atol, rtol, K, ye, work)
+                hm, herr = locate(2, sig, True, s, tau, y, 0.0, d0, h, d1, m, code, params,
+                                  atol, rtol, K, ye, work)
                 am = sig * a_req(tau + hm, ye, m, code, params)
                 if track_max:
                     if am > amax:
                         amax = am
                 elif am - thr > 0.0:
-                    hs = locate(0, sig, True, s, tau, y, 0.0, g0, hm, am - thr, m, code, params,
-                                atol, rtol, K, ye, work)
+                    hs, herr = locate(0, sig, True, s, tau, y, 0.0, g0, hm, am - thr, m, code,
+                                      params, atol, rtol, K, ye, work)
                     found = True
+            if found and herr > 1.0:
+                # the single step to the event is not accurate enough: retry
+                # from the same point with a shorter step
+                h = 0.5 * hs
+                continue
             if found:
                 tau = tau + hs
                 for i in range(4):
@@ -439,17 +479,21 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     if gp > 0.0:
                         lo = hp
                         glo = gp
-                        hs = locate(1, 0.0, False, s, tau, y, lo, glo, h, g1, m, code, params,
-                                    atol, rtol, K, ye, work)
+                        hs, herr = locate(1, 0.0, False, s, tau, y, lo, glo, h, g1, m, code,
+                                          params, atol, rtol, K, ye, work)
                     else:
                         hs = 0.0
+                        herr = 0.0
                         for i in range(4):
                             ye[i] = y[i]
                 else:
                     deriv(False, s, tau, y, m, code, params, work)
                     glo = s * y[3]
-                    hs = locate(1, 0.0, False, s, tau, y, 0.0, glo, h, g1, m, code, params,
-                                atol, rtol, K, ye, work)
+                    hs, herr = locate(1, 0.0, False, s, tau, y, 0.0, glo, h, g1, m, code, params,
+                                      atol, rtol, K, ye, work)
+                if herr > 1.0:
+                    h = 0.5 * hs
+                    continue
                 tau = tau + hs
                 for i in range(4):
                     y[i] = ye[i]

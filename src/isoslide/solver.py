@@ -51,10 +51,11 @@ from . import kernel
 from .scene import Scene
 
 DEFAULT_RTOL = 1e-6
-INTEGRATOR_FACTOR = 1e-3
+INTEGRATOR_FACTOR = 1e-2
 ATOL_SCALE = 1e-3
 H_MAX_PULSE = 0.05
 H_RESTART = 1e-4
+MIN_INTEGRATOR_RTOL = 1e-14
 DEFAULT_HORIZON = 200.0
 """Follow-up after the pulse, in isolation periods (pulse periods for a fixed base)."""
 
@@ -173,7 +174,7 @@ def _horizon(scene: Scene, horizon: float) -> float:
 def _run(scene: Scene, pi8: float, coulomb: bool, rtol: float, hist_cap: int = 0,
          horizon: float = DEFAULT_HORIZON, track_max: bool = False):
     pulse = scene.pulse
-    irtol = rtol * INTEGRATOR_FACTOR
+    irtol = max(rtol * INTEGRATOR_FACTOR, MIN_INTEGRATOR_RTOL)
     m = _model_array(scene, pi8, coulomb, thr=math.inf if track_max else None)
     h_free = max(scene.pi3, 1.0) / 8.0
     return kernel.run(m, pulse.code, pulse.param_array, pulse.breakpoint_array,
