@@ -1,0 +1,42 @@
+# isoslide: Pi-grid fan-out -> labelled netCDF -> every paper figure -> HTML reports.
+#
+#   snakemake --cores 2                                   # everything (config/config.yaml)
+#   snakemake --cores 2 --configfile config/test.yaml     # tiny end-to-end run
+#
+# The science lives in the isoslide package; rules only wire files together
+# (see workflow/rules/*.smk).  Default options come from profiles/default/config.yaml.
+
+from snakemake.utils import min_version, validate
+
+min_version("9.0")
+
+
+configfile: "config/config.yaml"
+
+
+validate(config, "config/schema.yaml")
+
+
+include: "workflow/rules/common.smk"
+
+
+wildcard_constraints:
+    study="|".join(STUDIES),
+    chunk=r"\d+",
+    fig=r"fig[1-8]",
+
+
+include: "workflow/rules/sweep.smk"
+include: "workflow/rules/similarity.smk"
+include: "workflow/rules/figures.smk"
+include: "workflow/rules/reports.smk"
+
+
+rule all:
+    input:
+        DATASETS,
+        "results/datasets/similarity.nc",
+        FIGURE_FILES,
+        "reports/similarity.html",
+        "reports/figures.html",
+    default_target: True

@@ -1,0 +1,378 @@
+"""Datasets that explain themselves: naming, CF metadata, provenance, atomic writes, merging.
+
+Every dataset written by the pipeline carries
+
+* CF-style global attributes: ``Conventions``, ``title``, ``history``,
+  ``source`` (package version and git commit), ``references`` (the paper),
+  plus ``isoslide_config``, the JSON text of the configuration it was made from;
+* ``long_name`` (for a Pi-group: its definition) and ``units`` (``"1"`` for
+  Pi-groups) on every coordinate and variable;
+* the groups held fixed as scalar coordinates.
+
+Nothing here embeds a wall-clock time, so the same configuration and code
+give byte-identical files; :func:`assert_same_data` compares two datasets on
+data and stable attributes (everything except ``source``/``history``).
+
+Writes are atomic (:func:`write_netcdf`): a temporary file in the target
+directory, then :func:`os.replace`, so a killed job never leaves a truncated
+output under the final name.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import json
+import os
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+CONVENTIONS = "CF-1.10"
+
+REFERENCES = (
+    "Nikfar, F. and Konstantinidis, D.: Dimensional analysis of sliding contents in seismically "
+    "isolated buildings under pulse-type excitation (the paper reproduced by isoslide); "
+    "Newmark, N. M. (1965): Effects of earthquakes on dams and embankments, Geotechnique 15(2), 139-160."
+)
+
+PI_META = {
+    "pi1": ("Pi1 = u_max / (a_p T_p^2): peak sliding displacement of the contents relative to the floor",
+            "peak |u_s| over the whole response, in units of the pulse length scale a_p T_p^2"),
+    "pi2": ("Pi2 = mu_k g / a_p: kinetic friction coefficient times g over pulse acceleration amplitude",
+            "dimensionless frictional resistance; the abscissa of the master curves"),
+    "pi3": ("Pi3 = T_b / T_p: nominal isolation period over pulse period",
+            "T_b = 2 pi sqrt(M_b / k_b) with the isolated mass M_b alone; 0 = fixed base"),
+    "pi4": ("Pi4 = xi_b: isolation damping ratio",
+            "xi_b = c_b / (2 sqrt(k_b M_b))"),
+    "pi5": ("Pi5 = mu_k / mu_s: kinetic over static friction coefficient",
+            "1 = Coulomb friction"),
+    "pi6": ("Pi6 = beta a_p T_p: Stribeck transition sharpness",
+            "beta (s/m) sets the speed of the static-to-kinetic transition in mu(v)"),
+    "pi7": ("Pi7 = gamma g T_p: viscous contact group",
+            "the paper prints gamma a_p T_p, which is a similarity group only when a_p = g; "
+            "see isoslide.scene"),
+    "pi8": ("Pi8 = m_EC / M_b: mass of the contents over isolated mass", ""),
+}
+
+VAR_META = {
+    "pi1": dict(long_name=PI_META["pi1"][0], units="1", comment=PI_META["pi1"][1]),
+    "pi1_residual": dict(long_name="residual sliding displacement u_s(t_end) / (a_p T_p^2)", units="1",
+                         comment="signed permanent displacement of the contents relative to the floor "
+                                 "when the response has settled"),
+    "tau_peak": dict(long_name="time of the peak sliding displacement, t_peak / T_p", units="1",
+                     comment="dimensionless time tau = t / T_p on the pulse's own time axis "
+                             "(Ricker: tau = 0 at the centre of the main lobe)"),
+    "settled": dict(long_name="response settled: no further sliding possible at tau_end", units="1",
+                    flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="not_settled settled"),
+    "model": dict(long_name="mechanical model the solver ran for this scene", units="1"),
+    "tau_end": dict(long_name="dimensionless time t_end / T_p up to which the response was followed",
+                    units="1"),
+    "n_steps": dict(long_name="number of integration steps (solver diagnostic)", units="1"),
+    "n_events": dict(long_name="number of stick/slip transitions located (solver diagnostic)", units="1"),
+}
+
+SOLUTION_FIELDS = ("pi1", "pi1_residual", "tau_peak", "settled", "model", "tau_end", "n_steps", "n_events")
+
+MODELS_FALLBACK = ("no-slide", "fixed-base+no-slide", "coulomb", "coulomb+one-way", "stribeck",
+                   "stribeck+one-way", "fixed-base+coulomb", "fixed-base+stribeck", "regularized",
+                   "reference")
+"""Model labels of :func:`isoslide.solve`, in flag order (codes must never change; new labels
+exported by the solver as ``MODELS`` are appended)."""
+
+
+def model_names() -> tuple:
+    """Model names in the stable order used for the ``model`` flag variable."""
+    try:
+        from . import solver
+        names = getattr(solver, "MODELS", None)
+    except Exception:  # pragma: no cover - solver import failure is reported elsewhere
+        names = None
+    names = tuple(names) if names else MODELS_FALLBACK
+    # keep the fallback order first so codes stay stable when the solver adds names
+    extra = tuple(n for n in names if n not in MODELS_FALLBACK)
+    return MODELS_FALLBACK + extra
+
+
+def encode_models(models) -> tuple[np.ndarray, dict]:
+    """Model names -> int8 codes and CF flag attributes.
+
+    Raises
+    ------
+    ValueError
+        If a name is not one of :func:`model_names` (codes must be stable).
+    """
+    names = model_names()
+    lookup = {n: i for i, n in enumerate(names)}
+    arr = np.asarray(models).astype(str)
+    bad = sorted(set(arr.ravel()) - set(lookup))
+    if bad:
+        raise ValueError(f"unknown solver model name(s) {bad}; known: {list(names)}")
+    codes = np.vectorize(lookup.__getitem__, otypes=[np.int8])(arr) if arr.size else arr.astype(np.int8)
+    attrs = dict(VAR_META["model"])
+    attrs["flag_values"] = np.arange(len(names), dtype=np.int8)
+    attrs["flag_meanings"] = " ".join(n.replace(" ", "_") for n in names)
+    return codes, attrs
+
+
+def decode_models(da: xr.DataArray) -> xr.DataArray:
+    """Model flag codes -> model names (a string DataArray of the same shape)."""
+    meanings = np.array(da.attrs["flag_meanings"].split())
+    return xr.DataArray(meanings[np.asarray(da.values, dtype=int)], dims=da.dims, coords=da.coords,
+                        attrs={"long_name": da.attrs.get("long_name", "model")})
+
+
+# ----------------------------------------------------------------------------------------------
+# provenance
+# ----------------------------------------------------------------------------------------------
+
+@functools.lru_cache(maxsize=1)
+def git_commit() -> str:
+    """Git commit of the isoslide source tree, ``"+dirty"`` if the package differs from it.
+
+    ``"unknown"`` when the package is not in a git checkout (e.g. a wheel).
+    """
+    pkg = Path(__file__).resolve().parent
+    try:
+        sha = subprocess.run(["git", "-C", str(pkg), "rev-parse", "HEAD"], capture_output=True,
+                             text=True, timeout=10, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(pkg), "diff", "--quiet", "HEAD", "--", "."],
+                               capture_output=True, timeout=10).returncode != 0
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return sha + ("+dirty" if dirty else "")
+
+
+def source_text() -> str:
+    """``source`` attribute: package version and git commit."""
+    from . import __version__
+    return f"isoslide {__version__} (git {git_commit()}), exact event-driven stick-slip solver"
+
+
+def pi_attrs(name: str) -> dict:
+    """``long_name``/``units``/``comment`` of an input or output Pi-group."""
+    long_name, comment = PI_META[name]
+    out = {"long_name": long_name, "units": "1"}
+    if comment:
+        out["comment"] = comment
+    return out
+
+
+def global_attrs(title: str, history: str, config: dict | None = None, **extra) -> dict:
+    """CF-style global attributes; ``config`` is stored as JSON in ``isoslide_config``."""
+    attrs = {
+        "Conventions": CONVENTIONS,
+        "title": title,
+        "history": history,
+        "source": source_text(),
+        "references": REFERENCES,
+    }
+    if config is not None:
+        attrs["isoslide_config"] = json.dumps(config, sort_keys=True)
+    for k, v in extra.items():
+        if v is not None:
+            attrs[k] = v
+    return attrs
+
+
+# ----------------------------------------------------------------------------------------------
+# chunk and study datasets
+# ----------------------------------------------------------------------------------------------
+
+def _solution_vars(batch, dims, shape=None) -> dict:
+    out = {}
+    for f in SOLUTION_FIELDS:
+        val = np.asarray(getattr(batch, f))
+        if shape is not None:
+            val = val.reshape(shape)
+        if f == "model":
+            codes, attrs = encode_models(val)
+            out[f] = (dims, codes, attrs)
+        elif f == "settled":
+            out[f] = (dims, val.astype(np.int8), dict(VAR_META[f]))
+        elif f in ("n_steps", "n_events"):
+            out[f] = (dims, val.astype(np.int32), dict(VAR_META[f]))
+        else:
+            out[f] = (dims, val.astype(np.float64), dict(VAR_META[f]))
+    return out
+
+
+def chunk_dataset(grid, indices, batch) -> xr.Dataset:
+    """Dataset of one chunk: dimension ``scene`` (flat grid index) with the Pi values as coordinates.
+
+    Parameters
+    ----------
+    grid : isoslide.sweep.Grid
+    indices : array_like of int
+        Flat indices of the chunk's scenes.
+    batch : isoslide.Batch
+        The solver's results for those scenes, in order.
+    """
+    idx = np.asarray(indices, dtype=np.int64)
+    pts = grid.points(idx)
+    coords = {"scene": ("scene", idx, {"long_name": f"flat C-order index of the scene in the grid of "
+                                                    f"study {grid.name} (dims {', '.join(grid.dim_names)})",
+                                       "units": "1"})}
+    for name in grid.dim_names:
+        coords[name] = ("scene", pts[name], pi_attrs(name))
+    ds = xr.Dataset(_solution_vars(batch, ("scene",)), coords=coords)
+    ds.attrs = global_attrs(
+        title=f"isoslide chunk of study {grid.name}",
+        history=f"isoslide.sweep.solve_chunk: {idx.size} scenes (flat indices {idx[0]}..{idx[-1]}) "
+                f"of study {grid.name}" if idx.size else f"isoslide.sweep.solve_chunk: empty chunk",
+        config=grid.spec, study=grid.name)
+    return ds
+
+
+def merge_chunks(chunks, grid) -> xr.Dataset:
+    """Merge chunk datasets into the labelled study dataset.
+
+    The chunks are combined along ``scene`` with an exact coordinate join
+    (:func:`xarray.combine_by_coords`, ``join="exact"``); every scene of the
+    grid must appear exactly once and carry exactly the grid's Pi values,
+    otherwise ``ValueError``.  The result has the grid's dimensions (``pi2``
+    last), the fixed groups as scalar coordinates and CF metadata.
+
+    Parameters
+    ----------
+    chunks : sequence of xarray.Dataset
+        As written by :func:`chunk_dataset`, any order.
+    grid : isoslide.sweep.Grid
+    """
+    chunks = [c.drop_attrs() if hasattr(c, "drop_attrs") else c.copy() for c in chunks]
+    for c in chunks:
+        c.attrs = {}
+    flat = xr.combine_by_coords(chunks, join="exact", combine_attrs="drop", data_vars="all",
+                                coords="different", compat="equals")
+    expect = np.arange(grid.size)
+    if flat.sizes["scene"] != grid.size or not np.array_equal(flat["scene"].values, expect):
+        got = flat["scene"].values
+        missing = np.setdiff1d(expect, got)
+        raise ValueError(f"chunks of study {grid.name} do not cover its grid exactly: "
+                         f"{got.size} scenes for {grid.size}; missing flat indices {missing[:10].tolist()}")
+    pts = grid.points(expect)
+    for name in grid.dim_names:
+        if not np.array_equal(flat[name].values, pts[name]):
+            raise ValueError(f"chunk coordinate {name} of study {grid.name} does not match the grid "
+                             f"exactly (stale chunks from another configuration?)")
+
+    dims = grid.dim_names
+    shape = grid.shape
+    data_vars = {}
+    for var in flat.data_vars:
+        da = flat[var]
+        data_vars[var] = (dims, da.values.reshape(shape), dict(da.attrs))
+    coords = {name: (name, np.asarray(grid.dims[name], dtype=float), pi_attrs(name)) for name in dims}
+    for name, value in grid.fixed.items():
+        coords[name] = ((), float(value), pi_attrs(name))
+    if grid.beta is not None:
+        battrs = {"long_name": "Stribeck transition constant beta = Pi6 / (a_p T_p)_ref",
+                  "units": "s m-1",
+                  "comment": f"reference a_p T_p = {grid.a_p_T_p:g} m/s turns beta into Pi6"}
+        if np.ndim(grid.beta):
+            coords["beta"] = ("pi6", np.asarray(grid.beta, dtype=float), battrs)
+        else:
+            coords["beta"] = ((), float(grid.beta), battrs)
+    ds = xr.Dataset(data_vars, coords=coords)
+    spec = grid.spec
+    ds.attrs = global_attrs(
+        title=f"isoslide master curves: {spec.get('title', grid.name)}",
+        history=(f"isoslide.sweep: {grid.size} scenes of study {grid.name} "
+                 f"({' x '.join(f'{d}[{n}]' for d, n in zip(dims, shape))}), solved in "
+                 f"{len(chunks)} chunk(s) of at most {spec.get('chunk_size')} scenes and merged by "
+                 f"isoslide.datasets.merge_chunks (exact coordinate join); no timestamps are stored "
+                 f"so that identical inputs give identical files"),
+        config=spec, study=grid.name, pulse=str(spec.get("pulse")),
+        figure=None if spec.get("figure") is None else str(spec["figure"]),
+        panel=spec.get("panel"),
+        reference_a_p_T_p=f"{grid.a_p_T_p:g} m/s (turns beta in s/m into Pi6 = beta a_p T_p)",
+        comment="Pi-groups use the repeating variables a_p, T_p, M_b (Buckingham); every curve is "
+                "the same for all a_p, T_p, M_b. Pi1 = 0 means no sliding.")
+    return ds
+
+
+# ----------------------------------------------------------------------------------------------
+# files
+# ----------------------------------------------------------------------------------------------
+
+def encoding_for(ds: xr.Dataset, complevel: int = 4) -> dict:
+    """zlib compression (with shuffle) for every numeric variable and non-scalar coordinate."""
+    enc = {}
+    for name, var in ds.variables.items():
+        if var.dtype.kind in "fiub" and var.ndim > 0:
+            enc[name] = {"zlib": True, "complevel": complevel, "shuffle": True}
+    return enc
+
+
+def write_netcdf(ds: xr.Dataset, path, complevel: int = 4) -> Path:
+    """Write ``ds`` to ``path`` atomically (temporary file in the same directory + ``os.replace``).
+
+    Numeric variables are zlib-compressed.  Returns the path.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", encoding=encoding_for(ds, complevel))
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+def open_dataset(path) -> xr.Dataset:
+    """Open a dataset fully into memory and close the file."""
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        return ds.load()
+
+
+UNSTABLE_ATTRS = ("source", "history")
+"""Global attributes that may legitimately differ between two runs of the same configuration
+(``source`` names the git commit)."""
+
+
+def assert_same_data(a: xr.Dataset, b: xr.Dataset) -> None:
+    """Assert two datasets are identical in data, coordinates and every stable attribute.
+
+    This is how equality between an interrupted-and-resumed run and an uninterrupted one is
+    checked when the code commit differs; with the same commit the files are byte-identical.
+    """
+    a2, b2 = a.copy(), b.copy()
+    for d in (a2, b2):
+        for k in UNSTABLE_ATTRS:
+            d.attrs.pop(k, None)
+    xr.testing.assert_identical(a2, b2)
+
+
+def merge_chunk_files(paths, spec: dict) -> xr.Dataset:
+    """Open chunk files and :func:`merge_chunks` them into the study dataset of ``spec``."""
+    from .sweep import build_grid
+
+    grid = build_grid(spec)
+    chunks = [open_dataset(p) for p in paths]
+    print(f"merging {len(chunks)} chunk file(s) of study {grid.name} into grid {grid.shape}")
+    return merge_chunks(chunks, grid)
+
+
+@contextlib.contextmanager
+def logging_to(path):
+    """Send ``stdout``/``stderr`` (and any traceback) of a pipeline job to the log file ``path``."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
+        import traceback
+
+        print(source_text(), flush=True)
+        try:
+            yield log
+        except BaseException:
+            traceback.print_exc(file=log)
+            log.flush()
+            raise
+        print("done", flush=True)

@@ -1,0 +1,543 @@
+"""Every figure of the paper, drawn from the pipeline's datasets.
+
+One function per figure, ``fig1`` ... ``fig8``, each returning a matplotlib
+Figure and its caption; :func:`draw` renders one to files.  Master curves
+(Figs. 3, 5-8) are plotted from the study datasets only; Figs. 1, 2 and 4 draw
+the model, the friction law and the pulse from their definitions.
+
+All figures share one style (:data:`STYLE`): axis labels carry the
+Pi-group definitions, curve families use one sequential colour map, and
+the groups held fixed are printed in a box on each panel.
+
+Outputs are deterministic: PDF/SVG carry no creation date, PNG carries the
+caption as its ``Description`` text chunk (read by the gallery report).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .scene import G_STANDARD
+
+STYLE = {
+    "font.family": "DejaVu Sans",
+    "font.size": 8.5,
+    "axes.titlesize": 9,
+    "axes.labelsize": 8.5,
+    "legend.fontsize": 7.5,
+    "legend.title_fontsize": 7.5,
+    "legend.frameon": False,
+    "xtick.labelsize": 7.5,
+    "ytick.labelsize": 7.5,
+    "xtick.direction": "in",
+    "ytick.direction": "in",
+    "xtick.top": True,
+    "ytick.right": True,
+    "axes.linewidth": 0.7,
+    "lines.linewidth": 1.3,
+    "axes.grid": True,
+    "grid.linewidth": 0.4,
+    "grid.alpha": 0.35,
+    "savefig.bbox": "tight",
+    "savefig.pad_inches": 0.04,
+    "svg.hashsalt": "isoslide",
+    "pdf.compression": 6,
+}
+"""matplotlib rcParams shared by every figure."""
+
+CMAP = "viridis"
+WIDTH = 7.0
+"""Figure width, inches (two columns)."""
+
+LABELS = {
+    "pi1": r"$\Pi_1 = u_{max}\,/\,(a_p T_p^2)$",
+    "pi2": r"$\Pi_2 = \mu_k g\,/\,a_p$",
+    "pi3": r"$\Pi_3 = T_b/T_p$",
+    "pi4": r"$\Pi_4 = \xi_b$",
+    "pi5": r"$\Pi_5 = \mu_k/\mu_s$",
+    "pi6": r"$\Pi_6 = \beta a_p T_p$",
+    "pi7": r"$\Pi_7 = \gamma g T_p$",
+    "pi8": r"$\Pi_8 = m_{EC}/M_b$",
+}
+SYMBOL = {"pi3": r"\Pi_3", "pi4": r"\Pi_4", "pi5": r"\Pi_5", "pi6": r"\Pi_6", "pi7": r"\Pi_7",
+          "pi8": r"\Pi_8"}
+
+
+def stribeck_mu(v, mu_s, mu_k, beta, gamma=0.0):
+    """Stribeck friction coefficient of paper Eq. 1 (n = 1).
+
+    ``mu(v) = mu_s sech(beta v) + mu_k (1 - sech(beta v)) + gamma |v|``
+
+    Parameters
+    ----------
+    v : array_like
+        Sliding velocity, m/s.
+    mu_s, mu_k : float
+        Static and kinetic friction coefficients.
+    beta, gamma : float
+        Transition and viscous constants, s/m.
+    """
+    v = np.asarray(v, dtype=float)
+    sech = 1.0 / np.cosh(np.clip(beta * v, -700, 700))
+    return mu_s * sech + mu_k * (1.0 - sech) + gamma * np.abs(v)
+
+
+def _fmt(x: float) -> str:
+    if x == 0:
+        return "0"
+    if abs(x) < 1e-2 or abs(x) >= 1e4:
+        m, e = f"{x:.0e}".split("e")
+        return rf"{m}\times10^{{{int(e)}}}" if m != "1" else rf"10^{{{int(e)}}}"
+    return f"{x:g}"
+
+
+def _fixed_text(ds, skip=()) -> str:
+    """Box text listing the groups held fixed in a dataset (its scalar coordinates)."""
+    parts = []
+    for name in ("pi3", "pi4", "pi5", "pi6", "pi7", "pi8"):
+        if name in ds.coords and ds[name].ndim == 0 and name not in skip:
+            parts.append(rf"${SYMBOL[name]} = {_fmt(float(ds[name]))}$")
+    if "beta" in ds.coords and ds["beta"].ndim == 0 and float(ds["beta"]) > 0 and "pi6" not in skip:
+        parts.append(rf"($\beta = {float(ds['beta']):g}$ s/m)")
+    pulse = ds.attrs.get("pulse", "")
+    text = ", ".join(parts)
+    return text + (f"\n{pulse} pulse" if pulse else "")
+
+
+def _text_box(ax, text, loc="upper right"):
+    x, ha = (0.97, "right") if "right" in loc else (0.03, "left")
+    y, va = (0.97, "top") if "upper" in loc else (0.03, "bottom")
+    ax.text(x, y, text, transform=ax.transAxes, ha=ha, va=va, fontsize=6.8,
+            bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.7", lw=0.5, alpha=0.9))
+
+
+def _colors(n):
+    import matplotlib
+
+    cmap = matplotlib.colormaps[CMAP]
+    return [cmap(x) for x in np.linspace(0.0, 0.88, n)]
+
+
+def master_curves(ax, ds, family: str, select=None, label_fmt=None, legend_loc="upper right",
+                  box=True, box_loc="center right", skip=()):
+    """Plot Pi1 against Pi2, one curve per value of ``family``.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    ds : xarray.Dataset
+        A study dataset (dims ``(..., family, ..., pi2)``).
+    family : str
+        Dimension with one curve per value.
+    select : dict, optional
+        ``{dim: value}`` selecting the other swept dimensions.
+    label_fmt : callable, optional
+        ``value -> legend label``.
+    """
+    sub = ds.sel(select) if select else ds
+    pi1 = sub["pi1"].transpose(family, "pi2")
+    values = sub[family].values
+    for color, (k, val) in zip(_colors(len(values)), enumerate(values)):
+        lab = label_fmt(k, val) if label_fmt else f"${_fmt(float(val))}$"
+        ax.plot(sub["pi2"].values, pi1.values[k], color=color, label=lab)
+    ax.set_xlabel(LABELS["pi2"])
+    ax.set_ylabel(LABELS["pi1"])
+    ax.set_xlim(0.0, float(sub["pi2"].max()))
+    ax.set_ylim(bottom=0.0)
+    ax.legend(title=LABELS.get(family, family), loc=legend_loc, handlelength=1.6)
+    if box:
+        sel_text = ", ".join(rf"${SYMBOL[k]} = {_fmt(float(v))}$" for k, v in (select or {}).items())
+        fixed = _fixed_text(sub, skip=set(skip) | {family})
+        _text_box(ax, "\n".join(t for t in (sel_text, fixed) if t), loc=box_loc)
+
+
+# ----------------------------------------------------------------------------------------------
+# the figures
+# ----------------------------------------------------------------------------------------------
+
+def fig1(datasets=None, settings=None):
+    """Fig. 1: the model, drawn in code: isolated mass on spring-dashpot isolators, sliding block."""
+    import matplotlib.pyplot as plt
+    from matplotlib import patches
+
+    fig, ax = plt.subplots(figsize=(WIDTH * 0.62, 2.7))
+    ax.set_xlim(0, 10)
+    ax.set_ylim(-0.9, 5.2)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    # ground with hatching and the abutment wall
+    ax.add_patch(patches.Rectangle((0.3, -0.45), 9.2, 0.45, hatch="////", fc="white", ec="0.3", lw=0.8))
+    ax.add_patch(patches.Rectangle((0.3, 0.0), 0.45, 2.6, hatch="////", fc="white", ec="0.3", lw=0.8))
+    # isolated mass M_b on rollers
+    mx, my, mw, mh = 3.4, 0.55, 5.2, 1.6
+    ax.add_patch(patches.Rectangle((mx, my), mw, mh, fc="#dbe6f1", ec="0.15", lw=1.0))
+    ax.text(mx + mw / 2, my + mh / 2, r"$M_b$" + "\n(isolated base and\nrigid superstructure)",
+            ha="center", va="center", fontsize=7.5)
+    for rx in (mx + 0.7, mx + mw - 0.7):
+        ax.add_patch(patches.Circle((rx, 0.27), 0.27, fc="white", ec="0.15", lw=0.9))
+    # spring k_b (upper) and dashpot c_b (lower) from the wall to the mass
+    y1, y2, x0, x1 = my + 1.15, my + 0.45, 0.75, mx
+    zz = np.linspace(x0 + 0.5, x1 - 0.5, 13)
+    ys = y1 + 0.18 * np.where(np.arange(13) % 2 == 0, 0.0, np.where(np.arange(13) % 4 == 1, 1, -1))
+    ax.plot(np.r_[x0, zz, x1], np.r_[y1, ys, y1], color="0.15", lw=0.9)
+    ax.text((x0 + x1) / 2, y1 + 0.3, r"$k_b$", ha="center", fontsize=8)
+    xm = (x0 + x1) / 2
+    ax.plot([x0, xm - 0.1], [y2, y2], color="0.15", lw=0.9)
+    ax.plot([xm - 0.1, xm - 0.1], [y2 - 0.22, y2 + 0.22], color="0.15", lw=0.9)
+    ax.plot([xm - 0.35, xm + 0.4, xm + 0.4, xm - 0.35], [y2 + 0.3, y2 + 0.3, y2 - 0.3, y2 - 0.3],
+            color="0.15", lw=0.9)
+    ax.plot([xm + 0.4, x1], [y2, y2], color="0.15", lw=0.9)
+    ax.text(xm, y2 - 0.62, r"$c_b$", ha="center", fontsize=8)
+    # the sliding block m_EC with friction at its base
+    bx, by, bw, bh = 5.2, my + mh, 1.6, 1.1
+    ax.add_patch(patches.Rectangle((bx, by), bw, bh, fc="#f3d9b1", ec="0.15", lw=1.0))
+    ax.text(bx + bw / 2, by + bh / 2, r"$m_{EC}$", ha="center", va="center", fontsize=8.5)
+    ax.text(bx + bw + 0.15, by + 0.12, r"$\mu(\dot u_s)$: Stribeck, Eq. 1", fontsize=7, va="bottom")
+    for k in range(7):
+        xx = bx + 0.1 + k * 0.23
+        ax.plot([xx, xx + 0.15], [by - 0.0, by + 0.12], color="0.4", lw=0.5)
+    # displacement arrows
+    arrow = dict(arrowstyle="-|>", lw=0.8, color="0.1", shrinkA=0, shrinkB=0, mutation_scale=8)
+    ax.annotate("", xy=(2.3, -0.7), xytext=(0.9, -0.7), arrowprops=arrow)
+    ax.text(2.4, -0.7, r"$u_g(t)$, $\ddot u_g = a_p\,p(t/T_p)$", va="center", fontsize=7.5)
+    ax.annotate("", xy=(mx + mw + 0.9, my + mh / 2), xytext=(mx + mw, my + mh / 2), arrowprops=arrow)
+    ax.text(mx + mw + 0.95, my + mh / 2, r"$u_b$", va="center", fontsize=8)
+    ax.annotate("", xy=(bx + bw / 2 + 0.9, by + bh + 0.35), xytext=(bx + bw / 2, by + bh + 0.35),
+                arrowprops=arrow)
+    ax.plot([bx + bw / 2, bx + bw / 2], [by + bh + 0.2, by + bh + 0.5], color="0.1", lw=0.7)
+    ax.text(bx + bw / 2 + 1.0, by + bh + 0.35, r"$u_s$ (sliding, relative to the floor)", va="center",
+            fontsize=7.5)
+    ax.text(0.3, 4.95, r"$T_b = 2\pi\sqrt{M_b/k_b}$,  $\xi_b = c_b / (2\sqrt{k_b M_b})$", fontsize=7.5)
+    caption = ("Fig. 1. The model: a rigid isolated mass M_b (base and superstructure) on linear "
+               "viscously damped isolators (k_b, c_b) carries a freestanding rigid block m_EC that "
+               "slides with Stribeck friction mu(v); u_g is the ground, u_b the base relative to the "
+               "ground and u_s the sliding of the block relative to the floor. T_b and xi_b are defined "
+               "with M_b alone. Drawn in code (isoslide.figures.fig1).")
+    return fig, caption
+
+
+def fig2(datasets=None, settings=None):
+    """Fig. 2: the Stribeck friction law for several beta."""
+    import matplotlib.pyplot as plt
+
+    settings = settings or {}
+    betas = settings.get("fig2_beta", [10.0, 30.0, 100.0, 1000.0])
+    mu = settings.get("fig2_mu", {})
+    mu_s, mu_k, gamma = mu.get("mu_s", 0.5), mu.get("mu_k", 0.35), mu.get("gamma", 0.0)
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 2.6))
+    v = np.linspace(-0.3, 0.3, 4001)
+    vl = np.logspace(-5, 0.5, 800)
+    for color, beta in zip(_colors(len(betas)), betas):
+        a.plot(v, stribeck_mu(v, mu_s, mu_k, beta, gamma) * np.sign(v), color=color,
+               label=rf"$\beta = {beta:g}$ s/m")
+        b.semilogx(vl, stribeck_mu(vl, mu_s, mu_k, beta, gamma), color=color, label=rf"$\beta = {beta:g}$ s/m")
+    gv = 0.1
+    b.semilogx(vl, stribeck_mu(vl, mu_s, mu_k, 100.0, gv), color="0.3", ls="--",
+               label=rf"$\beta = 100$ s/m, $\gamma = {gv:g}$ s/m")
+    a.axhline(0, color="0.5", lw=0.5)
+    a.set_xlabel(r"sliding velocity $\dot u_s$ (m/s)")
+    a.set_ylabel(r"$F_f / (m_{EC} g) = \mu(\dot u_s)\,\mathrm{sgn}(\dot u_s)$")
+    a.set_title("(a) friction force")
+    b.set_xlabel(r"$|\dot u_s|$ (m/s)")
+    b.set_ylabel(r"$\mu(\dot u_s)$")
+    b.set_title("(b) static-to-kinetic transition")
+    b.axhline(mu_s, color="0.5", lw=0.6, ls=":")
+    b.axhline(mu_k, color="0.5", lw=0.6, ls=":")
+    b.text(1.5e-5, mu_s, r" $\mu_s$", va="bottom", fontsize=7)
+    b.text(1.5e-5, mu_k, r" $\mu_k$", va="bottom", fontsize=7)
+    b.legend(loc="upper right")
+    a.legend(loc="upper left")
+    _text_box(a, rf"$\mu(v) = \mu_s\,\mathrm{{sech}}(\beta v) + \mu_k\,(1 - \mathrm{{sech}}(\beta v)) "
+                 rf"+ \gamma |v|$" + f"\n$\\mu_s = {mu_s:g}$, $\\mu_k = {mu_k:g}$, $\\gamma = {gamma:g}$ s/m",
+              loc="lower right")
+    fig.tight_layout()
+    caption = (f"Fig. 2. Stribeck friction model (paper Eq. 1 with n = 1) for mu_s = {mu_s:g}, "
+               f"mu_k = {mu_k:g} and beta = {', '.join(f'{x:g}' for x in betas)} s/m: the larger beta, "
+               f"the sharper the drop from static to kinetic friction. Dashed: with viscous contact "
+               f"gamma = {gv:g} s/m. In dimensionless form beta v = Pi6 v' and gamma g v = Pi7 v' "
+               f"(v' = v/(a_p T_p)).")
+    return fig, caption
+
+
+def fig3(datasets, settings=None):
+    """Fig. 3: rectangular pulse, ground velocity, and Newmark's solution against the solver."""
+    import matplotlib.pyplot as plt
+
+    from .datasets import open_dataset
+    from .pulses import get_pulse
+
+    ds = _open(datasets, "fig3_newmark")
+    p = get_pulse(ds.attrs.get("pulse", "rectangular"))
+    fig, axs = plt.subplots(1, 3, figsize=(WIDTH, 2.3), gridspec_kw={"width_ratios": [1, 1, 1.35]})
+    tau = np.linspace(-0.5, 2.5, 3001)
+    axs[0].plot(tau, p.accel(tau), color="C0")
+    axs[0].set_xlabel(r"$\tau = t/T_p$")
+    axs[0].set_ylabel(r"$\ddot u_g / a_p$")
+    axs[0].set_title("(a) rectangular pulse")
+    axs[0].set_ylim(-0.2, 1.3)
+    axs[1].plot(tau, p.velocity(tau), color="C0")
+    axs[1].set_xlabel(r"$\tau = t/T_p$")
+    axs[1].set_ylabel(r"$\dot u_g / (a_p T_p)$")
+    axs[1].set_title("(b) ground velocity")
+    pi2 = ds["pi2"].values
+    pi1 = ds["pi1"].values
+    x = np.linspace(float(pi2.min()), float(pi2.max()), 600)
+    newmark = np.where(x < 1.0, 0.5 * (1.0 / x - 1.0), 0.0)
+    ax = axs[2]
+    ax.plot(x, newmark, color="0.2", lw=1.0, label="Newmark (1965)")
+    ax.plot(pi2, pi1, "o", ms=3.0, mfc="none", mew=0.8, color="C1", label="isoslide solver")
+    ax.set_yscale("symlog", linthresh=0.01)
+    ax.set_ylim(0, None)
+    ax.set_xlabel(LABELS["pi2"])
+    ax.set_ylabel(LABELS["pi1"])
+    ax.set_title("(c) peak sliding, fixed base")
+    ax.legend(loc="upper right")
+    exact = np.where(pi2 < 1.0, 0.5 * (1.0 / pi2 - 1.0), 0.0)
+    err = float(np.max(np.abs(pi1 - exact) / np.maximum(exact, 1e-300) * (exact > 0)))
+    _text_box(ax, rf"$\Pi_1 = \frac{{1}}{{2}}\left(\frac{{1}}{{\Pi_2}} - 1\right)$, $\Pi_2 < 1$"
+                  + f"\nmax rel. difference {err:.1e}", loc="lower left")
+    fig.tight_layout()
+    caption = (f"Fig. 3. (a) Rectangular ground-acceleration pulse of amplitude a_p and duration T_p; "
+               f"(b) ground velocity, which keeps a_p T_p after the pulse; (c) peak sliding of a rigid "
+               f"block on a fixed base with Coulomb friction: Newmark's closed form "
+               f"Pi1 = (1/Pi2 - 1)/2 against the isoslide solver ({pi2.size} points of dataset "
+               f"fig3_newmark; largest relative difference {err:.1e}).")
+    return fig, caption
+
+
+def fig4(datasets=None, settings=None):
+    """Fig. 4: a pulse-like record with its fitted Ricker (the Ricker alone until records land)."""
+    import matplotlib.pyplot as plt
+
+    from .pulses import get_pulse
+
+    datasets = datasets or {}
+    p = get_pulse("ricker")
+    T_p, a_p = 1.0, 1.0
+    t = np.linspace(-2.5, 2.5, 2001)
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 2.4))
+    record = datasets.get("record")
+    if record is not None:  # pragma: no cover - arrives with the records issue
+        rec = _open(datasets, "record")
+        a.plot(rec["t"].values, rec["accel"].values, color="0.6", lw=0.8, label=rec.attrs.get("title", "record"))
+        b.plot(rec["t"].values, rec["velocity"].values, color="0.6", lw=0.8, label=rec.attrs.get("title", "record"))
+    a.plot(t * T_p, a_p * p.accel(t), color="C3", label=r"symmetric Ricker, $T_p = 1$ s")
+    b.plot(t * T_p, a_p * T_p * p.velocity(t), color="C3", label=r"symmetric Ricker, $T_p = 1$ s")
+    a.set_xlabel("t (s)")
+    a.set_ylabel(r"$\ddot u_g / a_p$")
+    a.set_title("(a) ground acceleration")
+    b.set_xlabel("t (s)")
+    b.set_ylabel(r"$\dot u_g / (a_p T_p)$")
+    b.set_title("(b) ground velocity")
+    for ax in (a, b):
+        ax.legend(loc="upper right")
+    if record is None:
+        for ax in (a, b):
+            _text_box(ax, "Ricker wavelet only: the Rinaldi (1994 Northridge)\nrecord is not yet in "
+                          "isoslide (records issue)", loc="lower left")
+    fig.tight_layout()
+    caption = ("Fig. 4. Symmetric Ricker wavelet (paper Eq. 3) with T_p = 1 s, whose Fourier amplitude "
+               "peaks at 1/T_p: (a) acceleration, (b) velocity. "
+               + ("The real pulse-like record it is fitted to is overlaid in grey."
+                  if record is not None else
+                  "The paper overlays the 1994 Northridge record at Rinaldi Receiving Station; that record "
+                  "is not yet available to the pipeline, so the Ricker wavelet is drawn alone."))
+    return fig, caption
+
+
+def fig5(datasets, settings=None):
+    """Fig. 5: master curves for Pi3 (left) and for Pi4 = xi_b at Pi3 = 1 (right)."""
+    import matplotlib.pyplot as plt
+
+    left, right = _open(datasets, "fig5_pi3"), _open(datasets, "fig5_pi4")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 2.9))
+    master_curves(a, left, "pi3")
+    a.set_title(r"(a) isolation period ratio $\Pi_3$")
+    sel = {"pi3": 1.0} if "pi3" in right.dims else None
+    master_curves(b, right, "pi4", select=sel)
+    b.set_title(r"(b) isolation damping $\Pi_4 = \xi_b$ at resonance")
+    fig.tight_layout()
+    caption = ("Fig. 5. Master curves Pi1(Pi2) of a symmetric Ricker pulse: (a) for isolation-to-pulse "
+               f"period ratios Pi3 = {_list(left['pi3'])} (0.01: effectively a fixed base) with "
+               f"xi_b = {_scalar(left, 'pi4')}; (b) for isolation damping xi_b = {_list(right['pi4'])} "
+               f"at resonance, Pi3 = 1. Coulomb friction (Pi5 = 1, Pi6 = 0), Pi7 = 0, "
+               f"Pi8 = {_scalar(left, 'pi8')}. Each curve holds for every a_p, T_p and M_b.")
+    return fig, caption
+
+
+def fig6(datasets, settings=None):
+    """Fig. 6: master curves for Pi5 at three Pi3."""
+    import matplotlib.pyplot as plt
+
+    ds = _open(datasets, "fig6_pi5")
+    pi3s = ds["pi3"].values
+    fig, axs = plt.subplots(1, len(pi3s), figsize=(WIDTH, 2.7), sharey=False, squeeze=False)
+    for k, (ax, pi3) in enumerate(zip(axs[0], pi3s)):
+        master_curves(ax, ds, "pi5", select={"pi3": float(pi3)}, skip=("pi6",),
+                      box=True)
+        ax.set_title(rf"({'abc'[k]}) $\Pi_3 = {float(pi3):g}$")
+        if k:
+            ax.set_ylabel("")
+    _ref_note(fig, ds)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    caption = (f"Fig. 6. Effect of the kinetic-to-static friction ratio Pi5 = mu_k/mu_s "
+               f"({_list(ds['pi5'])}) for Pi3 = {_list(ds['pi3'])}, xi_b = {_scalar(ds, 'pi4')}, "
+               f"beta = {_scalar(ds, 'beta')} s/m, i.e. Pi6 = {_scalar(ds, 'pi6')} with the reference "
+               f"a_p T_p = {_ref(ds)} m/s; Pi8 = {_scalar(ds, 'pi8')}.")
+    return fig, caption
+
+
+def fig7(datasets, settings=None):
+    """Fig. 7: master curves for Pi6 (left) and Pi7 (right)."""
+    import matplotlib.pyplot as plt
+
+    left, right = _open(datasets, "fig7_pi6"), _open(datasets, "fig7_pi7")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 3.0))
+    if "beta" in left.coords:
+        fmt = lambda k, v: rf"${_fmt(float(v))}$ ($\beta = {float(left['beta'][k]):g}$ s/m)"  # noqa: E731
+    else:
+        fmt = None
+    master_curves(a, left, "pi6", label_fmt=fmt)
+    a.set_title(r"(a) Stribeck transition $\Pi_6 = \beta a_p T_p$")
+    master_curves(b, right, "pi7")
+    b.set_title(r"(b) viscous contact $\Pi_7 = \gamma g T_p$")
+    _ref_note(fig, left, extra=(r"; $\Pi_{7,max} = \gamma_{max}\, g\, T_{p,max}$ = 0.1 s/m $\times$ g "
+                                r"$\times$ 5 s = 4.90 (paper prints $\gamma a_p T_p$, $\approx 10$ at "
+                                r"$a_{p,max} = 2g$)"))
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    caption = (f"Fig. 7. (a) Effect of the Stribeck transition: beta = {_list(left['beta']) if 'beta' in left.coords else '-'} "
+               f"s/m, i.e. Pi6 = {_list(left['pi6'])} with the reference a_p T_p = {_ref(left)} m/s, at "
+               f"Pi3 = {_scalar(left, 'pi3')}, Pi5 = {_scalar(left, 'pi5')}. (b) Effect of viscous contact "
+               f"Pi7 = gamma g T_p = {_list(right['pi7'])} at Pi3 = {_scalar(right, 'pi3')}; the upper bound "
+               f"4.90 = gamma_max g T_p,max with gamma_max = 0.1 s/m and T_p,max = 5 s. The paper prints "
+               f"this group as gamma a_p T_p, which is not a similarity group unless a_p = g (see the "
+               f"similarity report). xi_b = 0.1 in both.")
+    return fig, caption
+
+
+def fig8(datasets, settings=None):
+    """Fig. 8: master curves for Pi8 at three Pi3."""
+    import matplotlib.pyplot as plt
+
+    ds = _open(datasets, "fig8_pi8")
+    pi3s = ds["pi3"].values
+    fig, axs = plt.subplots(1, len(pi3s), figsize=(WIDTH, 2.7), squeeze=False)
+    for k, (ax, pi3) in enumerate(zip(axs[0], pi3s)):
+        master_curves(ax, ds, "pi8", select={"pi3": float(pi3)})
+        ax.set_title(rf"({'abc'[k]}) $\Pi_3 = {float(pi3):g}$")
+        if k:
+            ax.set_ylabel("")
+    fig.tight_layout()
+    caption = (f"Fig. 8. Effect of the mass ratio Pi8 = m_EC/M_b ({_list(ds['pi8'])}) for "
+               f"Pi3 = {_list(ds['pi3'])}, xi_b = {_scalar(ds, 'pi4')}, Coulomb friction. The coupled "
+               f"two-degree-of-freedom model is solved exactly: while the block sticks the moving mass "
+               f"is M_b (1 + Pi8).")
+    return fig, caption
+
+
+FIGURES = {f"fig{n}": f for n, f in enumerate((fig1, fig2, fig3, fig4, fig5, fig6, fig7, fig8), start=1)}
+
+
+def _open(datasets, name):
+    from .datasets import open_dataset
+
+    if name not in datasets:
+        raise KeyError(f"figure needs dataset {name!r}; given: {sorted(datasets)}")
+    d = datasets[name]
+    return open_dataset(d) if isinstance(d, (str, Path)) else d
+
+
+def _list(da) -> str:
+    return ", ".join(f"{float(v):g}" for v in np.asarray(da).ravel())
+
+
+def _scalar(ds, name) -> str:
+    return f"{float(ds[name]):g}" if name in ds.coords else "-"
+
+
+def _ref(ds) -> str:
+    cfg = ds.attrs.get("isoslide_config")
+    if cfg:
+        import json
+
+        return f"{json.loads(cfg).get('a_p_T_p'):g}"
+    return "?"
+
+
+def _ref_note(fig, ds, extra=""):
+    fig.text(0.01, 0.01, rf"$\beta$ (s/m) $\to \Pi_6 = \beta\,(a_pT_p)_{{ref}}$ with the reference "
+                         rf"$(a_pT_p)_{{ref}}$ = {_ref(ds)} m/s ($a_p$ = 1 g, $T_p$ = 1 s)" + extra,
+             fontsize=6.5, color="0.25", ha="left", va="bottom")
+
+
+def draw(name: str, datasets: dict, outputs, settings: dict | None = None):
+    """Draw figure ``name`` (``"fig1"`` ... ``"fig8"``) from ``datasets`` into each path of ``outputs``.
+
+    Parameters
+    ----------
+    name : str
+        Figure name.
+    datasets : dict of str -> path or xarray.Dataset
+        Study datasets by study name.
+    outputs : sequence of path
+        Files to write; the format follows the extension (png, pdf, svg).
+    settings : dict, optional
+        The ``figures`` section of the configuration.
+
+    Returns
+    -------
+    str
+        The caption.
+    """
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    if name not in FIGURES:
+        raise ValueError(f"figure = {name!r} is invalid; allowed: {sorted(FIGURES)}")
+    settings = settings or {}
+    with matplotlib.rc_context(STYLE):
+        fig, caption = FIGURES[name](datasets, settings)
+        try:
+            for out in outputs:
+                _save(fig, Path(out), caption, dpi=settings.get("dpi", 200))
+        finally:
+            plt.close(fig)
+    print(caption)
+    return caption
+
+
+def _save(fig, path: Path, caption: str, dpi: int = 200):
+    """Save deterministically and atomically; the caption goes into the file's metadata."""
+    import os
+    import tempfile
+
+    ext = path.suffix.lstrip(".").lower()
+    title = f"isoslide {path.stem}"
+    meta = {
+        "png": {"Title": title, "Description": caption, "Software": "isoslide/matplotlib"},
+        "pdf": {"Title": title, "Subject": caption, "CreationDate": None, "ModDate": None},
+        "svg": {"Title": title, "Description": caption, "Date": None},
+    }
+    if ext not in meta:
+        raise ValueError(f"unsupported figure format {ext!r}; allowed: png, pdf, svg")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=f".{ext}", dir=path.parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, format=ext, dpi=dpi, metadata=meta[ext])
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def read_caption(png_path) -> str:
+    """Caption stored in a figure PNG's ``Description`` text chunk ("" if none)."""
+    from PIL import Image
+
+    with Image.open(png_path) as im:
+        return im.text.get("Description", "") if hasattr(im, "text") else ""

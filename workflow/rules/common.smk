@@ -1,0 +1,48 @@
+# Helpers shared by the rules: the checked study specifications and the file lists.
+# Everything here is computed from the config; nothing runs the solver.
+
+from snakemake.exceptions import WorkflowError
+
+import isoslide.sweep as sweep
+
+# Semantic checks beyond the JSON schema (Pi ranges, pulse names, key consistency); a bad value
+# stops the workflow here, before any job runs, with its key path in the message.
+try:
+    SPECS = sweep.check_config(config)
+except sweep.ConfigError as err:
+    raise WorkflowError(f"Invalid configuration: {err}")
+
+STUDIES = sorted(SPECS)
+DATASETS = expand("results/datasets/{study}.nc", study=STUDIES)
+FIGURES = [f"fig{n}" for n in range(1, 9)]
+FORMATS = config["figures"]["formats"]
+FIGURE_FILES = expand("reports/figures/{fig}.{ext}", fig=FIGURES, ext=FORMATS)
+SIMILARITY_SETTINGS = sweep.jsonable(config["similarity"])
+FIGURE_SETTINGS = sweep.jsonable(config["figures"])
+
+for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
+    if _c["study"] not in SPECS:
+        raise WorkflowError(
+            f"Invalid configuration: similarity.complete.{_name}.study = {_c['study']!r} "
+            f"is not a study; known: {STUDIES}"
+        )
+
+
+def chunk_files(wildcards):
+    """Chunk files of one study."""
+    spec = SPECS[wildcards.study]
+    return expand(
+        "results/chunks/{study}/{chunk}.nc",
+        study=wildcards.study,
+        chunk=sweep.spec_chunks(spec),
+    )
+
+
+def figure_datasets(wildcards):
+    """Datasets a figure is drawn from (by the studies' `figure:` number)."""
+    number = int(wildcards.fig[3:])
+    return {
+        name: f"results/datasets/{name}.nc"
+        for name in STUDIES
+        if SPECS[name]["figure"] == number
+    }

@@ -1,0 +1,14 @@
+# Every figure of the paper, from the datasets only (isoslide.figures).
+
+
+rule figure:
+    input:
+        unpack(figure_datasets),
+    output:
+        expand("reports/figures/{{fig}}.{ext}", ext=FORMATS),
+    params:
+        settings=FIGURE_SETTINGS,
+    log:
+        "logs/figure/{fig}.log",
+    script:
+        "../scripts/figure.py"

@@ -1,0 +1,11 @@
+"""Rule figure: draw one paper figure from its datasets (isoslide.figures.draw)."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+from isoslide.datasets import logging_to  # noqa: E402
+from isoslide.figures import draw  # noqa: E402
+
+with logging_to(snakemake.log[0]):  # noqa: F821 - injected by Snakemake
+    draw(snakemake.wildcards.fig, dict(snakemake.input.items()), snakemake.output, snakemake.params.settings)
