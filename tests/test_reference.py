@@ -1,0 +1,172 @@
+"""Tests of the independent event-driven reference solver (isoslide.reference)."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from isoslide.reference import friction_level, solve_reference, stuck_supremum
+from isoslide.scene import Scene
+
+# Public reference values (independent solver, converged to ~1e-9 relative),
+# copied from the shared reference set; the package never reads that file.
+# (pi2, pi3, pi4, pi5, pi6, pi7, pi8, pi1, note); pulse = symmetric Ricker.
+PI_CASES = [
+    (0.15, 0, 0.0, 1.0, 0, 0, 1e-05, 0.054538872938323886, "fixed base, Coulomb"),
+    (0.25, 0, 0.0, 1.0, 0, 0, 1e-05, 0.05582108320729039, "fixed base, Coulomb"),
+    (0.45, 0, 0.0, 1.0, 0, 0, 1e-05, 0.029266334156860033, "fixed base, Coulomb"),
+    (0.6, 0, 0.0, 1.0, 0, 0, 1e-05, 0.01426380926379604, "fixed base, one slip phase"),
+    (0.2, 0, 0.0, 0.75, 500, 0, 1e-05, 0.060922851513809745, "fixed base, Stribeck"),
+    (0.1, 1.0, 0.1, 1.0, 0, 0, 1e-05, 0.12410347317117676, "resonance, Coulomb"),
+    (0.3, 1.0, 0.1, 1.0, 0, 0, 1e-05, 0.1316826017550003, "resonance, Coulomb"),
+    (0.2, 2.0, 0.05, 1.0, 0, 0, 1e-05, 0.09837793114060712, "isolated, Coulomb"),
+    (0.05, 3.0, 0.2, 1.0, 0, 0, 1e-05, 0.05214987881021767, "long isolation period"),
+    (0.15, 0.5, 0.15, 1.0, 0, 0, 1e-05, 0.06171021824036774, "short isolation period"),
+    (0.2, 1.0, 0.1, 0.7, 1000, 0, 1e-05, 0.1480298230458512, "resonance, Stribeck"),
+    (0.1, 1.0, 0.1, 1.0, 0, 0, 0.1, 0.11924631005935986, "two-way coupling"),
+    (0.05, 2.0, 0.1, 1.0, 0, 0, 0.5, 0.07814573309873929, "heavy contents"),
+    (0.8, 1.0, 0.1, 1.0, 0, 0, 1e-05, 0.05101886047487468, "amplified floor"),
+    (1.0, 3.0, 0.1, 1.0, 0, 0, 1e-05, 0.0, "no sliding: exactly zero"),
+]
+
+# Physical cases (SI, g = 9.80665); expected u_max in metres.
+PHYSICAL_CASES = [
+    (dict(a_p=6.0, T_p=1.2, M_b=800000.0, T_b=2.4, xi_b=0.1, m_ec=800.0, mu_s=0.25, mu_k=0.2,
+          beta=200.0, gamma=0.05), 0.22592596746266558),
+    (dict(a_p=6.0, T_p=0.8, M_b=2000000.0, T_b=0.8, xi_b=0.15, m_ec=20000.0, mu_s=0.4, mu_k=0.3,
+          beta=50.0, gamma=0.02), 0.30628117925119686),
+    (dict(a_p=3.0, T_p=1.5, M_b=1000000.0, T_b=3.0, xi_b=0.1, m_ec=1000.0, mu_s=0.15, mu_k=0.15,
+          beta=0.0, gamma=0.0), 0.020830347570352046),
+]
+
+REL = 1e-7
+
+
+@pytest.mark.parametrize("case", PI_CASES, ids=[f"{i}-{c[-1]}" for i, c in enumerate(PI_CASES)])
+def test_public_pi_cases(case):
+    pi2, pi3, pi4, pi5, pi6, pi7, pi8, pi1, _ = case
+    res = solve_reference(Scene(pi2=pi2, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8))
+    assert res.settled
+    if pi1 == 0.0:
+        assert res.pi1 == 0.0 and res.n_events == 0 and res.pi1_residual == 0.0
+    else:
+        assert res.pi1 == pytest.approx(pi1, rel=REL)
+        assert res.n_events >= 2
+        assert abs(res.pi1_residual) <= res.pi1
+
+
+@pytest.mark.parametrize("kw,u_max", PHYSICAL_CASES)
+def test_public_physical_cases(kw, u_max):
+    scene = Scene.from_physical(**kw)
+    res = solve_reference(scene)
+    assert res.settled
+    assert res.metres(scene) == pytest.approx(u_max, rel=REL)
+
+
+@pytest.mark.parametrize("pi2", [0.1, 0.3, 0.5, 0.8, 0.999, 1.0, 1.7])
+def test_newmark_rectangular(pi2):
+    """Fixed base, Coulomb, rectangular pulse: Pi1 = (1/Pi2 - 1)/2 (Newmark 1965)."""
+    res = solve_reference(Scene(pi2=pi2, pi3=0.0, pulse="rectangular"))
+    expected = max(0.0, 0.5 * (1.0 / pi2 - 1.0))
+    assert res.pi1 == pytest.approx(expected, rel=1e-11, abs=1e-14)
+    assert res.settled
+    if expected > 0:
+        # one slip phase, stopping at tau = 1/Pi2 with u = -Pi1 (ground pushes +, block lags)
+        assert res.n_events == 2
+        assert res.tau_peak == pytest.approx(1.0 / pi2, rel=1e-10)
+        assert res.pi1_residual == pytest.approx(-expected, rel=1e-11)
+    else:
+        assert res.pi1 == 0.0 and res.n_events == 0
+
+
+def test_static_friction_is_coulomb_at_mu_s_when_pi6_zero():
+    """Pi6 = 0 makes sech = 1: Coulomb friction at the static level Pi2/Pi5."""
+    a = solve_reference(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.5, pi6=0.0))
+    b = solve_reference(Scene(pi2=0.4, pi3=1.0, pi4=0.1))
+    assert a.pi1 == pytest.approx(b.pi1, rel=1e-10)
+
+
+def test_friction_level():
+    s = Scene(pi2=0.2, pi3=0.0, pi5=0.5, pi6=100.0, pi7=2.0)
+    assert friction_level(s, 0.0) == pytest.approx(0.4)
+    assert friction_level(s, 1.0) == pytest.approx(0.2 + 2.0, rel=1e-12)   # sech(100) ~ 0
+    v = 0.01
+    sh = 1.0 / math.cosh(1.0)
+    assert friction_level(s, -v) == pytest.approx(0.4 * sh + 0.2 * (1 - sh) + 0.02, rel=1e-14)
+
+
+def test_history_is_consistent():
+    res = solve_reference(Scene(pi2=0.1, pi3=1.0, pi4=0.1), history=True)
+    h = res.history
+    assert h is not None and h.tau.size > 10
+    assert np.all(np.diff(h.tau) >= 0)
+    assert np.max(np.abs(h.u)) <= res.pi1 * (1 + 1e-12)
+    assert np.all(h.udot[~h.sliding] == 0.0)
+    assert h.u[-1] == pytest.approx(res.pi1_residual)
+
+
+def test_undamped_isolation_stops_at_horizon():
+    """xi_b = 0: the floor keeps oscillating above the static level; no settling."""
+    res = solve_reference(Scene(pi2=0.2, pi3=1.0, pi4=0.0))
+    assert not res.settled
+    assert res.tau_final == pytest.approx(2.0 + 50.0)
+
+
+def test_settled_state_cannot_slip_again():
+    """After the stop, integrating the free stuck oscillator never exceeds the static level."""
+    sc = Scene(pi2=0.2, pi3=2.0, pi4=0.05)
+    res = solve_reference(sc, history=True)
+    assert res.settled and res.tau_final > sc.pulse.tau_end
+    h = res.history
+    x, v = h.x[-1], h.xdot[-1]
+    w, z, m1 = 2 * math.pi / sc.pi3, sc.pi4, 1 + sc.pi8
+    t = np.linspace(0.0, 40.0, 40001)
+    a = _free_areq(x, v, w, z, m1, t)
+    assert np.max(np.abs(a)) <= sc.pi2 * (1 + 1e-9)
+    assert res.energy_bound >= np.max(np.abs(a)) - 1e-12
+
+
+def _free_areq(x, v, w, z, m1, t):
+    """a_req(t) = x''(t) of m1 x'' + 2 z w x' + w^2 x = 0, via the matrix exponential."""
+    from scipy.linalg import expm
+    A = np.array([[0.0, 1.0], [-w * w / m1, -2 * z * w / m1]])
+    out = np.empty(t.size)
+    dt = t[1] - t[0]
+    step = expm(A * dt)
+    s = np.array([x, v])
+    for i in range(t.size):
+        out[i] = A[1] @ s
+        s = step @ s
+    return out
+
+
+@settings(max_examples=40, deadline=None)
+@given(x=st.floats(-1, 1), v=st.floats(-1, 1), pi3=st.floats(0.2, 5.0),
+       z=st.sampled_from([0.0, 0.02, 0.3, 0.999, 1.0, 1.0000001, 1.5, 8.0]),
+       pi8=st.sampled_from([0.0, 0.1, 2.0]))
+def test_stuck_supremum_matches_brute_force(x, v, pi3, z, pi8):
+    w, m1 = 2 * math.pi / pi3, 1 + pi8
+    sup, t_sup = stuck_supremum(x, v, w, z, m1)
+    t = np.linspace(0.0, 3.0 * pi3 * (1 + 2 * z), 6001)
+    a = _free_areq(x, v, w, z, m1, t)
+    brute = np.max(np.abs(a))
+    assert sup >= brute * (1 - 1e-7) - 1e-12          # never an under-estimate
+    assert sup <= brute * (1 + 1e-3) + 1e-12          # and attained (grid resolution)
+    assert t_sup >= 0.0
+    # the energy bound is an upper bound of the supremum
+    E = 0.5 * m1 * v * v + 0.5 * w * w * x * x
+    assert sup <= math.sqrt(2 * E * ((2 * z * w) ** 2 / m1 + w * w)) / m1 * (1 + 1e-12) + 1e-15
+
+
+def test_mirror_symmetry():
+    """Reversing the pulse mirrors the response: same Pi1, opposite residual."""
+    from isoslide.pulses import sampled
+    tau = np.linspace(-2.0, 2.0, 801)
+    p = (1 - 2 * math.pi**2 * tau**2) * np.exp(-math.pi**2 * tau**2)
+    kw = dict(pi2=0.2, pi3=1.0, pi4=0.1)
+    a = solve_reference(Scene(**kw, pulse=sampled(p, tau[1] - tau[0], tau0=-2.0)))
+    b = solve_reference(Scene(**kw, pulse=sampled(-p, tau[1] - tau[0], tau0=-2.0)))
+    assert a.pi1 == pytest.approx(b.pi1, rel=1e-10)
+    assert a.pi1_residual == pytest.approx(-b.pi1_residual, rel=1e-9)
