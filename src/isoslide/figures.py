@@ -94,22 +94,33 @@ def _fmt(x: float) -> str:
     return f"{x:g}"
 
 
+PULSE_NAMES = {"ricker": "symmetric Ricker pulse", "rectangular": "rectangular pulse"}
+
+
 def _fixed_text(ds, skip=()) -> str:
-    """Box text listing the groups held fixed in a dataset (its scalar coordinates)."""
+    """One line listing the groups held fixed in a dataset (its scalar coordinates) and the pulse."""
     parts = []
     for name in ("pi3", "pi4", "pi5", "pi6", "pi7", "pi8"):
         if name in ds.coords and ds[name].ndim == 0 and name not in skip:
-            parts.append(rf"${SYMBOL[name]} = {_fmt(float(ds[name]))}$")
-    if "beta" in ds.coords and ds["beta"].ndim == 0 and float(ds["beta"]) > 0 and "pi6" not in skip:
-        parts.append(rf"($\beta = {float(ds['beta']):g}$ s/m)")
+            text = rf"${SYMBOL[name]} = {_fmt(float(ds[name]))}$"
+            if name == "pi6" and "beta" in ds.coords and ds["beta"].ndim == 0 and float(ds["beta"]) > 0:
+                text += rf" ($\beta = {float(ds['beta']):g}$ s/m)"
+            parts.append(text)
     pulse = ds.attrs.get("pulse", "")
-    text = ", ".join(parts)
-    return text + (f"\n{pulse} pulse" if pulse else "")
+    return ", ".join(parts) + (f"; {PULSE_NAMES.get(pulse, pulse)}" if pulse else "")
+
+
+def _subtitle(ax, title, note):
+    """Panel title with a one-line note (the fixed groups) in small type beneath it."""
+    ax.set_title(title, pad=13 if note else 6)
+    if note:
+        ax.text(0.5, 1.012, note, transform=ax.transAxes, ha="center", va="bottom", fontsize=6.3,
+                color="0.25")
 
 
 def _text_box(ax, text, loc="upper right"):
     x, ha = (0.97, "right") if "right" in loc else (0.03, "left")
-    y, va = (0.97, "top") if "upper" in loc else (0.03, "bottom")
+    y, va = (0.97, "top") if "upper" in loc else ((0.5, "center") if "center" in loc else (0.03, "bottom"))
     ax.text(x, y, text, transform=ax.transAxes, ha=ha, va=va, fontsize=6.8,
             bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.7", lw=0.5, alpha=0.9))
 
@@ -122,7 +133,7 @@ def _colors(n):
 
 
 def master_curves(ax, ds, family: str, select=None, label_fmt=None, legend_loc="upper right",
-                  box=True, box_loc="center right", skip=()):
+                  legend_title=None):
     """Plot Pi1 against Pi2, one curve per value of ``family``.
 
     Parameters
@@ -135,7 +146,12 @@ def master_curves(ax, ds, family: str, select=None, label_fmt=None, legend_loc="
     select : dict, optional
         ``{dim: value}`` selecting the other swept dimensions.
     label_fmt : callable, optional
-        ``value -> legend label``.
+        ``(index, value) -> legend label``.
+
+    Returns
+    -------
+    xarray.Dataset
+        The selected dataset (its scalar coordinates are the groups held fixed).
     """
     sub = ds.sel(select) if select else ds
     pi1 = sub["pi1"].transpose(family, "pi2")
@@ -146,12 +162,10 @@ def master_curves(ax, ds, family: str, select=None, label_fmt=None, legend_loc="
     ax.set_xlabel(LABELS["pi2"])
     ax.set_ylabel(LABELS["pi1"])
     ax.set_xlim(0.0, float(sub["pi2"].max()))
-    ax.set_ylim(bottom=0.0)
-    ax.legend(title=LABELS.get(family, family), loc=legend_loc, handlelength=1.6)
-    if box:
-        sel_text = ", ".join(rf"${SYMBOL[k]} = {_fmt(float(v))}$" for k, v in (select or {}).items())
-        fixed = _fixed_text(sub, skip=set(skip) | {family})
-        _text_box(ax, "\n".join(t for t in (sel_text, fixed) if t), loc=box_loc)
+    top = float(np.nanmax(pi1.values)) if pi1.size else 1.0
+    ax.set_ylim(0.0, 1.12 * top if top > 0 else 1.0)
+    ax.legend(title=legend_title or LABELS.get(family, family), loc=legend_loc, handlelength=1.6)
+    return sub
 
 
 # ----------------------------------------------------------------------------------------------
@@ -353,12 +367,12 @@ def fig5(datasets, settings=None):
     import matplotlib.pyplot as plt
 
     left, right = _open(datasets, "fig5_pi3"), _open(datasets, "fig5_pi4")
-    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 2.9))
-    master_curves(a, left, "pi3")
-    a.set_title(r"(a) isolation period ratio $\Pi_3$")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 3.0))
+    sub = master_curves(a, left, "pi3")
+    _subtitle(a, r"(a) isolation period ratio $\Pi_3$", _fixed_text(sub, skip=("pi3",)))
     sel = {"pi3": 1.0} if "pi3" in right.dims else None
-    master_curves(b, right, "pi4", select=sel)
-    b.set_title(r"(b) isolation damping $\Pi_4 = \xi_b$ at resonance")
+    sub = master_curves(b, right, "pi4", select=sel)
+    _subtitle(b, r"(b) isolation damping $\Pi_4 = \xi_b$ at resonance", _fixed_text(sub, skip=("pi4",)))
     fig.tight_layout()
     caption = ("Fig. 5. Master curves Pi1(Pi2) of a symmetric Ricker pulse: (a) for isolation-to-pulse "
                f"period ratios Pi3 = {_list(left['pi3'])} (0.01: effectively a fixed base) with "
@@ -368,25 +382,32 @@ def fig5(datasets, settings=None):
     return fig, caption
 
 
-def fig6(datasets, settings=None):
-    """Fig. 6: master curves for Pi5 at three Pi3."""
+def _panels(ds, family, fig_note, width=WIDTH, label_fmt=None):
+    """One panel per Pi3 of ``ds``, curves over ``family``; the fixed groups as a figure note."""
     import matplotlib.pyplot as plt
 
-    ds = _open(datasets, "fig6_pi5")
     pi3s = ds["pi3"].values
-    fig, axs = plt.subplots(1, len(pi3s), figsize=(WIDTH, 2.7), sharey=False, squeeze=False)
+    fig, axs = plt.subplots(1, len(pi3s), figsize=(width, 2.8), squeeze=False)
+    sub = ds
     for k, (ax, pi3) in enumerate(zip(axs[0], pi3s)):
-        master_curves(ax, ds, "pi5", select={"pi3": float(pi3)}, skip=("pi6",),
-                      box=True)
-        ax.set_title(rf"({'abc'[k]}) $\Pi_3 = {float(pi3):g}$")
+        sub = master_curves(ax, ds, family, select={"pi3": float(pi3)}, label_fmt=label_fmt)
+        ax.set_title(rf"({'abcdefgh'[k]}) $\Pi_3 = T_b/T_p = {float(pi3):g}$")
         if k:
             ax.set_ylabel("")
-    _ref_note(fig, ds)
-    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    note = "Fixed: " + _fixed_text(sub, skip=("pi3", family)) + (f".\n{fig_note}" if fig_note else "")
+    fig.text(0.01, 0.01, note, fontsize=6.6, color="0.25", ha="left", va="bottom")
+    fig.tight_layout(rect=(0, 0.1 if fig_note else 0.06, 1, 1))
+    return fig
+
+
+def fig6(datasets, settings=None):
+    """Fig. 6: master curves for Pi5 at three Pi3."""
+    ds = _open(datasets, "fig6_pi5")
+    fig = _panels(ds, "pi5", _ref_text(ds))
     caption = (f"Fig. 6. Effect of the kinetic-to-static friction ratio Pi5 = mu_k/mu_s "
                f"({_list(ds['pi5'])}) for Pi3 = {_list(ds['pi3'])}, xi_b = {_scalar(ds, 'pi4')}, "
                f"beta = {_scalar(ds, 'beta')} s/m, i.e. Pi6 = {_scalar(ds, 'pi6')} with the reference "
-               f"a_p T_p = {_ref(ds)} m/s; Pi8 = {_scalar(ds, 'pi8')}.")
+               f"a_p T_p = {_ref(ds)} m/s (a_p = 1 g, T_p = 1 s); Pi7 = 0, Pi8 = {_scalar(ds, 'pi8')}.")
     return fig, caption
 
 
@@ -395,21 +416,23 @@ def fig7(datasets, settings=None):
     import matplotlib.pyplot as plt
 
     left, right = _open(datasets, "fig7_pi6"), _open(datasets, "fig7_pi7")
-    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 3.0))
-    if "beta" in left.coords:
-        fmt = lambda k, v: rf"${_fmt(float(v))}$ ($\beta = {float(left['beta'][k]):g}$ s/m)"  # noqa: E731
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 3.1))
+    if "beta" in left.coords and left["beta"].ndim:
+        fmt = lambda k, v: rf"${float(v):.4g}$ ($\beta$ = {float(left['beta'][k]):g})"  # noqa: E731
+        title = r"$\Pi_6 = \beta a_p T_p$ ($\beta$ in s/m)"
     else:
-        fmt = None
-    master_curves(a, left, "pi6", label_fmt=fmt)
-    a.set_title(r"(a) Stribeck transition $\Pi_6 = \beta a_p T_p$")
-    master_curves(b, right, "pi7")
-    b.set_title(r"(b) viscous contact $\Pi_7 = \gamma g T_p$")
-    _ref_note(fig, left, extra=(r"; $\Pi_{7,max} = \gamma_{max}\, g\, T_{p,max}$ = 0.1 s/m $\times$ g "
-                                r"$\times$ 5 s = 4.90 (paper prints $\gamma a_p T_p$, $\approx 10$ at "
-                                r"$a_{p,max} = 2g$)"))
-    fig.tight_layout(rect=(0, 0.07, 1, 1))
-    caption = (f"Fig. 7. (a) Effect of the Stribeck transition: beta = {_list(left['beta']) if 'beta' in left.coords else '-'} "
-               f"s/m, i.e. Pi6 = {_list(left['pi6'])} with the reference a_p T_p = {_ref(left)} m/s, at "
+        fmt, title = None, None
+    sub = master_curves(a, left, "pi6", label_fmt=fmt, legend_title=title)
+    _subtitle(a, r"(a) Stribeck transition $\Pi_6 = \beta a_p T_p$", _fixed_text(sub, skip=("pi6",)))
+    sub = master_curves(b, right, "pi7", label_fmt=lambda k, v: f"${float(v):.4g}$")
+    _subtitle(b, r"(b) viscous contact $\Pi_7 = \gamma g T_p$", _fixed_text(sub, skip=("pi7",)))
+    fig.text(0.01, 0.01, _ref_text(left) + "\n" + r"$\Pi_{7,max} = \gamma_{max}\, g\, T_{p,max}$ = 0.1 s/m "
+             r"$\times$ g $\times$ 5 s = 4.90 (the paper prints $\gamma a_p T_p$: $\approx$ 10 at "
+             r"$a_{p,max} = 2g$)", fontsize=6.6, color="0.25", ha="left", va="bottom")
+    fig.tight_layout(rect=(0, 0.1, 1, 1))
+    beta_list = _list(left["beta"]) if "beta" in left.coords else "-"
+    caption = (f"Fig. 7. (a) Effect of the Stribeck transition: beta = {beta_list} s/m, i.e. "
+               f"Pi6 = {_list(left['pi6'])} with the reference a_p T_p = {_ref(left)} m/s, at "
                f"Pi3 = {_scalar(left, 'pi3')}, Pi5 = {_scalar(left, 'pi5')}. (b) Effect of viscous contact "
                f"Pi7 = gamma g T_p = {_list(right['pi7'])} at Pi3 = {_scalar(right, 'pi3')}; the upper bound "
                f"4.90 = gamma_max g T_p,max with gamma_max = 0.1 s/m and T_p,max = 5 s. The paper prints "
@@ -420,17 +443,8 @@ def fig7(datasets, settings=None):
 
 def fig8(datasets, settings=None):
     """Fig. 8: master curves for Pi8 at three Pi3."""
-    import matplotlib.pyplot as plt
-
     ds = _open(datasets, "fig8_pi8")
-    pi3s = ds["pi3"].values
-    fig, axs = plt.subplots(1, len(pi3s), figsize=(WIDTH, 2.7), squeeze=False)
-    for k, (ax, pi3) in enumerate(zip(axs[0], pi3s)):
-        master_curves(ax, ds, "pi8", select={"pi3": float(pi3)})
-        ax.set_title(rf"({'abc'[k]}) $\Pi_3 = {float(pi3):g}$")
-        if k:
-            ax.set_ylabel("")
-    fig.tight_layout()
+    fig = _panels(ds, "pi8", "")
     caption = (f"Fig. 8. Effect of the mass ratio Pi8 = m_EC/M_b ({_list(ds['pi8'])}) for "
                f"Pi3 = {_list(ds['pi3'])}, xi_b = {_scalar(ds, 'pi4')}, Coulomb friction. The coupled "
                f"two-degree-of-freedom model is solved exactly: while the block sticks the moving mass "
@@ -467,10 +481,9 @@ def _ref(ds) -> str:
     return "?"
 
 
-def _ref_note(fig, ds, extra=""):
-    fig.text(0.01, 0.01, rf"$\beta$ (s/m) $\to \Pi_6 = \beta\,(a_pT_p)_{{ref}}$ with the reference "
-                         rf"$(a_pT_p)_{{ref}}$ = {_ref(ds)} m/s ($a_p$ = 1 g, $T_p$ = 1 s)" + extra,
-             fontsize=6.5, color="0.25", ha="left", va="bottom")
+def _ref_text(ds) -> str:
+    return (rf"$\beta$ (s/m) $\to \Pi_6 = \beta\,(a_pT_p)_{{ref}}$ with the reference "
+            rf"$(a_pT_p)_{{ref}}$ = {_ref(ds)} m/s ($a_p$ = 1 g, $T_p$ = 1 s)")
 
 
 def draw(name: str, datasets: dict, outputs, settings: dict | None = None):

@@ -37,7 +37,7 @@ rule report_figures:
         papermill {input.notebook} reports/.figures.tmp.ipynb -k python3 \
             -p figure_dir reports/figures --no-progress-bar > {log} 2>&1
         mv -f reports/.figures.tmp.ipynb {output.notebook}
-        jupyter nbconvert --to html --no-input --embed-images --output-dir reports \
+        jupyter nbconvert --to html --no-input --output-dir reports \
             --output .figures.tmp {output.notebook} >> {log} 2>&1
         mv -f reports/.figures.tmp.html {output.html}
         """

@@ -1,0 +1,785 @@
+"""The checks behind the similarity report (``reports/similarity.html``).
+
+(a) **Buckingham self-similarity.**  For sampled grid points of each study,
+    random physical realisations ``(a_p, T_p, M_b)`` are built with the same
+    Pi-groups and integrated *in SI units* by :func:`simulate_si`, a plain
+    SciPy event-driven solver written here independently of the compiled
+    kernel; ``Pi1 = u_max / (a_p T_p^2)`` must not depend on the realisation.
+    Each point is realised under two conventions for the groups: isoslide's
+    (``Pi7 = gamma g T_p``) and the paper's printed Eq. 5 (``Pi7 = gamma a_p
+    T_p``); they differ only where ``Pi7 != 0``.
+(b) **Complete similarity** claimed by the paper (Pi5 over 0.7-1, Pi6 over two
+    decades of beta, Pi8 up to 0.1): the spread between the curves, relative
+    to the largest Pi1 of those curves (:func:`curve_spread`).
+(c) **Conclusions** of the paper restated with our numbers
+    (:func:`conclusions`).
+
+Everything is written to one dataset (:func:`similarity_dataset`) that the
+report notebook only reads.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import zlib
+
+import numpy as np
+import xarray as xr
+
+from .scene import G_STANDARD
+
+CONVENTIONS = ("isoslide", "paper")
+"""Group definitions used to realise a point physically: isoslide's, and the paper's printed Eq. 5."""
+
+DEFINITIONS = {
+    "pi2": ("mu_k g / a_p", "mu_k g / a_p"),
+    "pi3": ("T_b / T_p", "T_b / T_p"),
+    "pi4": ("xi_b", "xi_b"),
+    "pi5": ("mu_k / mu_s", "mu_k / mu_s"),
+    "pi6": ("beta a_p T_p", "beta a_p T_p"),
+    "pi7": ("gamma g T_p", "gamma a_p T_p"),
+    "pi8": ("m_EC / M_b", "m_EC / M_b"),
+}
+"""Definition of each input group: (isoslide, paper as printed)."""
+
+GROUPS = tuple(DEFINITIONS)
+VERDICT_FLAGS = dict(flag_values=np.array([0, 1, 2], dtype=np.int8),
+                     flag_meanings="does_not_hold holds holds_partly")
+
+
+# ----------------------------------------------------------------------------------------------
+# (a) an independent solver in SI units
+# ----------------------------------------------------------------------------------------------
+
+def physical_parameters(pis: dict, a_p: float, T_p: float, M_b: float, convention: str = "isoslide",
+                        g: float = G_STANDARD) -> dict:
+    """Physical (SI) parameters realising the Pi-groups ``pis`` at scales ``a_p, T_p, M_b``.
+
+    Parameters
+    ----------
+    pis : dict
+        ``pi2 .. pi8``.
+    a_p, T_p, M_b : float
+        Pulse amplitude (m/s^2), pulse period (s), isolated mass (kg).
+    convention : {"isoslide", "paper"}
+        ``"paper"`` inverts the printed ``Pi7 = gamma a_p T_p``; ``"isoslide"`` inverts
+        ``Pi7 = gamma g T_p``.  All other groups are defined alike.
+
+    Returns
+    -------
+    dict
+        ``a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g``.
+    """
+    if convention not in CONVENTIONS:
+        raise ValueError(f"convention = {convention!r} is invalid; allowed: {CONVENTIONS}")
+    mu_k = pis["pi2"] * a_p / g
+    gamma = pis["pi7"] / ((g if convention == "isoslide" else a_p) * T_p)
+    return dict(a_p=a_p, T_p=T_p, M_b=M_b, T_b=pis["pi3"] * T_p, xi_b=pis["pi4"], m_ec=pis["pi8"] * M_b,
+                mu_s=mu_k / pis["pi5"], mu_k=mu_k, beta=pis["pi6"] / (a_p * T_p), gamma=gamma, g=g)
+
+
+def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float = 1e-12) -> dict:
+    """Stick-slip response of a block on an isolated floor, integrated in SI units.
+
+    A deliberately plain implementation (SciPy ``solve_ivp``, DOP853, with
+    event location) of the physical equations, independent of
+    :mod:`isoslide.kernel`, used to test the similarity groups:
+
+    * base (relative to the ground), block stuck:
+      ``(M_b + m) (x'' + a_g) = -c x' - k x``;
+    * sliding in direction ``s``: friction acceleration of the block
+      ``phi = -s mu(|u'|) g``, ``M_b (x'' + a_g) = -c x' - k x - m phi``,
+      ``a_g + x'' + u'' = phi``;
+    * the block sticks when ``u' = 0`` and the floor acceleration ``A``
+      satisfies ``|A| <= mu_s g``; it breaks loose when ``|A| > mu_s g``,
+      sliding in direction ``-sign(A)``.
+
+    ``T_b = 0`` is a fixed base (floor = ground).
+
+    Parameters
+    ----------
+    p : dict
+        As returned by :func:`physical_parameters`.
+    pulse : str or Pulse
+        Ground-acceleration shape, ``a_g(t) = a_p p(t / T_p)``.
+    t_end : float, optional
+        End time, s (default: pulse end + 20 isolation or pulse periods).
+    rtol : float
+        Relative tolerance of the integrator.
+
+    Returns
+    -------
+    dict
+        ``u_max`` (m), ``u_res`` (m), ``n_events``, ``t_end`` (s).
+    """
+    from scipy.integrate import solve_ivp
+
+    from .pulses import accel_at, get_pulse
+
+    pul = get_pulse(pulse)
+    a_p, T_p, g = p["a_p"], p["T_p"], p["g"]
+    M, m = p["M_b"], p["m_ec"]
+    mu_s, mu_k, beta, gamma = p["mu_s"], p["mu_k"], p["beta"], p["gamma"]
+    fixed = p["T_b"] == 0.0
+    k = 0.0 if fixed else M * (2.0 * math.pi / p["T_b"]) ** 2
+    c = 0.0 if fixed else 2.0 * p["xi_b"] * math.sqrt(k * M)
+    code, params = pul.code, pul.param_array
+    L = a_p * T_p * T_p
+
+    def ag(t):
+        return a_p * accel_at(code, params, t / T_p)
+
+    def floor_stuck(t, y):
+        """Absolute floor acceleration with the block stuck."""
+        return ag(t) if fixed else (-c * y[1] - k * y[0]) / (M + m)
+
+    def mu(v):
+        bv = min(abs(beta * v), 700.0)
+        sech = 1.0 / math.cosh(bv)
+        return mu_s * sech + mu_k * (1.0 - sech) + gamma * abs(v)
+
+    def rhs_stick(t, y):
+        if fixed:
+            return (0.0, 0.0, 0.0, 0.0)
+        xdd = floor_stuck(t, y) - ag(t)
+        return (y[1], xdd, 0.0, 0.0)
+
+    def make_slip(s):
+        def rhs(t, y):
+            phi = -s * mu(y[3]) * g
+            xdd = 0.0 if fixed else (-c * y[1] - k * y[0] - m * phi) / M - ag(t)
+            return (y[1], xdd, y[3], phi - ag(t) - xdd)
+        return rhs
+
+    def decide(t, y):
+        A = floor_stuck(t, y)
+        if abs(A) <= mu_s * g:
+            return 0
+        return -1 if A > 0 else 1
+
+    period = T_p if fixed else max(p["T_b"], 1e-300)
+    t0 = pul.tau_start * T_p
+    t_pulse_end = pul.tau_end * T_p
+    if t_end is None:
+        t_end = t_pulse_end + 20.0 * max(period, T_p)
+    bounds = sorted({float(b) * T_p for b in pul.breakpoint_array if pul.tau_start < b} | {t_end})
+    bounds = [b for b in bounds if t0 < b <= t_end] or [t_end]
+    h_pulse = min(T_p, period) / 12.0
+    h_free = h_pulse
+    # sliding under a sharp Stribeck drop is sensitive to the first instants of slip: resolve them
+    stribeck = beta > 0.0 and mu_s != mu_k
+    h_slip = min(T_p, period) / 200.0
+
+    atol = np.array([1e-12 * L, 1e-12 * a_p * T_p, 1e-12 * L, 1e-12 * a_p * T_p])
+    t, y = t0, np.zeros(4)
+    phase = decide(t, y)
+    u_max, n_events = 0.0, 0
+    bi = 0
+    guard = 0
+    while t < t_end - 1e-12 * T_p:
+        guard += 1
+        if guard > 100000:
+            raise RuntimeError("simulate_si: too many phases (chattering?)")
+        while bi < len(bounds) and bounds[bi] <= t + 1e-14 * T_p:
+            bi += 1
+        t_next = bounds[bi] if bi < len(bounds) else t_end
+        h = h_pulse if t < t_pulse_end else h_free
+        if phase != 0 and stribeck:
+            h = min(h, h_slip)
+        if phase == 0:
+            if fixed:
+                fun = rhs_stick
+            else:
+                fun = rhs_stick
+            up = lambda tt, yy: floor_stuck(tt, yy) - mu_s * g  # noqa: E731
+            dn = lambda tt, yy: floor_stuck(tt, yy) + mu_s * g  # noqa: E731
+            up.terminal, up.direction = True, 1.0
+            dn.terminal, dn.direction = True, -1.0
+            events = [up, dn]
+        else:
+            fun = make_slip(phase)
+            stop = lambda tt, yy: yy[3]  # noqa: E731
+            stop.terminal, stop.direction = True, -float(phase)
+            events = [stop]
+        if fixed and phase == 0 and pul.code != 0:
+            # piecewise-constant ground acceleration of a fixed base: nothing moves while stuck
+            t = t_next
+            phase = decide(t, y)
+            continue
+        sol = solve_ivp(fun, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=events,
+                        max_step=h)
+        if sol.status == -1:
+            raise RuntimeError(f"simulate_si: integration failed: {sol.message}")
+        hit = [i for i, te in enumerate(sol.t_events) if len(te)]
+        if hit:
+            i = hit[0]
+            t, y = float(sol.t_events[i][0]), np.array(sol.y_events[i][0], dtype=float)
+            n_events += 1
+            if phase != 0:
+                y[3] = 0.0
+                u_max = max(u_max, abs(y[2]))
+                phase = decide(t, y)
+            else:
+                phase = -1 if floor_stuck(t, y) > 0 else 1
+        else:
+            t, y = float(sol.t[-1]), sol.y[:, -1].copy()
+            u_max = max(u_max, float(np.max(np.abs(sol.y[2]))))
+            if phase == 0 or y[3] == 0.0:
+                phase = decide(t, y)
+    u_max = max(u_max, abs(y[2]))
+    return {"u_max": u_max, "u_res": float(y[2]), "n_events": n_events, "t_end": t}
+
+
+# ----------------------------------------------------------------------------------------------
+# (a) Buckingham realisations of one study
+# ----------------------------------------------------------------------------------------------
+
+def _study_seed(seed: int, study: str) -> int:
+    return (int(seed) * 1_000_003 + zlib.crc32(study.encode())) % (2**32)
+
+
+def _point_pis(ds: xr.Dataset, index: tuple) -> dict:
+    sel = {d: i for d, i in zip(ds["pi1"].dims, index)}
+    pt = ds.isel(sel)
+    return {g: float(pt[g]) for g in GROUPS}
+
+
+def sample_points(ds: xr.Dataset, n: int, rng, max_tau_end: float = 40.0) -> list:
+    """Indices (tuples over ``ds.pi1.dims``) of ``n`` random grid points that slide and settle."""
+    pi1 = ds["pi1"].values
+    ok = (pi1 > 0) & np.isfinite(pi1)
+    if "settled" in ds:
+        ok &= ds["settled"].values == 1
+    if "tau_end" in ds:
+        ok &= ds["tau_end"].values <= max_tau_end
+    flat = np.flatnonzero(ok.ravel())
+    if flat.size == 0:
+        return []
+    pick = np.sort(rng.choice(flat, size=min(n, flat.size), replace=False))
+    return [tuple(int(i) for i in np.unravel_index(f, pi1.shape)) for f in pick]
+
+
+def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
+    """Realise sampled points of a study physically and integrate them in SI units.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A study dataset.
+    settings : dict
+        The ``similarity`` section of the configuration (``seed``, ``points``,
+        ``realisations``, ``a_p_g``, ``T_p``, ``M_b``).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``sample``, ``realisation``, ``convention``; ``pi1_grid`` (the
+        study dataset's value), ``pi1_si`` (SI integration) and the realisations.
+    """
+    from .datasets import global_attrs, pi_attrs
+
+    study = ds.attrs.get("study", "study")
+    pulse = ds.attrs.get("pulse", "ricker")
+    rng = np.random.default_rng(_study_seed(settings.get("seed", 0), study))
+    idx = sample_points(ds, int(settings.get("points", 3)), rng)
+    R = int(settings.get("realisations", 3))
+    ns = len(idx)
+    lo_hi = {k: tuple(float(x) for x in settings.get(k, d)) for k, d in
+             (("a_p_g", (0.1, 2.0)), ("T_p", (0.2, 5.0)), ("M_b", (1e4, 1e7)))}
+
+    def draw(k, size):
+        lo, hi = lo_hi[k]
+        return np.exp(rng.uniform(math.log(lo), math.log(hi), size))
+
+    a_p = draw("a_p_g", (ns, R)) * G_STANDARD
+    T_p = draw("T_p", (ns, R))
+    M_b = draw("M_b", (ns, R))
+    pis = {g: np.zeros(ns) for g in GROUPS}
+    pi1_grid = np.zeros(ns)
+    tau_end = np.zeros(ns)
+    pi1_si = np.full((ns, R, len(CONVENTIONS)), np.nan)
+    gamma = np.zeros((ns, R, len(CONVENTIONS)))
+    recomputed = np.zeros((ns, len(CONVENTIONS)), dtype=np.int8)
+    for i, ix in enumerate(idx):
+        pt = _point_pis(ds, ix)
+        for g in GROUPS:
+            pis[g][i] = pt[g]
+        sel = dict(zip(ds["pi1"].dims, ix))
+        pi1_grid[i] = float(ds["pi1"].isel(sel))
+        tau_end[i] = float(ds["tau_end"].isel(sel)) if "tau_end" in ds else math.nan
+        for j in range(R):
+            for c, conv in enumerate(CONVENTIONS):
+                phys = physical_parameters(pt, a_p[i, j], T_p[i, j], M_b[i, j], conv)
+                gamma[i, j, c] = phys["gamma"]
+                if c > 0 and pt["pi7"] == 0.0:
+                    # identical physical parameters: the conventions differ only through Pi7
+                    pi1_si[i, j, c] = pi1_si[i, j, 0]
+                    continue
+                recomputed[i, c] = 1
+                t_end = (tau_end[i] + 1.0) * T_p[i, j] if math.isfinite(tau_end[i]) else None
+                out = simulate_si(phys, pulse, t_end=t_end)
+                pi1_si[i, j, c] = out["u_max"] / (a_p[i, j] * T_p[i, j] ** 2)
+        print(f"{study} sample {i}: {pt} pi1 grid {pi1_grid[i]:.6g}, SI {pi1_si[i].ravel().tolist()}",
+              flush=True)
+
+    dims = ("sample",)
+    out = xr.Dataset(
+        {
+            "pi1_grid": (dims, pi1_grid, {"long_name": "Pi1 of the study dataset (isoslide solver)", "units": "1"}),
+            "pi1_si": (("sample", "realisation", "convention"), pi1_si,
+                       {"long_name": "Pi1 = u_max / (a_p T_p^2) from the SI-units integration "
+                                     "(isoslide.similarity.simulate_si)", "units": "1"}),
+            "a_p": (("sample", "realisation"), a_p, {"long_name": "pulse acceleration amplitude a_p",
+                                                      "units": "m s-2"}),
+            "T_p": (("sample", "realisation"), T_p, {"long_name": "pulse period T_p", "units": "s"}),
+            "M_b": (("sample", "realisation"), M_b, {"long_name": "isolated mass M_b", "units": "kg"}),
+            "gamma": (("sample", "realisation", "convention"), gamma,
+                      {"long_name": "viscous contact constant gamma realising Pi7 under the convention",
+                       "units": "s m-1"}),
+            "tau_end": (dims, tau_end, {"long_name": "t_end / T_p of the dataset's solution", "units": "1"}),
+            "recomputed": (("sample", "convention"), recomputed,
+                           {"long_name": "1: integrated for this convention; 0: physical parameters "
+                                         "identical to the isoslide convention's (Pi7 = 0), result reused",
+                            "units": "1"}),
+        },
+        coords={
+            "sample": ("sample", np.arange(ns), {"long_name": "sampled grid point", "units": "1"}),
+            "realisation": ("realisation", np.arange(R), {"long_name": "random physical realisation",
+                                                          "units": "1"}),
+            "convention": ("convention", np.array(CONVENTIONS),
+                           {"long_name": "definition of the Pi-groups used to realise the point: isoslide "
+                                         "(Pi7 = gamma g T_p) or paper (printed Eq. 5, Pi7 = gamma a_p T_p)"}),
+            **{g: ("sample", pis[g], pi_attrs(g)) for g in GROUPS},
+        },
+    )
+    swept = [d for d in ds["pi1"].dims]
+    out.attrs = global_attrs(
+        title=f"isoslide Buckingham realisations of study {study}",
+        history=f"isoslide.similarity.buckingham_study: {ns} points x {R} realisations x "
+                f"{len(CONVENTIONS)} conventions, SI-units integration",
+        config={"settings": settings}, study=study, pulse=pulse, swept=" ".join(swept))
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# (b) complete similarity
+# ----------------------------------------------------------------------------------------------
+
+def curve_spread(ds: xr.Dataset, group: str, lo: float, hi: float) -> xr.Dataset:
+    """Spread of Pi1 between the curves with ``lo <= group <= hi``, per other swept dimension.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``spread`` (max over Pi2 of max - min over the curves), ``peak`` (largest Pi1 of those
+        curves), ``relative`` = spread / peak, ``pi2_at`` (where the spread is largest), over the
+        remaining swept dimensions.
+    """
+    vals = ds[group].values
+    tol = 1e-9 * max(1.0, abs(hi))
+    keep = (vals >= lo - tol) & (vals <= hi + tol)
+    sub = ds["pi1"].isel({group: np.flatnonzero(keep)})
+    spread_pi2 = sub.max(group) - sub.min(group)
+    spread = spread_pi2.max("pi2")
+    peak = sub.max((group, "pi2"))
+    at = spread_pi2.idxmax("pi2")
+    rel = spread / peak.where(peak > 0)
+    return xr.Dataset({"spread": spread, "peak": peak, "relative": rel, "pi2_at": at,
+                       "n_curves": int(keep.sum())})
+
+
+def _ratio_mean(a, b, mask):
+    m = mask & (b > 0)
+    return float(np.mean(a[m] / b[m])) if m.any() else math.nan
+
+
+def _integral(pi1, pi2):
+    return float(np.trapezoid(pi1, pi2)) if hasattr(np, "trapezoid") else float(np.trapz(pi1, pi2))
+
+
+# ----------------------------------------------------------------------------------------------
+# (c) the paper's conclusions
+# ----------------------------------------------------------------------------------------------
+
+LOW_PI2 = 0.1
+"""'Low Pi2' (low friction or strong pulse) means Pi2 <= 0.1 in the conclusions."""
+
+
+def conclusions(ds: dict, spreads: dict, settings: dict) -> list:
+    """Each conclusion of the paper with our numbers and a verdict.
+
+    Parameters
+    ----------
+    ds : dict of str -> xarray.Dataset
+        Study datasets by name (missing studies are skipped).
+    spreads : dict of str -> xarray.Dataset
+        :func:`curve_spread` results by group.
+    settings : dict
+        ``similarity`` settings (``spread_tolerance``).
+
+    Returns
+    -------
+    list of dict
+        ``key``, ``claim`` (the paper), ``finding`` (ours), ``verdict`` (0 does not hold,
+        1 holds, 2 holds partly), ``criterion``.
+    """
+    out = []
+    tol = float(settings.get("spread_tolerance", 0.1))
+
+    if "fig5_pi3" in ds:
+        d = ds["fig5_pi3"]
+        pi2 = d["pi2"].values
+        low = pi2 <= LOW_PI2 + 1e-12
+        pi3s = d["pi3"].values
+        ref = d["pi1"].sel(pi3=pi3s.min()).values
+        amp = {float(p): _ratio_mean(d["pi1"].sel(pi3=p).values, ref, low) for p in pi3s[1:]}
+        best = max(amp, key=lambda k: amp[k])
+        iso = [p for p in pi3s if p >= 1.0]
+        sub = d["pi1"].sel(pi3=iso).values[:, low]
+        decreasing = bool(np.all(np.diff(sub, axis=0) <= 1e-12))
+        frac = float(np.mean(np.all(np.diff(sub, axis=0) <= 1e-12, axis=0)))
+        amplified = [p for p, a in amp.items() if a > 1.0]
+        finding = (f"Mean Pi1 ratio to the stiff system (Pi3 = {pi3s.min():g}) over Pi2 <= {LOW_PI2:g}: "
+                   + ", ".join(f"Pi3 = {p:g}: {a:.2f}" for p, a in amp.items())
+                   + f". Largest at Pi3 = {best:g}. For Pi3 >= 1, Pi1 decreases with Pi3 at "
+                   f"{100 * frac:.0f}% of the low-Pi2 points.")
+        ok1 = len(amplified) > 0
+        ok2 = abs(best - 1.0) <= 0.25
+        v = 1 if (ok1 and ok2 and decreasing) else (2 if ok1 else 0)
+        out.append(dict(key="isolation_amplifies",
+                        claim="Isolation amplifies peak sliding for low Pi2; the highest amplification is at "
+                              "resonance (Pi3 ~ 1); for Pi3 > 1, Pi1 decreases with Pi3 (decoupling).",
+                        finding=finding, verdict=v,
+                        criterion=f"holds if some Pi3 amplifies (ratio > 1), the largest ratio is within 0.25 "
+                                  f"of Pi3 = 1 and Pi1 decreases with Pi3 >= 1 at every Pi2 <= {LOW_PI2:g}; "
+                                  f"partly if only the amplification holds"))
+
+    if "fig5_pi4" in ds:
+        d = ds["fig5_pi4"]
+        pi2 = d["pi2"].values
+        red = {}
+        for p3 in np.atleast_1d(d["pi3"].values) if "pi3" in d.dims else [float(d["pi3"])]:
+            cur = d["pi1"].sel(pi3=p3) if "pi3" in d.dims else d["pi1"]
+            i0 = _integral(cur.sel(pi4=0.0).values, pi2) if 0.0 in d["pi4"].values else math.nan
+            red[float(p3)] = {float(x): 1.0 - _integral(cur.sel(pi4=x).values, pi2) / i0
+                              for x in d["pi4"].values}
+        r_res = red.get(1.0, {}).get(0.1, math.nan)
+        others = {p: r.get(0.1, math.nan) for p, r in red.items() if p != 1.0}
+        res = red.get(1.0, {})
+        inc = {x: res[x] - res[xp] for xp, x in zip(sorted(res)[:-1], sorted(res)[1:])}
+        finding = (f"Reduction of the area under Pi1(Pi2) by xi_b = 0.1 relative to xi_b = 0: "
+                   f"{100 * r_res:.0f}% at resonance (Pi3 = 1)"
+                   + "".join(f", {100 * r:.0f}% at Pi3 = {p:g}" for p, r in others.items())
+                   + ". Extra reduction per damping step at Pi3 = 1: "
+                   + ", ".join(f"xi_b -> {x:g}: {100 * r:+.0f}%" for x, r in inc.items()) + ".")
+        ok_res = r_res >= 0.25
+        ok_marg = all(r <= 0.5 * r_res for r in others.values()) if others else True
+        beyond = [r for x, r in inc.items() if x > 0.15 + 1e-9]
+        upto = [r for x, r in inc.items() if x <= 0.15 + 1e-9]
+        ok_drop = bool(beyond and upto and max(beyond) < min(upto))
+        v = 1 if (ok_res and ok_marg and ok_drop) else (2 if ok_res else 0)
+        out.append(dict(key="damping_at_resonance",
+                        claim="About 10% isolation damping is very effective at resonance (Pi3 = 1) and has a "
+                              "marginal effect away from it; the efficiency drops for xi_b > 0.15.",
+                        finding=finding, verdict=v,
+                        criterion="holds if xi_b = 0.1 removes >= 25% of the area at Pi3 = 1, at most half as "
+                                  "much away from resonance, and every damping step beyond 0.15 gains less "
+                                  "than every step up to 0.15; partly if only the first holds"))
+
+    if "fig6_pi5" in ds:
+        d = ds["fig6_pi5"]
+        pi2 = d["pi2"].values
+        low = pi2 <= LOW_PI2 + 1e-12
+        parts, okl, okh = [], [], []
+        p5min = float(d["pi5"].min())
+        for p3 in d["pi3"].values:
+            a = d["pi1"].sel(pi3=p3, pi5=p5min).values
+            b = d["pi1"].sel(pi3=p3, pi5=1.0).values
+            nz = np.flatnonzero(b > 0)
+            high = np.zeros_like(low)
+            if nz.size:
+                high[nz[len(nz) // 2]: nz[-1] + 1] = True
+            rl, rh = _ratio_mean(a, b, low), _ratio_mean(a, b, high)
+            okl.append(rl > 1.0)
+            okh.append(rh < 1.0)
+            parts.append(f"Pi3 = {p3:g}: x{rl:.2f} at Pi2 <= {LOW_PI2:g}, x{rh:.2f} at large Pi2")
+        finding = f"Pi1 at Pi5 = {p5min:g} over Pi1 at Pi5 = 1 (Coulomb): " + "; ".join(parts) + "."
+        n_ok = sum(a and b for a, b in zip(okl, okh))
+        v = 1 if n_ok == len(okl) else (2 if n_ok or any(okl) or any(okh) else 0)
+        out.append(dict(key="static_friction",
+                        claim="Static friction (Pi5 < 1) reduces peak sliding for large Pi2 and amplifies it "
+                              "for low Pi2, so neglecting it is unconservative for low friction.",
+                        finding=finding, verdict=v,
+                        criterion=f"holds if, for every Pi3, the mean ratio is > 1 for Pi2 <= {LOW_PI2:g} and "
+                                  f"< 1 over the upper half of the sliding range; partly if for some"))
+
+    for group, key, claim in (
+        ("pi5", "pi5_similarity", "Peak sliding is similar over 0.7 <= Pi5 <= 1 (Pi1 almost independent of Pi5)."),
+        ("pi6", "pi6_complete_similarity", "Pi1 exhibits complete similarity in Pi6 over two decades of beta "
+                                           "(10 to 1000 s/m)."),
+        ("pi8", "pi8_negligible", "The dynamic interaction is negligible up to Pi8 = m_EC/M_b = 0.1."),
+    ):
+        if group not in spreads:
+            continue
+        s = spreads[group]
+        rel = np.atleast_1d(s["relative"].values).ravel()
+        worst = float(np.nanmax(rel)) if rel.size and np.isfinite(rel).any() else math.nan
+        where = ""
+        if s["relative"].ndim:
+            k = int(np.nanargmax(s["relative"].values.ravel()))
+            where = ", ".join(f"{dname} = {float(s[dname].values.ravel()[k] if s[dname].ndim else s[dname]):g}"
+                              for dname in s["relative"].dims)
+            where = f" (at {where})"
+        finding = (f"Largest spread between the curves over {s.attrs.get('range_text', '')}: "
+                   f"{100 * worst:.1f}% of the peak Pi1{where}; "
+                   + ", ".join(f"{100 * float(r):.1f}%" for r in rel) + " per case.")
+        v = 1 if worst <= tol else (2 if np.nanmin(rel) <= tol else 0)
+        out.append(dict(key=key, claim=claim, finding=finding, verdict=v,
+                        criterion=f"holds if the spread is <= {100 * tol:g}% of the peak Pi1 in every case; "
+                                  f"partly if in some"))
+
+    if "fig7_pi7" in ds:
+        d = ds["fig7_pi7"]
+        p = d["pi1"].transpose("pi7", "pi2").values
+        active = p.max(axis=0) > 0
+        mono = np.all(np.diff(p, axis=0) <= 1e-9 * np.maximum(p[:-1], 1e-300) + 1e-12, axis=0)
+        frac = float(np.mean(mono[active])) if active.any() else math.nan
+        i_lo = _integral(p[0], d["pi2"].values)
+        i_hi = _integral(p[-1], d["pi2"].values)
+        finding = (f"Pi1 is non-increasing in Pi7 at {100 * frac:.0f}% of the Pi2 points with sliding; the "
+                   f"area under the curve falls by {100 * (1 - i_hi / i_lo):.0f}% from Pi7 = 0 to "
+                   f"Pi7 = {float(d['pi7'].max()):g}.")
+        v = 1 if frac >= 0.95 else (2 if frac >= 0.5 else 0)
+        out.append(dict(key="viscous_contact", claim="The higher the contact damping (Pi7), the lower the "
+                                                     "sliding response.",
+                        finding=finding, verdict=v,
+                        criterion="holds if Pi1 is non-increasing in Pi7 at >= 95% of the sliding Pi2 points; "
+                                  "partly if at >= 50%"))
+
+    if "fig8_pi8" in ds and 1.0 in ds["fig8_pi8"]["pi8"].values:
+        d = ds["fig8_pi8"]
+        p3 = float(d["pi3"].values[np.argmin(np.abs(d["pi3"].values - 0.1))])
+        a = d["pi1"].sel(pi3=p3, pi8=1.0).values
+        b = d["pi1"].sel(pi3=p3, pi8=float(d["pi8"].min())).values
+        pi2 = d["pi2"].values
+        low = pi2 <= LOW_PI2 + 1e-12
+        nz = np.flatnonzero((a > 0) | (b > 0))
+        high = np.zeros_like(low)
+        if nz.size:
+            high[nz[len(nz) // 2]: nz[-1] + 1] = True
+        rl = _ratio_mean(a, b, low)
+        hi_a, hi_b = float(a[high].mean()) if high.any() else math.nan, float(b[high].mean()) if high.any() else math.nan
+        finding = (f"At Pi3 = {p3:g}, Pi8 = 1 against Pi8 = {float(d['pi8'].min()):g}: mean ratio {rl:.2f} "
+                   f"for Pi2 <= {LOW_PI2:g}; mean Pi1 over the upper half of the sliding range {hi_a:.3g} "
+                   f"against {hi_b:.3g}.")
+        v = 1 if (rl < 1 and hi_a > hi_b) else (2 if (rl < 1 or hi_a > hi_b) else 0)
+        out.append(dict(key="heavy_contents", claim="For Pi3 = 0.1 and contents as heavy as the isolated mass "
+                                                    "(Pi8 = 1), Pi1 decreases for low Pi2 (friction dissipation) "
+                                                    "and increases for large Pi2.",
+                        finding=finding, verdict=v,
+                        criterion="holds if both the decrease at low Pi2 and the increase at large Pi2 "
+                                  "are seen; partly if one"))
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# the report dataset
+# ----------------------------------------------------------------------------------------------
+
+def _verdict_var(values, long_name, meanings=None):
+    attrs = {"long_name": long_name, "units": "1"}
+    attrs.update(VERDICT_FLAGS)
+    if meanings:
+        attrs["flag_meanings"] = meanings
+        attrs["flag_values"] = np.arange(len(meanings.split()), dtype=np.int8)
+    return np.asarray(values, dtype=np.int8), attrs
+
+
+def buckingham_tables(checks: list, tolerance: float) -> xr.Dataset:
+    """Per-study and per-group worst differences of the Buckingham realisations.
+
+    ``between`` is the largest relative difference of Pi1 between realisations of the same
+    point (the similarity test proper); ``vs_grid`` the largest relative difference from the
+    study dataset's Pi1 (solver agreement).
+    """
+    studies = [c.attrs.get("study", f"study{k}") for k, c in enumerate(checks)]
+    nc = len(CONVENTIONS)
+    between = np.full((len(checks), nc), np.nan)
+    vs_grid = np.full((len(checks), nc), np.nan)
+    n = np.zeros(len(checks), dtype=np.int32)
+    for k, c in enumerate(checks):
+        n[k] = c.sizes["sample"]
+        if not n[k]:
+            continue
+        si = c["pi1_si"].transpose("sample", "realisation", "convention").values
+        ref = np.maximum(np.abs(c["pi1_grid"].values), 1e-300)[:, None]
+        for j in range(nc):
+            x = si[:, :, j]
+            between[k, j] = float(np.max((x.max(1) - x.min(1)) / ref[:, 0]))
+            vs_grid[k, j] = float(np.max(np.abs(x - c["pi1_grid"].values[:, None]) / ref))
+    # per group.  isoslide column: the studies that sweep the group (pi2: all).  paper column: the
+    # same number where the printed definition equals isoslide's; where it differs (Pi7), the
+    # worst paper-convention difference over the studies whose samples have the group non-zero.
+    g_between = np.full((len(GROUPS), nc), np.nan)
+    g_studies = []
+    for gi, g in enumerate(GROUPS):
+        rows = [k for k, c in enumerate(checks)
+                if n[k] and (g == "pi2" or g in c.attrs.get("swept", "").split())]
+        if rows:
+            g_between[gi, 0] = np.nanmax(between[rows, 0])
+        if DEFINITIONS[g][0] == DEFINITIONS[g][1]:
+            g_between[gi, 1:] = g_between[gi, 0]
+        else:
+            rows = [k for k, c in enumerate(checks) if n[k] and float(np.max(np.abs(c[g].values))) > 0]
+            if rows:
+                g_between[gi, 1:] = np.nanmax(between[rows, 1:], axis=0)
+        g_studies.append(" ".join(studies[k] for k in rows))
+    verdict_s = (between <= tolerance).astype(np.int8)
+    verdict_g = np.where(np.isnan(g_between), 2, g_between <= tolerance).astype(np.int8)
+    vs, vsa = _verdict_var(verdict_s, f"self-similarity holds: Pi1 differs by <= {tolerance:g} (relative) "
+                                      f"between realisations", meanings="fails holds")
+    vga = {"long_name": f"group is a similarity group: Pi1 differs by <= {tolerance:g} (relative) between "
+                        f"realisations", "units": "1", "flag_values": np.array([0, 1, 2], dtype=np.int8),
+           "flag_meanings": "fails holds not_tested"}
+    vg = verdict_g
+    return xr.Dataset(
+        {
+            "buckingham_between": (("study", "convention"), between,
+                                   {"long_name": "largest relative difference of Pi1 between physical "
+                                                 "realisations of the same grid point", "units": "1"}),
+            "buckingham_vs_grid": (("study", "convention"), vs_grid,
+                                   {"long_name": "largest relative difference of the SI-units Pi1 from the "
+                                                 "study dataset's Pi1", "units": "1"}),
+            "buckingham_samples": ("study", n, {"long_name": "grid points realised", "units": "1"}),
+            "buckingham_verdict": (("study", "convention"), vs, vsa),
+            "group_between": (("group", "convention"), g_between,
+                              {"long_name": "largest relative difference of Pi1 between realisations, over "
+                                            "the studies that sweep the group", "units": "1"}),
+            "group_definition": (("group", "convention"),
+                                 np.array([[DEFINITIONS[g][0], DEFINITIONS[g][1]] for g in GROUPS], dtype=object),
+                                 {"long_name": "definition of the group"}),
+            "group_studies": ("group", np.array(g_studies, dtype=object),
+                              {"long_name": "studies whose samples test the group"}),
+            "group_verdict": (("group", "convention"), vg, vga),
+        },
+        coords={"study": ("study", np.array(studies, dtype=object), {"long_name": "study"}),
+                "convention": ("convention", np.array(CONVENTIONS, dtype=object),
+                               {"long_name": "group definitions: isoslide or the paper's printed Eq. 5"}),
+                "group": ("group", np.array(GROUPS, dtype=object), {"long_name": "input Pi-group"})},
+    )
+
+
+def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset:
+    """Everything the similarity report shows, in one dataset.
+
+    Parameters
+    ----------
+    check_paths : sequence of path
+        Outputs of :func:`buckingham_study` (``results/similarity/<study>.nc``).
+    dataset_paths : sequence of path
+        Study datasets (``results/datasets/<study>.nc``).
+    settings : dict
+        The ``similarity`` section of the configuration.
+    """
+    from .datasets import global_attrs, open_dataset
+
+    checks = [open_dataset(p) for p in check_paths]
+    studies = {}
+    for p in dataset_paths:
+        d = open_dataset(p)
+        studies[d.attrs.get("study", str(p))] = d
+    tol = float(settings.get("tolerance", 1e-4))
+    out = buckingham_tables(checks, tol)
+
+    # raw samples, all studies, for the report's detail table
+    rows = []
+    for c in checks:
+        if not c.sizes["sample"]:
+            continue
+        r = c[["pi1_grid", "pi1_si", "a_p", "T_p", "M_b", "gamma"]].reset_coords([g for g in GROUPS])
+        r = r.assign(sample_study=("sample", np.array([c.attrs.get("study")] * c.sizes["sample"], dtype=object)))
+        rows.append(r.drop_vars("sample"))
+    if rows:
+        raw = xr.concat(rows, dim="sample", data_vars="all", coords="minimal", compat="override",
+                        combine_attrs="drop_conflicts", join="outer")
+        raw = raw.rename({v: f"sample_{v}" for v in raw.data_vars if not v.startswith("sample_")})
+        raw = raw.rename({"sample_pi1_grid": "sample_pi1_grid"})
+        for g in GROUPS:
+            raw[f"sample_{g}"].attrs = {"long_name": f"{g} of the sampled grid point", "units": "1"}
+        raw["sample_study"].attrs = {"long_name": "study of the sampled point"}
+        out = out.merge(raw.rename_dims({"sample": "sample_row"}), compat="override", join="outer")
+
+    # (b) complete similarity
+    spreads = {}
+    claims, cases, rel, spread, peak, at, ranges = [], [], [], [], [], [], []
+    tol_s = float(settings.get("spread_tolerance", 0.1))
+    for group, c in (settings.get("complete") or {}).items():
+        d = studies.get(c["study"])
+        if d is None or group not in d.dims:
+            continue
+        lo, hi = (float(x) for x in c["range"])
+        s = curve_spread(d, group, lo, hi)
+        s.attrs["range_text"] = f"{lo:g} <= {group} <= {hi:g}"
+        spreads[group] = s
+        st = s["relative"].stack(case=list(s["relative"].dims)) if s["relative"].ndim else None
+        n = 1 if st is None else st.sizes["case"]
+        for k in range(n):
+            if st is None:
+                label, sel = "all", {}
+            else:
+                sel = {dname: st["case"].values[k][i] if isinstance(st["case"].values[k], tuple)
+                       else st["case"].values[k] for i, dname in enumerate(s["relative"].dims)}
+                label = ", ".join(f"{dn} = {float(v):g}" for dn, v in sel.items())
+            claims.append(group)
+            cases.append(label)
+            pick = s.sel(sel) if sel else s
+            rel.append(float(pick["relative"]))
+            spread.append(float(pick["spread"]))
+            peak.append(float(pick["peak"]))
+            at.append(float(pick["pi2_at"]))
+            ranges.append(f"{lo:g} <= {group} <= {hi:g} (study {c['study']}, {int(s['n_curves'])} curves)")
+    v, va = _verdict_var([1 if r <= tol_s else 0 for r in rel],
+                         f"complete similarity holds: spread <= {tol_s:g} of the peak Pi1",
+                         meanings="does_not_hold holds")
+    out = out.merge(xr.Dataset(
+        {
+            "complete_group": ("claim_case", np.array(claims, dtype=object), {"long_name": "Pi-group of the claim"}),
+            "complete_case": ("claim_case", np.array(cases, dtype=object),
+                              {"long_name": "values of the other swept groups"}),
+            "complete_range": ("claim_case", np.array(ranges, dtype=object), {"long_name": "range tested"}),
+            "complete_relative": ("claim_case", np.array(rel), {"long_name": "largest spread between the curves "
+                                                                             "over the peak Pi1", "units": "1"}),
+            "complete_spread": ("claim_case", np.array(spread), {"long_name": "largest spread between the curves "
+                                                                              "(max - min of Pi1 at one Pi2)",
+                                                                 "units": "1"}),
+            "complete_peak": ("claim_case", np.array(peak), {"long_name": "largest Pi1 of the curves",
+                                                             "units": "1"}),
+            "complete_pi2_at": ("claim_case", np.array(at), {"long_name": "Pi2 where the spread is largest",
+                                                             "units": "1"}),
+            "complete_verdict": ("claim_case", v, va),
+        }), join="outer")
+
+    # (c) conclusions
+    concl = conclusions(studies, spreads, settings)
+    cv, cva = _verdict_var([c["verdict"] for c in concl], "verdict on the paper's conclusion")
+    out = out.merge(xr.Dataset(
+        {
+            "conclusion_key": ("conclusion", np.array([c["key"] for c in concl], dtype=object),
+                               {"long_name": "short name"}),
+            "conclusion_claim": ("conclusion", np.array([c["claim"] for c in concl], dtype=object),
+                                 {"long_name": "the paper's conclusion"}),
+            "conclusion_finding": ("conclusion", np.array([c["finding"] for c in concl], dtype=object),
+                                   {"long_name": "what isoslide's datasets show"}),
+            "conclusion_criterion": ("conclusion", np.array([c["criterion"] for c in concl], dtype=object),
+                                     {"long_name": "criterion of the verdict"}),
+            "conclusion_verdict": ("conclusion", cv, cva),
+        }), join="outer")
+    out.attrs = global_attrs(
+        title="isoslide similarity checks: Buckingham self-similarity, complete similarity, the paper's "
+              "conclusions",
+        history=f"isoslide.similarity.similarity_dataset from {len(checks)} realisation file(s) and "
+                f"{len(studies)} study dataset(s)",
+        config=settings, low_pi2=f"'low Pi2' means Pi2 <= {LOW_PI2:g}",
+        tolerance=f"{tol:g}", spread_tolerance=f"{tol_s:g}")
+    return out
