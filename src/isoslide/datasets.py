@@ -242,10 +242,15 @@ def merge_chunks(chunks, grid) -> xr.Dataset:
         As written by :func:`chunk_dataset`, any order.
     grid : isoslide.sweep.Grid
     """
-    chunks = [c.drop_attrs() if hasattr(c, "drop_attrs") else c.copy() for c in chunks]
+    chunks = [c.copy() for c in chunks]
     for c in chunks:
-        c.attrs = {}
-    flat = xr.combine_by_coords(chunks, join="exact", combine_attrs="drop", data_vars="all",
+        c.attrs = {}  # global attributes are set afresh below; variable attributes are kept
+    every = np.concatenate([np.asarray(c["scene"].values) for c in chunks]) if chunks else np.array([])
+    uniq, counts = np.unique(every, return_counts=True)
+    if np.any(counts > 1):
+        raise ValueError(f"chunks of study {grid.name} overlap: flat indices {uniq[counts > 1][:10].tolist()} "
+                         f"appear more than once (stale chunks from another chunk_size?)")
+    flat = xr.combine_by_coords(chunks, join="exact", combine_attrs="override", data_vars="all",
                                 coords="different", compat="equals")
     expect = np.arange(grid.size)
     if flat.sizes["scene"] != grid.size or not np.array_equal(flat["scene"].values, expect):

@@ -8,6 +8,8 @@ rule figure:
         expand("reports/figures/{{fig}}.{ext}", ext=FORMATS),
     params:
         settings=FIGURE_SETTINGS,
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/figure/{fig}.log",
     script:

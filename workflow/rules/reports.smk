@@ -10,6 +10,8 @@ rule report_similarity:
     output:
         notebook="reports/similarity.ipynb",
         html="reports/similarity.html",
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/report/similarity.log",
     shell:
@@ -30,6 +32,8 @@ rule report_figures:
     output:
         notebook="reports/figures.ipynb",
         html="reports/figures.html",
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/report/figures.log",
     shell:

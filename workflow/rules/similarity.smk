@@ -10,6 +10,8 @@ rule similarity_study:
     params:
         settings=SIMILARITY_SETTINGS,
         spec=lambda wildcards: SPECS[wildcards.study],
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/similarity_study/{study}.log",
     script:
@@ -24,6 +26,8 @@ rule similarity:
         "results/datasets/similarity.nc",
     params:
         settings=SIMILARITY_SETTINGS,
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/similarity/similarity.log",
     script:

@@ -8,6 +8,8 @@ rule solve_chunk:
     params:
         # the study's full specification: editing one study reruns only its chunks
         spec=lambda wildcards: SPECS[wildcards.study],
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/solve_chunk/{study}/{chunk}.log",
     threads: 1
@@ -22,6 +24,8 @@ rule merge_study:
         "results/datasets/{study}.nc",
     params:
         spec=lambda wildcards: SPECS[wildcards.study],
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/merge_study/{study}.log",
     script:
