@@ -1,0 +1,163 @@
+"""The Snakemake workflow, run as a user would: lint, config errors, a tiny end-to-end run,
+no-op reruns, per-study reruns and recovery from SIGKILL.
+
+Every run happens in a temporary copy of the workflow (Snakefile, config/, workflow/,
+profiles/), so the repository's own results/ and reports/ are never touched.
+"""
+
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+import xarray as xr
+import yaml
+
+from isoslide import datasets
+
+ROOT = Path(__file__).resolve().parents[1]
+TEST_CONFIG = ["--configfile", "config/test.yaml"]
+STUDIES = sorted(yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["studies"])
+
+
+def copy_workflow(dest: Path) -> Path:
+    dest.mkdir(parents=True, exist_ok=True)
+    shutil.copy2(ROOT / "Snakefile", dest / "Snakefile")
+    for d in ("config", "workflow", "profiles"):
+        shutil.copytree(ROOT / d, dest / d, ignore=shutil.ignore_patterns("__pycache__", ".ipynb_checkpoints"))
+    return dest
+
+
+def snakemake(cwd, *args, timeout=900, check=True):
+    env = dict(os.environ, PYTHONHASHSEED="0")
+    proc = subprocess.run([sys.executable, "-m", "snakemake", *args], cwd=cwd, capture_output=True,
+                          text=True, timeout=timeout, env=env)
+    out = proc.stdout + proc.stderr
+    if check and proc.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed ({proc.returncode}):\n{out[-6000:]}")
+    return proc.returncode, out
+
+
+def planned_jobs(out: str) -> list:
+    """(rule, wildcards) of every job a dry run plans."""
+    jobs = []
+    for block in re.split(r"\n(?=\[.*\d{4}\]\n)", out):
+        m = re.search(r"^(?:local)?rule (\w+):", block, re.M)
+        if m:
+            w = re.search(r"^\s+wildcards: (.*)$", block, re.M)
+            jobs.append((m.group(1), w.group(1) if w else ""))
+    return jobs
+
+
+@pytest.fixture(scope="module")
+def wf(tmp_path_factory):
+    return copy_workflow(tmp_path_factory.mktemp("wf"))
+
+
+def test_lint_is_clean(wf):
+    code, out = snakemake(wf, "--lint", timeout=300)
+    assert "Lints for" not in out, out
+    assert code == 0
+
+
+def test_dry_run_plans_the_whole_dag(wf):
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, timeout=300)
+    rules = {r for r, _ in planned_jobs(out)}
+    assert {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure", "report_similarity",
+            "report_figures", "all"} <= rules
+    chunk_wildcards = [w for r, w in planned_jobs(out) if r == "solve_chunk"]
+    assert all(re.fullmatch(r"study=\w+, chunk=\d+", w) for w in chunk_wildcards)
+
+
+@pytest.mark.parametrize("overlay, key", [
+    ({"chunk_size": 0}, "chunk_size"),
+    ({"studies": {"fig6_pi5": {"dims": {"pi5": [0.5, 1.5]}}}}, "pi5"),
+    ({"studies": {"fig5_pi3": {"pulse": "sine"}}}, "studies.fig5_pi3.pulse"),
+    ({"studies": {"fig8_pi8": {"dims": {"pi3": [1.0, 1.0]}}}}, "studies.fig8_pi8.dims.pi3"),
+    ({"similarity": {"complete": {"pi5": {"study": "nope", "range": [0.7, 1.0]}}}}, "similarity.complete.pi5.study"),
+])
+def test_invalid_config_fails_before_any_job_naming_the_key(tmp_path, overlay, key):
+    d = copy_workflow(tmp_path / "bad")
+    (d / "config" / "bad.yaml").write_text(yaml.safe_dump(overlay))
+    code, out = snakemake(d, "--cores", "1", *TEST_CONFIG, "--configfile", "config/bad.yaml", check=False,
+                          timeout=300)
+    assert code != 0
+    assert key in out, out[-3000:]
+    assert not (d / "results").exists() and not (d / "logs").exists()
+
+
+@pytest.fixture(scope="module")
+def full_run(wf):
+    t0 = time.monotonic()
+    snakemake(wf, "--cores", "2", *TEST_CONFIG, timeout=1500)
+    return wf, time.monotonic() - t0
+
+
+@pytest.mark.slow
+def test_tiny_config_runs_end_to_end(full_run):
+    wf, seconds = full_run
+    print(f"tiny end-to-end run: {seconds:.0f} s")
+    for s in STUDIES:
+        ds = xr.open_dataset(wf / "results" / "datasets" / f"{s}.nc")
+        assert ds.attrs["Conventions"].startswith("CF") and "pi1" in ds
+        assert ds["pi1"].dims[-1] == "pi2"
+        ds.close()
+        assert (wf / "logs" / "merge_study" / f"{s}.log").exists()
+    for n in range(1, 9):
+        for ext in ("png", "pdf"):
+            assert (wf / "reports" / "figures" / f"fig{n}.{ext}").stat().st_size > 0
+    sim = (wf / "reports" / "similarity.html").read_text()
+    assert "Buckingham" in sim and "Verdict" in sim and "Traceback" not in sim
+    gallery = (wf / "reports" / "figures.html").read_text()
+    assert "Figure 8" in gallery and "Fig. 8." in gallery and "Traceback" not in gallery
+    assert not list((wf / "results").rglob(".*.tmp")) and not list((wf / "reports").glob(".*tmp*"))
+
+
+@pytest.mark.slow
+def test_second_run_does_nothing(full_run):
+    wf, _ = full_run
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, timeout=300)
+    assert "Nothing to be done" in out, out[-3000:]
+
+
+@pytest.mark.slow
+def test_changing_one_study_reruns_only_that_study(full_run):
+    wf, _ = full_run
+    (wf / "config" / "change.yaml").write_text(yaml.safe_dump({"studies": {"fig7_pi7": {"dims": {"pi7": [0.0, 1.0]}}}}))
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "--configfile", "config/change.yaml", timeout=300)
+    jobs = planned_jobs(out)
+    per_study = {(r, w) for r, w in jobs if "study=" in w}
+    assert per_study and all("study=fig7_pi7" in w for _, w in per_study), per_study
+    assert {r for r, _ in jobs} <= {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure",
+                                     "report_similarity", "report_figures", "all"}
+    assert {w for r, w in jobs if r == "figure"} == {"fig=fig7"}
+
+
+@pytest.mark.slow
+def test_sigkill_then_restart_gives_the_same_datasets(full_run, tmp_path):
+    wf, _ = full_run
+    d = copy_workflow(tmp_path / "killed")
+    targets = [f"results/datasets/{s}.nc" for s in STUDIES]
+    cmd = [sys.executable, "-m", "snakemake", "--cores", "2", *TEST_CONFIG, *targets]
+    proc = subprocess.Popen(cmd, cwd=d, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    try:
+        deadline = time.monotonic() + 600
+        while time.monotonic() < deadline and proc.poll() is None:
+            if len(list((d / "results" / "chunks").rglob("*.nc"))) >= 2 if (d / "results").exists() else False:
+                break
+            time.sleep(0.2)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)        # the run and every job it started
+        proc.wait()
+    snakemake(d, "--cores", "2", *TEST_CONFIG, *targets, timeout=1500)
+    for s in STUDIES:
+        a = datasets.open_dataset(d / "results" / "datasets" / f"{s}.nc")
+        b = datasets.open_dataset(wf / "results" / "datasets" / f"{s}.nc")
+        datasets.assert_same_data(a, b)
