@@ -64,14 +64,18 @@ R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST = range(5)
 F_UMAX, F_TPEAK, F_URES, F_TEND, F_AMAX, F_VMAX = range(6)
 
 NAN = math.nan
+MAX_STEPS = 5_000_000
+"""Safety cap on integrator steps per scene (a scene that hits it is reported unsettled)."""
 
 
 @njit(cache=True)
 def friction(v, m):
     """Friction level phi(|v|) in units of a_p (m: model parameters)."""
     thr = m[M_THR]
-    if m[M_COULOMB] != 0.0:
+    if m[M_COULOMB] == 1.0:
         return thr
+    if m[M_COULOMB] == 2.0:  # sharp static/kinetic switch (limit Pi6 -> inf)
+        return m[M_PI2] + m[M_PI7] * abs(v)
     av = abs(v)
     e = math.exp(-m[M_PI6] * av)
     sech = 2.0 * e / (1.0 + e * e)
@@ -133,6 +137,10 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
             ynew[i] = y[i]
         return 0.0
     ytmp = np.empty(n)
+    # the pulse is right-continuous; stages at the step end use its left
+    # limit so that a step ending on a breakpoint sees the step's own piece
+    t_end = tau + h
+    t_left = t_end - max(abs(t_end), 1e-300) * 2.3e-16
     deriv(stick, s, tau, y, m, code, params, K[0])
     for st in range(1, NS):
         for i in range(n):
@@ -140,13 +148,14 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
             for j in range(st):
                 acc += A[st, j] * K[j, i]
             ytmp[i] = y[i] + h * acc
-        deriv(stick, s, tau + C[st] * h, ytmp, m, code, params, K[st])
+        ts = t_left if C[st] == 1.0 else tau + C[st] * h
+        deriv(stick, s, ts, ytmp, m, code, params, K[st])
     for i in range(n):
         acc = 0.0
         for j in range(NS):
             acc += B[j] * K[j, i]
         ynew[i] = y[i] + h * acc
-    deriv(stick, s, tau + h, ynew, m, code, params, K[NS])
+    deriv(stick, s, t_left, ynew, m, code, params, K[NS])
     e5 = 0.0
     e3 = 0.0
     for i in range(n):
@@ -294,7 +303,7 @@ def _hermite_max(g0, d0, g1, d1, h):
 
 @njit(cache=True)
 def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free,
-        rtol, atol, track_max, hist_cap, h_restart):
+        rtol, atol, track_max, hist_cap, h_restart, settle):
     """Integrate one scene; see the module docstring.
 
     Returns (ints, floats, hist, nhist) where ints = [steps, events, settled,
@@ -351,7 +360,8 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             elif tau >= tau_end:
                 if fixed:
                     settled = True
-                    break
+                    if settle:
+                        break
                 w2 = m[M_W2]
                 cw = m[M_CW]
                 mt = 1.0 + m[M_P8]
@@ -363,8 +373,9 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                         break
                 elif bound <= thr:
                     settled = True
-                    break
-        if tau >= tau_stop:
+                    if settle:
+                        break
+        if tau >= tau_stop or steps > MAX_STEPS:
             if track_max and stick and not fixed:
                 w2 = m[M_W2]
                 cw = m[M_CW]
@@ -373,7 +384,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 amax = max(amax, math.sqrt(2.0 * energy * (cw * cw / mt + w2)) / mt)
             break
         # --- step length -----------------------------------------------------
-        while ib < nb and breakpoints[ib] <= tau * (1.0 + 1e-15) + 1e-300:
+        while ib < nb and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
             ib += 1
         hmax = h_max_pulse if tau < tau_end else h_max_free
         h = min(h, hmax)

@@ -149,7 +149,7 @@ def _check_rtol(rtol):
     return float(rtol)
 
 
-def _model_array(scene: Scene, pi8: float, coulomb: bool, thr: float | None = None) -> np.ndarray:
+def _model_array(scene: Scene, pi8: float, coulomb: float, thr: float | None = None) -> np.ndarray:
     m = np.zeros(kernel.N_M)
     fixed = scene.pi3 == 0.0
     if not fixed:
@@ -162,7 +162,7 @@ def _model_array(scene: Scene, pi8: float, coulomb: bool, thr: float | None = No
     m[kernel.M_PI6] = scene.pi6
     m[kernel.M_PI7] = scene.pi7
     m[kernel.M_FIXED] = 1.0 if fixed else 0.0
-    m[kernel.M_COULOMB] = 1.0 if coulomb else 0.0
+    m[kernel.M_COULOMB] = float(coulomb)
     return m
 
 
@@ -171,15 +171,17 @@ def _horizon(scene: Scene, horizon: float) -> float:
     return pulse.tau_end + horizon * max(scene.pi3, 1.0)
 
 
-def _run(scene: Scene, pi8: float, coulomb: bool, rtol: float, hist_cap: int = 0,
-         horizon: float = DEFAULT_HORIZON, track_max: bool = False):
+def _run(scene: Scene, pi8: float, coulomb: float, rtol: float, hist_cap: int = 0,
+         horizon: float = DEFAULT_HORIZON, track_max: bool = False, max_step: float = math.inf,
+         settle: bool = True):
     pulse = scene.pulse
     irtol = max(rtol * INTEGRATOR_FACTOR, MIN_INTEGRATOR_RTOL)
     m = _model_array(scene, pi8, coulomb, thr=math.inf if track_max else None)
-    h_free = max(scene.pi3, 1.0) / 8.0
+    h_free = min(max(scene.pi3, 1.0) / 8.0, max_step)
     return kernel.run(m, pulse.code, pulse.param_array, pulse.breakpoint_array,
                       pulse.tau_start, pulse.tau_end, _horizon(scene, horizon),
-                      H_MAX_PULSE, h_free, irtol, irtol * ATOL_SCALE, track_max, hist_cap, H_RESTART)
+                      min(H_MAX_PULSE, max_step), h_free, irtol, irtol * ATOL_SCALE, track_max,
+                      hist_cap, min(H_RESTART, max_step), settle)
 
 
 def _impulse_velocity_l1(scene: Scene, pi8: float) -> float:
@@ -227,8 +229,12 @@ def _history(h: np.ndarray) -> History:
                    ud=h[:, 4].copy(), phase=h[:, 5].astype(np.int8))
 
 
+MODELS = ("auto", "full", "static-kinetic")
+
+
 def solve(scene: Scene, rtol: float | None = None, history: bool = False, method: str = "exact",
-          horizon: float = DEFAULT_HORIZON, model: str = "auto", **options) -> Solution:
+          horizon: float = DEFAULT_HORIZON, model: str = "auto", max_step: float = math.inf,
+          settle: bool = True, **options) -> Solution:
     """Peak sliding of one scene.
 
     Parameters
@@ -248,9 +254,16 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     horizon : float
         How long to follow a scene that does not settle, after the pulse, in
         isolation periods (pulse periods for a fixed base).
-    model : {"auto", "full"}
-        ``"full"`` disables every reduction except the fixed base (used to
-        test the reductions against the full model).
+    model : {"auto", "full", "static-kinetic"}
+        ``"auto"`` runs the smallest exact model; ``"full"`` disables every
+        reduction but the fixed base (to test the reductions against the full
+        model); ``"static-kinetic"`` is the limit ``Pi6 -> inf`` (stick up to
+        ``mu_s``, kinetic ``mu_k`` at any sliding speed).
+    max_step : float
+        Largest step in units of T_p (a denser history; accuracy is set by ``rtol``).
+    settle : bool
+        Stop at settlement (default).  ``False`` follows the scene to the
+        horizon, to check the settlement criterion.
 
     Returns
     -------
@@ -268,34 +281,44 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
         raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', 'regularized', 'reference'")
     if options:
         raise TypeError(f"unexpected options for method='exact': {sorted(options)}")
-    if model not in ("auto", "full"):
-        raise ValueError(f"model = {model!r} is invalid; allowed: 'auto', 'full'")
+    if model not in MODELS:
+        raise ValueError(f"model = {model!r} is invalid; allowed: {MODELS}")
     if not (math.isfinite(horizon) and horizon > 0):
         raise ValueError(f"horizon = {horizon!r} is out of range; allowed range: 0 < horizon < inf")
+    if not (max_step > 0):
+        raise ValueError(f"max_step = {max_step!r} is out of range; allowed range: 0 < max_step <= inf")
     rtol = _check_rtol(rtol)
     pl = plan(scene)
     fixed = pl["fixed"]
-    coulomb = pl["coulomb"] and model == "auto"
+    if model == "static-kinetic":
+        friction = 2.0
+    else:
+        friction = 1.0 if (pl["coulomb"] and model == "auto") else 0.0
+    coulomb = friction == 1.0
     hist_cap = 200_000 if history else 0
     pi8 = 0.0 if fixed else scene.pi8
     oneway = pi8 == 0.0
+    run = lambda p8: _run(scene, p8, friction, rtol, hist_cap, horizon, max_step=max_step,  # noqa: E731
+                          settle=settle)
     out = None
     if model == "auto" and pl["oneway_possible"] and pi8 > 0.0:
         l1 = _impulse_velocity_l1(scene, pi8)
         span = scene.pulse.tau_end - scene.pulse.tau_start
         if 2.0 * 2.0 * span * pi8 * scene.static_level * l1 <= 0.1 * rtol:
-            trial = _run(scene, 0.0, coulomb, rtol, hist_cap, horizon)
+            trial = run(0.0)
             ints, floats, _ = trial
             T = 2.0 * (floats[kernel.F_TEND] - scene.pulse.tau_start)
             bound = 2.0 * T * pi8 * scene.static_level * l1
-            if bound <= 0.1 * rtol * floats[kernel.F_UMAX] or ints[kernel.R_SLIPPED] == 0 and bound < 1e-300:
+            if bound <= 0.1 * rtol * floats[kernel.F_UMAX]:
                 out, oneway = trial, True
     if out is None:
-        out = _run(scene, pi8, coulomb, rtol, hist_cap, horizon)
+        out = run(pi8)
     ints, floats, hist = out
     noslide = ints[kernel.R_SLIPPED] == 0
-    return _solution(scene, ints, floats, _label(fixed, noslide, coulomb, oneway),
-                     _history(hist) if history else None)
+    label = _label(fixed, noslide, coulomb, oneway)
+    if model == "static-kinetic" and not noslide:
+        label = label.replace("stribeck", "static-kinetic")
+    return _solution(scene, ints, floats, label, _history(hist) if history else None)
 
 
 def _solution(scene, ints, floats, label, hist=None) -> Solution:
@@ -332,7 +355,7 @@ def peak_stuck_demand(scene: Scene, rtol: float | None = None, horizon: float = 
     """
     rtol = _check_rtol(rtol)
     pi8 = 0.0 if scene.pi3 == 0.0 else scene.pi8
-    ints, floats, _ = _run(scene, pi8, True, rtol, 0, horizon, track_max=True)
+    ints, floats, _ = _run(scene, pi8, 1.0, rtol, 0, horizon, track_max=True)
     return float(floats[kernel.F_AMAX])
 
 
