@@ -136,7 +136,7 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
         for i in range(n):
             ynew[i] = y[i]
         return 0.0
-    ytmp = np.empty(n)
+    ytmp = K[NS + 1]  # scratch row: no allocation in the hot loop
     # the pulse is right-continuous; stages at the step end use its left
     # limit so that a step ending on a breakpoint sees the step's own piece
     t_end = tau + h
@@ -316,7 +316,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     y = np.zeros(4)
     y1 = np.empty(4)
     ye = np.empty(4)
-    K = np.empty((NS + 1, 4))
+    K = np.empty((NS + 2, 4))
     work = np.empty(4)
     hist = np.empty((hist_cap if hist_cap > 0 else 1, 6))
     nh = 0
