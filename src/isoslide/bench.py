@@ -1,0 +1,216 @@
+"""Benchmark: per-scene cost and error of isoslide against its peers, measured side by side.
+
+Run ``python -m isoslide.bench`` (``--help`` for options; ``benchmarks/bench_solver.py`` calls
+the same).  On the representative scene set of :mod:`isoslide.accuracy` (a fixed-seed subsample
+of every paper study plus the hard cases) it times, scene after scene and interleaved:
+
+* ``isoslide.solve(scene)`` at its default accuracy (compiled event-driven DOP853);
+* the plain SciPy event-driven solve (:func:`isoslide.reference.solve_reference`, ``solve_ivp``
+  DOP853 with events) at the same nominal tolerance;
+* the paper-style regularised solve (:func:`isoslide.regularized.solve_regularized`, stiff
+  elastic-plastic spring, SciPy Radau) on an evenly spread subset (it takes seconds per scene).
+
+Errors are relative to the converged answer (isoslide at ``rtol = 1e-12``, every reduction
+off).  It prints the medians, the ratios of per-scene costs on the same scenes, the target
+check (median <= 0.1 ms per scene at <= 1e-6 relative error) and where the time goes (steps
+per scene by scene class).  Timings are wall-clock on whatever else the machine is running:
+read ratios, which are measured side by side, rather than absolute figures.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import platform
+import sys
+import time
+
+import numpy as np
+
+from . import accuracy
+from .solver import DEFAULT_RTOL, solve
+
+TARGET_MS = 0.1
+TARGET_ERROR = 1e-6
+
+
+def _median(a):
+    a = np.asarray([x for x in a if x is not None and math.isfinite(x)], dtype=float)
+    return float(np.median(a)) if a.size else math.nan
+
+
+def _rel(p, c):
+    if not math.isfinite(p):
+        return math.nan
+    if c == 0.0:
+        return 0.0 if p == 0.0 else math.inf
+    return abs(p - c) / c
+
+
+def run(per_study: int = 4, hard: bool = True, repeats: int = 15, peer_repeats: int = 3,
+        reference_rtol: float = 1e-6, regularized_scenes: int = 6, stiffness: float = 1e6,
+        regularized_rtol: float = 1e-6, horizon: float = 50.0, timeout: float = 30.0,
+        log=None) -> dict:
+    """Measure; return a dict of per-scene records and summaries (see :func:`report`)."""
+    settings = accuracy.settings_from({"per_study": per_study, "hard": hard, "horizon": horizon})
+    entries = accuracy.scene_set(None, settings)
+    accuracy._warm_up()
+    ref = accuracy.Setting(f"scipy event-driven rtol={reference_rtol:g}", "reference", reference_rtol)
+    reg = accuracy.Setting(f"regularized K={stiffness:g}", "regularized", regularized_rtol, stiffness)
+    reg_idx = set(entries.subset(regularized_scenes))
+    rows = []
+    for i, e in enumerate(entries):
+        sc = e.scene
+        conv = solve(sc, rtol=1e-12, horizon=horizon, model="full").pi1
+        t_iso = []
+        t_ref = []
+        for r in range(max(repeats, peer_repeats)):
+            # interleave: isoslide, then the reference, on the same scene
+            if r < repeats:
+                t0 = time.perf_counter()
+                s = solve(sc, horizon=horizon)
+                t_iso.append(time.perf_counter() - t0)
+            if r < peer_repeats:
+                p_ref, t, w_ref, st_ref = accuracy.run_setting(ref, sc, horizon, timeout)
+                t_ref.append(t if st_ref == "ok" else math.nan)
+        row = {
+            "i": i, "cls": e.cls, "label": e.label, "pi1": conv, "model": s.model,
+            "iso_ms": 1e3 * _median(t_iso), "iso_err": _rel(s.pi1, conv), "steps": s.n_steps,
+            "events": s.n_events, "settled": s.settled,
+            "ref_ms": 1e3 * _median(t_ref), "ref_err": _rel(p_ref, conv), "ref_nfev": w_ref,
+            "ref_status": st_ref, "reg_ms": math.nan, "reg_err": math.nan, "reg_status": "not-run",
+        }
+        if i in reg_idx:
+            p_reg, t, w, st = accuracy.run_setting(reg, sc, horizon, timeout)
+            row.update(reg_ms=1e3 * t if st == "ok" else math.nan, reg_err=_rel(p_reg, conv),
+                       reg_status=st)
+        rows.append(row)
+        if log:
+            log(f"  scene {i:3d} {e.cls:15s} iso {row['iso_ms']:8.3f} ms  ref {row['ref_ms']:9.2f} ms"
+                + (f"  reg {row['reg_ms']:9.1f} ms" if i in reg_idx else ""))
+    return {"rows": rows, "reference": ref.name, "regularized": reg.name, "repeats": repeats,
+            "peer_repeats": peer_repeats, "rtol": DEFAULT_RTOL, "horizon": horizon}
+
+
+def summarize(res: dict) -> dict:
+    """Medians, side-by-side ratios, target check and the cost by scene class."""
+    rows = res["rows"]
+    iso = np.array([r["iso_ms"] for r in rows])
+    sliding = np.array([r["pi1"] > 0 for r in rows])
+    out = {"n": len(rows), "iso_median_ms": float(np.median(iso)),
+           "iso_median_ms_sliding": float(np.median(iso[sliding])) if sliding.any() else math.nan}
+    err = np.array([r["iso_err"] for r in rows])
+    sig = np.array([r["pi1"] >= 1e-6 for r in rows])
+    out["iso_err_median"] = float(np.nanmedian(err[sliding]))
+    out["iso_err_max"] = float(np.nanmax(err[sliding]))
+    out["iso_err_max_significant"] = float(np.nanmax(err[sig]))
+    for peer in ("ref", "reg"):
+        ms = np.array([r[f"{peer}_ms"] for r in rows])
+        ok = np.isfinite(ms)
+        e = np.array([r[f"{peer}_err"] for r in rows])
+        out[f"{peer}_n"] = int(ok.sum())
+        out[f"{peer}_failed"] = int(sum(r[f"{peer}_status"] in ("error", "timeout") for r in rows))
+        out[f"{peer}_median_ms"] = float(np.median(ms[ok])) if ok.any() else math.nan
+        out[f"{peer}_iso_median_ms_same"] = float(np.median(iso[ok])) if ok.any() else math.nan
+        out[f"{peer}_ratio_median"] = float(np.median(ms[ok] / iso[ok])) if ok.any() else math.nan
+        es = e[ok & sliding]
+        out[f"{peer}_err_median"] = float(np.nanmedian(es)) if es.size else math.nan
+        out[f"{peer}_err_max"] = float(np.nanmax(es)) if es.size else math.nan
+        es = e[ok & sig]
+        out[f"{peer}_err_max_significant"] = float(np.nanmax(es)) if es.size else math.nan
+    classes = {}
+    for r in rows:
+        classes.setdefault(r["cls"], []).append(r)
+    by = []
+    for c, rs in classes.items():
+        ms = np.array([r["iso_ms"] for r in rs])
+        st = np.array([r["steps"] for r in rs], dtype=float)
+        by.append({"class": c, "n": len(rs), "median_ms": float(np.median(ms)), "max_ms": float(ms.max()),
+                   "median_steps": float(np.median(st)), "max_steps": float(st.max()),
+                   "median_events": float(np.median([r["events"] for r in rs])),
+                   "us_per_step": float(np.median(1e3 * ms / np.maximum(st, 1))),
+                   "unsettled": int(sum(not r["settled"] for r in rs))})
+    by.sort(key=lambda d: -d["median_ms"])
+    out["by_class"] = by
+    steps = np.array([r["steps"] for r in rows], dtype=float)
+    out["median_steps"] = float(np.median(steps))
+    out["us_per_step"] = float(np.median(1e3 * iso / np.maximum(steps, 1)))
+    out["target_met"] = bool(out["iso_median_ms"] <= TARGET_MS and out["iso_err_max_significant"] <= TARGET_ERROR)
+    return out
+
+
+def report(res: dict, summ: dict, file=sys.stdout) -> None:
+    """Print the benchmark in plain text."""
+    p = lambda *a: print(*a, file=file)  # noqa: E731
+    p(f"isoslide benchmark: {summ['n']} scenes (paper studies subsampled + hard cases), "
+      f"Python {platform.python_version()}, {platform.machine()}, one process, one thread")
+    p(f"timing: isoslide median of {res['repeats']} runs per scene, SciPy reference median of "
+      f"{res['peer_repeats']} (interleaved, same scene); regularized once per scene on a subset")
+    p(f"errors: relative to isoslide at rtol=1e-12 with every reduction off; 'max*' over scenes "
+      f"with Pi1 >= 1e-6 (below, relative error is not meaningful)")
+    p("")
+    hdr = f"{'method':40s} {'scenes':>6s} {'median ms':>10s} {'x isoslide':>10s} {'med err':>9s} {'max err':>9s} {'max* err':>9s}"
+    p(hdr)
+    p("-" * len(hdr))
+    p(f"{'isoslide.solve (default rtol=1e-6)':40s} {summ['n']:6d} {summ['iso_median_ms']:10.3f} {1.0:10.1f} "
+      f"{summ['iso_err_median']:9.1e} {summ['iso_err_max']:9.1e} {summ['iso_err_max_significant']:9.1e}")
+    for peer, name in (("ref", res["reference"]), ("reg", res["regularized"])):
+        if summ[f"{peer}_n"] == 0:
+            p(f"{name:40s} {0:6d}  (not run)")
+            continue
+        p(f"{name:40s} {summ[f'{peer}_n']:6d} {summ[f'{peer}_median_ms']:10.3f} "
+          f"{summ[f'{peer}_ratio_median']:10.1f} {summ[f'{peer}_err_median']:9.1e} "
+          f"{summ[f'{peer}_err_max']:9.1e} {summ[f'{peer}_err_max_significant']:9.1e}"
+          + (f"   ({summ[f'{peer}_failed']} failed/timed out)" if summ[f"{peer}_failed"] else ""))
+        p(f"{'':40s} {'':6s} (isoslide on the same scenes: {summ[f'{peer}_iso_median_ms_same']:.3f} ms; "
+          f"'x isoslide' = median of per-scene ratios)")
+    p("")
+    verdict = "MET" if summ["target_met"] else "NOT MET"
+    p(f"target: median <= {TARGET_MS} ms per scene at <= {TARGET_ERROR:g} relative error -> {verdict}: "
+      f"median {summ['iso_median_ms']:.3f} ms (sliding scenes {summ['iso_median_ms_sliding']:.3f} ms), "
+      f"max error {summ['iso_err_max_significant']:.1e}")
+    p(f"where the time goes: median {summ['median_steps']:.0f} integrator steps per scene at "
+      f"{summ['us_per_step']:.2f} us per step (steps include rejected, event-location and "
+      f"verification steps)")
+    p("")
+    hdr = f"{'scene class':16s} {'n':>3s} {'median ms':>10s} {'max ms':>9s} {'med steps':>10s} {'max steps':>10s} {'med events':>10s} {'us/step':>8s} {'unsettled':>9s}"
+    p(hdr)
+    p("-" * len(hdr))
+    for b in summ["by_class"]:
+        p(f"{b['class']:16s} {b['n']:3d} {b['median_ms']:10.3f} {b['max_ms']:9.3f} {b['median_steps']:10.0f} "
+          f"{b['max_steps']:10.0f} {b['median_events']:10.0f} {b['us_per_step']:8.2f} {b['unsettled']:9d}")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m isoslide.bench", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--per-study", type=int, default=4, help="scenes drawn from each paper study (4)")
+    ap.add_argument("--no-hard", action="store_true", help="leave out the hard scene classes")
+    ap.add_argument("--repeats", type=int, default=15, help="isoslide runs per scene (15)")
+    ap.add_argument("--peer-repeats", type=int, default=3, help="SciPy reference runs per scene (3)")
+    ap.add_argument("--reference-rtol", type=float, default=1e-6, help="solve_ivp rtol of the reference (1e-6)")
+    ap.add_argument("--regularized-scenes", type=int, default=6,
+                    help="scenes for the regularised solve (6; 0 = skip)")
+    ap.add_argument("--stiffness", type=float, default=1e6, help="regularising stiffness K (1e6)")
+    ap.add_argument("--regularized-rtol", type=float, default=1e-6, help="Radau rtol (1e-6)")
+    ap.add_argument("--timeout", type=float, default=30.0, help="wall-clock limit per peer run, s (30)")
+    ap.add_argument("--quick", action="store_true", help="1 scene per study, 5 repeats, 2 regularised scenes")
+    ap.add_argument("--json", metavar="PATH", help="also write the records and summary as JSON")
+    ap.add_argument("-v", "--verbose", action="store_true", help="print every scene as it is measured")
+    a = ap.parse_args(argv)
+    if a.quick:
+        a.per_study, a.repeats, a.peer_repeats, a.regularized_scenes = 1, 5, 1, 2
+    res = run(per_study=a.per_study, hard=not a.no_hard, repeats=a.repeats, peer_repeats=a.peer_repeats,
+              reference_rtol=a.reference_rtol, regularized_scenes=a.regularized_scenes,
+              stiffness=a.stiffness, regularized_rtol=a.regularized_rtol, timeout=a.timeout,
+              log=print if a.verbose else None)
+    summ = summarize(res)
+    report(res, summ)
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump({"result": res, "summary": summ}, f, indent=1, default=float)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
