@@ -58,8 +58,8 @@ converges like ``1/K``.  Relative errors against the reference solver::
     resonance Coulomb, Pi2=0.1      9.5e-3   3.5e-3   1.1e-3   3.7e-4
     resonance Stribeck, Pi5=0.7     2.5e-2   1.1e-2   4.3e-3   1.4e-3
     two-way coupling, Pi8=0.1       1.0e-2   3.6e-3   1.2e-3   3.8e-4
-    fixed base, one smooth slip     2.0e-2   2.0e-3   2.0e-4   -
-    Newmark rectangle, Pi2=0.3      4.5e-3   1.4e-3   4.5e-4   -
+    fixed base, one smooth slip     2.0e-2   2.0e-3   2.0e-4   2.0e-5
+    Newmark rectangle, Pi2=0.3      4.5e-3   1.4e-3   4.5e-4   1.4e-4
 
 (always an over-estimate).  Cost at ``K = 1e6`` (shared 2-core machine):
 3,000-15,000 Radau steps, 38,000-116,000 right-hand-side calls, 2-4 s per
