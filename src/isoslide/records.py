@@ -245,8 +245,8 @@ class Record:
         ``p(tau) = a_g(t) / (polarity * a_p)`` with ``tau = (t - t_ref) / T_p``,
         linear between samples and zero outside the record.  With the defaults
         the scales are those of the record's fitted pulse (:meth:`fit`), so the
-        record and :meth:`PulseFit.as_pulse` are aligned in ``tau`` (``tau = 0``
-        at the fitted peak, which is ``+1`` for the fitted pulse).
+        record and :meth:`PulseFit.as_pulse` are aligned in ``tau`` (for the
+        Ricker ``tau = 0`` at the fitted peak, where the fitted pulse is ``+1``).
 
         Parameters
         ----------
@@ -255,7 +255,9 @@ class Record:
         T_p : float, optional
             Time scale, s (> 0).  Default: fitted ``T_p``.
         t_ref : float, optional
-            Record time that becomes ``tau = 0``, s.  Default: fitted ``t_peak``.
+            Record time that becomes ``tau = 0``, s.  Default: the fit's
+            :attr:`PulseFit.t_ref` (the peak for the Ricker, the envelope
+            centre for Mavroeidis-Papageorgiou).
         shape : str
             Which fit supplies missing values.
         polarity : {+1, -1}, optional
@@ -271,7 +273,7 @@ class Record:
             fit = self.fit(shape)
             a_p = fit.a_p if a_p is None else a_p
             T_p = fit.T_p if T_p is None else T_p
-            t_ref = fit.t_peak if t_ref is None else t_ref
+            t_ref = fit.t_ref if t_ref is None else t_ref
             polarity = fit.polarity if polarity is None else polarity
         a_p, T_p, t_ref = float(a_p), float(T_p), float(t_ref)
         if not (math.isfinite(a_p) and a_p > 0):
@@ -328,10 +330,11 @@ def _tokens(text: str, path, lineno: int) -> list[float]:
     """Split one data line into floats.
 
     Whitespace and commas separate numbers.  Numbers may also run together
-    when the next one starts with a sign (``1.2E-02-5.6E-03``); any other
+    when the next one starts with a sign (``1.2E-02-5.6E-03``) or is a
+    leading-dot number after an exponent (``.12E-01.34E-01``); any other
     adjacency (``0.1230.456``, ``0.1234-102``) is ambiguous and rejected.
     """
-    out = []
+    out, out_text = [], []
     pos, n = 0, len(text)
     separated = True
     while pos < n:
@@ -342,16 +345,21 @@ def _tokens(text: str, path, lineno: int) -> list[float]:
             continue
         m = _NUM.match(text, pos)
         if not m:
-            bad = text[pos:].split()[0] if text[pos:].split() else text[pos:]
+            w0 = len(text[:pos]) - len(re.split(r"[\s,]", text[:pos])[-1])
+            bad = re.split(r"[\s,]", text[w0:])[0]
             raise RecordFormatError(path, lineno, f"a number at column {pos + 1}", bad)
         tok = m.group(0)
         if not separated:
             plain = tok.lstrip("+-")
-            if tok[0] not in "+-" or not ("." in plain or "e" in plain.lower() or "d" in plain.lower()):
+            signed = tok[0] in "+-" and ("." in plain or "e" in plain.lower() or "d" in plain.lower())
+            after_exponent = (tok[0] == "." and re.search(r"[EeDd][+-]?\d\d$", out_text[-1]) is not None
+                              and re.search(r"[EeDd][+-]?\d+$", tok) is not None)
+            if not (signed or after_exponent):
                 raise RecordFormatError(
                     path, lineno, f"numbers separated by blanks, commas or a sign at column {pos + 1} "
                     "(ambiguous run-together numbers)", text[max(0, pos - 12):m.end()].strip())
         out.append(float(tok.replace("D", "E").replace("d", "e")))
+        out_text.append(tok)
         pos = m.end()
         separated = False
     return out
@@ -586,13 +594,14 @@ def read_csv(path, name: str | None = None, units: str = "g", dt_tolerance: floa
     if not np.all(np.isfinite(t)) or not np.all(np.isfinite(acc)):
         k = int(np.nonzero(~(np.isfinite(t) & np.isfinite(acc)))[0][0])
         raise RecordFormatError(path, linenos[k], "finite numbers", f"{t[k]}, {acc[k]}")
-    dt = (t[-1] - t[0]) / (t.size - 1)
     steps = np.diff(t)
+    dt = float(np.median(steps))
     bad = np.nonzero(~(np.abs(steps - dt) <= dt_tolerance * abs(dt)) | (steps <= 0))[0]
     if dt <= 0 or bad.size:
         k = int(bad[0]) + 1 if bad.size else 1
         raise RecordFormatError(path, linenos[k], f"a uniform, increasing time step of {dt:.6g} s "
                                 f"(tolerance {dt_tolerance:.0%})", f"time {t[k]:.6g} after {t[k - 1]:.6g}")
+    dt = (t[-1] - t[0]) / (t.size - 1)  # mean step: removes the rounding of the time column
     meta = {"source": str(path)} | metadata
     return Record(name or path.stem, acc * factor, float(dt), t_start=float(t[0]), **meta)
 
@@ -808,56 +817,42 @@ class PulseFit:
         p = self.shape_params
         return _mp_velocity(t, p["A"], p["t0"], self.T_p, p["gamma"], p["nu"])
 
+    @property
+    def t_ref(self) -> float:
+        """Record time of ``tau = 0`` of :meth:`as_pulse`, s.
+
+        The pulse peak ``t_peak`` for the Ricker; the envelope centre ``t0``
+        for Mavroeidis-Papageorgiou (the origin used by
+        :func:`isoslide.pulses.mavroeidis_papageorgiou`).
+        """
+        if self.shape == "ricker":
+            return self.t_peak
+        return self.shape_params["t0"]
+
     def as_pulse(self) -> Pulse:
         """The fitted shape as a dimensionless :class:`~isoslide.pulses.Pulse`.
 
-        Scaled by ``polarity * a_p`` and ``T_p`` with ``tau = 0`` at
-        ``t_peak`` -- the same normalisation as :meth:`Record.as_pulse`, so
-        record and pulse are aligned.  Ricker: :func:`isoslide.pulses.ricker`.
-        Mavroeidis-Papageorgiou: ``get_pulse("mavroeidis_papageorgiou",
-        gamma=..., nu=...)`` (see the note in that module's conventions).
+        ``p(tau) = a(t_ref + tau T_p) / (polarity a_p)``: the same normalisation
+        as :meth:`Record.as_pulse` with its defaults, so the record and the
+        pulse are aligned in ``tau`` and the pulse is ``+1`` at its peak.
+        Ricker: :func:`isoslide.pulses.ricker`.  Mavroeidis-Papageorgiou:
+        ``get_pulse("mavroeidis_papageorgiou", gamma=gamma, nu=nu')`` with
+        ``nu' = nu`` for positive polarity and ``nu +- pi`` (the sign-flipped
+        pulse) otherwise.
         """
         if self.shape == "ricker":
             return ricker()
         p = self.shape_params
-        return _mp_scene_pulse(p["gamma"], p["nu"], self.a_p, self.polarity, p["t0"], self.t_peak, self.T_p,
-                               p["A"])
+        return get_pulse("mavroeidis_papageorgiou", gamma=p["gamma"], nu=_mp_phase(p["nu"], self.polarity))
 
     scene_pulse = as_pulse
 
 
-def _mp_scene_pulse(gamma, nu, a_p, polarity, t0, t_peak, T_p, A):
-    """The pulses-module Mavroeidis-Papageorgiou pulse, checked against the fit.
-
-    The pulses module defines its own tau origin and normalisation; this
-    checks that, after shifting tau to ``t_peak`` and scaling, it reproduces
-    the fitted shape, and raises if the conventions disagree.
-    """
-    base = get_pulse("mavroeidis_papageorgiou", gamma=gamma, nu=nu)
-    # reference: fitted shape in tau about t_peak, unit peak positive
-    tau = np.linspace(-0.5 * gamma - 0.5, 0.5 * gamma + 0.5, 801) + (t0 - t_peak) / T_p
-    ref = _mp_accel(t_peak + tau * T_p, A, t0, T_p, gamma, nu) / (polarity * a_p)
-    # the module's pulse: find its own shift so that it matches (origin at envelope centre or peak)
-    shifts = {"centre": (t0 - t_peak) / T_p, "peak": 0.0}
-    for origin, shift in shifts.items():
-        cand = base.accel(tau - shift)
-        for scale in (1.0, -1.0):
-            if np.max(np.abs(scale * cand - ref)) < 1e-6:
-                return _shifted(base, shift, scale)
-    raise NotImplementedError(
-        "isoslide.pulses 'mavroeidis_papageorgiou' uses a tau origin or normalisation that "
-        "records.PulseFit does not recognise; fitted shape cannot be mapped onto it")
-
-
-def _shifted(base: Pulse, shift: float, scale: float) -> Pulse:
-    """``p(tau) = scale * base(tau - shift)`` as a Pulse (exact when shift == 0 and scale == 1)."""
-    if shift == 0.0 and scale == 1.0:
-        return base
-    # piecewise-linear resampling, fine enough to be exact to plotting/solver accuracy
-    n = 4001
-    tau = np.linspace(base.tau_start, base.tau_end, n)
-    return sampled(scale * base.accel(tau), (base.tau_end - base.tau_start) / (n - 1),
-                   base.tau_start + shift, name=base.name)
+def _mp_phase(nu: float, polarity: int) -> float:
+    """Phase of the M-P pulse whose peak has sign ``+1``: ``nu`` or ``nu -+ pi`` (in [-pi, 2 pi))."""
+    if polarity > 0:
+        return float(nu)
+    return float(nu - _PI if nu >= _PI else nu + _PI)
 
 
 # --------------------------------------------------------------------------- fitting
@@ -1019,10 +1014,12 @@ def fit_pulse(accel, dt, shape: str = "ricker", *, units: str = "g", t_start: fl
     tt = np.linspace(t0 - 0.5 * gam * Tm, t0 + 0.5 * gam * Tm, 20001)
     af = _mp_accel(tt, Av, t0, Tm, gam, nu)
     k = int(np.argmax(np.abs(af)))
+    # exact peak from the pulses module's normalisation: a_p = pi A N / T_p, N = max |raw shape|
+    a_p = _PI * Av / Tm / get_pulse("mavroeidis_papageorgiou", gamma=gam, nu=nu).params[2]
     params = (("gamma", gam), ("nu", nu), ("t0", t0), ("A", Av))
     return _goodness(a, t, lambda s: _mp_accel(s, Av, t0, Tm, gam, nu),
                      t0 - 0.5 * gam * Tm, t0 + 0.5 * gam * Tm, shape="mavroeidis_papageorgiou",
-                     a_p=float(abs(af[k])), T_p=Tm, t_peak=float(tt[k]),
+                     a_p=float(a_p), T_p=Tm, t_peak=float(tt[k]),
                      polarity=1 if af[k] >= 0 else -1, params=params)
 
 
