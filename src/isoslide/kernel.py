@@ -68,7 +68,7 @@ MAX_STEPS = 5_000_000
 """Safety cap on integrator steps per scene (a scene that hits it is reported unsettled)."""
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def friction(v, m):
     """Friction level phi(|v|) in units of a_p (m: model parameters)."""
     thr = m[M_THR]
@@ -83,32 +83,30 @@ def friction(v, m):
     return thr * sech + pi2 * (1.0 - sech) + m[M_PI7] * av
 
 
+@njit(cache=True, inline="always")
+def deriv4(stick, s, tau, y0, y1, y2, y3, m, code, params):
+    """Right-hand side of the current phase as a 4-tuple (inlined in the hot loop)."""
+    if m[M_FIXED] != 0.0:
+        if stick:
+            return 0.0, 0.0, 0.0, 0.0
+        return 0.0, 0.0, y3, -accel_at(code, params, tau) - s * friction(y3, m)
+    p = accel_at(code, params, tau)
+    F = m[M_CW] * y1 + m[M_W2] * y0
+    p8 = m[M_P8]
+    if stick:
+        return y1, -p - F / (1.0 + p8), 0.0, 0.0
+    ph = friction(y3, m)
+    return y1, -p - F + p8 * s * ph, y3, F - (1.0 + p8) * s * ph
+
+
 @njit(cache=True)
 def deriv(stick, s, tau, y, m, code, params, out):
-    """Right-hand side of the current phase."""
-    if m[M_FIXED] != 0.0:
-        out[0] = 0.0
-        out[1] = 0.0
-        if stick:
-            out[2] = 0.0
-            out[3] = 0.0
-        else:
-            out[2] = y[3]
-            out[3] = -accel_at(code, params, tau) - s * friction(y[3], m)
-        return
-    p = accel_at(code, params, tau)
-    F = m[M_CW] * y[1] + m[M_W2] * y[0]
-    p8 = m[M_P8]
-    out[0] = y[1]
-    if stick:
-        out[1] = -p - F / (1.0 + p8)
-        out[2] = 0.0
-        out[3] = 0.0
-    else:
-        ph = friction(y[3], m)
-        out[1] = -p - F + p8 * s * ph
-        out[2] = y[3]
-        out[3] = F - (1.0 + p8) * s * ph
+    """Right-hand side of the current phase, written into ``out``."""
+    d0, d1, d2, d3 = deriv4(stick, s, tau, y[0], y[1], y[2], y[3], m, code, params)
+    out[0] = d0
+    out[1] = d1
+    out[2] = d2
+    out[3] = d3
 
 
 @njit(cache=True)
@@ -131,34 +129,39 @@ def a_req_rate(tau, y, m, code, params, work):
 @njit(cache=True)
 def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
     """One DOP853 step of length h from (tau, y) into ynew; returns the error norm."""
-    n = 4
     if stick and m[M_FIXED] != 0.0:
-        for i in range(n):
+        for i in range(4):
             ynew[i] = y[i]
         return 0.0
-    ytmp = K[NS + 1]  # scratch row: no allocation in the hot loop
     # the pulse is right-continuous; stages at the step end use its left
     # limit so that a step ending on a breakpoint sees the step's own piece
     t_end = tau + h
     t_left = t_end - max(abs(t_end), 1e-300) * 2.3e-16
-    deriv(stick, s, tau, y, m, code, params, K[0])
+    K[0, 0], K[0, 1], K[0, 2], K[0, 3] = deriv4(stick, s, tau, y[0], y[1], y[2], y[3], m, code, params)
     for st in range(1, NS):
-        for i in range(n):
-            acc = 0.0
-            for j in range(st):
-                acc += A[st, j] * K[j, i]
-            ytmp[i] = y[i] + h * acc
+        a0 = 0.0
+        a1 = 0.0
+        a2 = 0.0
+        a3 = 0.0
+        for j in range(st):
+            a = A[st, j]
+            a0 += a * K[j, 0]
+            a1 += a * K[j, 1]
+            a2 += a * K[j, 2]
+            a3 += a * K[j, 3]
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
-        deriv(stick, s, ts, ytmp, m, code, params, K[st])
-    for i in range(n):
+        K[st, 0], K[st, 1], K[st, 2], K[st, 3] = deriv4(
+            stick, s, ts, y[0] + h * a0, y[1] + h * a1, y[2] + h * a2, y[3] + h * a3, m, code, params)
+    for i in range(4):
         acc = 0.0
         for j in range(NS):
             acc += B[j] * K[j, i]
         ynew[i] = y[i] + h * acc
-    deriv(stick, s, t_left, ynew, m, code, params, K[NS])
+    K[NS, 0], K[NS, 1], K[NS, 2], K[NS, 3] = deriv4(stick, s, t_left, ynew[0], ynew[1], ynew[2],
+                                                    ynew[3], m, code, params)
     e5 = 0.0
     e3 = 0.0
-    for i in range(n):
+    for i in range(4):
         sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
         a5 = 0.0
         a3 = 0.0
@@ -170,7 +173,7 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
     if e5 == 0.0 and e3 == 0.0:
         return 0.0
     den = e5 + 0.01 * e3
-    return abs(h) * e5 / math.sqrt(den * n)
+    return abs(h) * e5 / math.sqrt(den * 4.0)
 
 
 @njit(cache=True)
@@ -214,31 +217,61 @@ def verify(stick, s, tau, y, h, ycand, m, code, params, atol, rtol, K):
 
 
 @njit(cache=True)
-def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, m, code, params, atol, rtol, K, yout, work):
+def hermite_root(g0, d0, g1, d1, h):
+    """Root in (0, h) of the cubic Hermite interpolant of g (g0, g1 of opposite sign)."""
+    c = (3.0 * (g1 - g0) / h - 2.0 * d0 - d1) / h
+    e = (d0 + d1 - 2.0 * (g1 - g0) / h) / (h * h)
+    lo, hi = 0.0, h
+    glo = g0
+    t = -g0 * h / (g1 - g0)
+    for it in range(30):
+        gt = g0 + t * (d0 + t * (c + t * e))
+        if (gt > 0.0) == (glo > 0.0):
+            lo, glo = t, gt
+        else:
+            hi = t
+        dt = d0 + t * (2.0 * c + 3.0 * t * e)
+        tn = t - gt / dt if dt != 0.0 else 0.5 * (lo + hi)
+        if not (lo < tn < hi):
+            tn = 0.5 * (lo + hi)
+        if abs(tn - t) <= 1e-15 * h:
+            return tn
+        t = tn
+    return t
+
+
+@njit(cache=True)
+def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, h0, check, m, code, params, atol, rtol,
+           K, yout, work, cnt):
     """Find h in (ha, hb] with g(step(tau, y, h)) = 0, ga and gb of opposite sign.
 
-    Safeguarded Newton (falls back to Illinois regula falsi when the
-    derivative is unavailable or leaves the bracket).  yout receives the state
-    at the root; returns the step length and the error estimate of that step.
+    Safeguarded Newton from the guess ``h0`` (the root of the step's cubic
+    Hermite interpolant when available), falling back to Illinois regula
+    falsi when the derivative is unavailable or Newton leaves the bracket.
+    Each trial re-steps from the accepted point (tau, y), so the event state
+    carries the integrator's own accuracy; the iteration stops when the Newton
+    correction is below 1e-13 (relative to max(1, |tau|)).  ``yout`` receives
+    the state at the root; returns the step length and the error estimate of
+    that step (step doubling added when ``check``).
     """
     lo, glo, hi, ghi = ha, ga, hb, gb
-    hcur = hi
     side = 0
-    # first guess: secant
-    for it in range(80):
-        if glo == ghi:
-            h = 0.5 * (lo + hi)
-        else:
-            h = lo - glo * (hi - lo) / (ghi - glo)
+    tol = 1e-13 * max(1.0, abs(tau))
+    h = h0
+    if not (lo < h < hi):
+        h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    res = hi
+    err = 0.0
+    on_res = False
+    for it in range(100):
         if not (lo < h < hi):
             h = 0.5 * (lo + hi)
-        rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, yout)
+        err = rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, yout)
+        cnt[0] += 1
         g, dg = _event_value(kind, sig, stick, s, tau + h, yout, m, code, params, work)
-        hcur = h
         if g == 0.0:
-            hi = h
+            res, on_res = h, True
             break
-        # Newton refinement from h when it stays in the bracket
         if (g > 0.0) == (glo > 0.0):
             lo, glo = h, g
             if side == -1:
@@ -250,32 +283,27 @@ def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, m, code, params, atol, r
                 glo *= 0.5
             side = 1
         if not math.isnan(dg) and dg != 0.0:
-            hn = h - g / dg
-            if lo < hn < hi:
-                rk_step(stick, s, tau, y, hn, m, code, params, atol, rtol, K, yout)
-                g2, dg2 = _event_value(kind, sig, stick, s, tau + hn, yout, m, code, params, work)
-                hcur = hn
-                if g2 == 0.0:
-                    hi = hn
-                    break
-                if (g2 > 0.0) == (glo > 0.0):
-                    lo, glo = hn, g2
-                else:
-                    hi, ghi = hn, g2
-                if abs(hn - h) <= 4e-16 * (abs(tau) + abs(hn)):
-                    hi = hn  # converged: the root is hn to round-off
-                    break
-        if hi - lo <= 4e-16 * (abs(tau) + abs(hi)):
+            dh = g / dg
+            if abs(dh) <= tol:
+                res, on_res = h, True  # converged: the root is h to ~1e-13
+                break
+        res = hi
+        if hi - lo <= tol:
             break
-    # return the end of the bracket on the 'after the event' side, with the
-    # error estimate of that single step (the caller rejects inaccurate ones)
-    err = rk_step(stick, s, tau, y, hi, m, code, params, atol, rtol, K, yout)
-    if err <= 1.0 and kind != 2:
+        if not math.isnan(dg) and dg != 0.0 and lo < h - g / dg < hi:
+            h = h - g / dg
+        else:
+            h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    if not on_res:
+        err = rk_step(stick, s, tau, y, res, m, code, params, atol, rtol, K, yout)
+        cnt[0] += 1
+    if check and err <= 1.0:
         yv = yout.copy()
-        err = max(err, verify(stick, s, tau, y, hi, yv, m, code, params, atol, rtol, K))
+        err = max(err, verify(stick, s, tau, y, res, yv, m, code, params, atol, rtol, K))
+        cnt[0] += 2
         for i in range(4):
             yout[i] = yv[i]
-    return hi, err
+    return res, err
 
 
 @njit(cache=True)
@@ -318,6 +346,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     ye = np.empty(4)
     K = np.empty((NS + 2, 4))
     work = np.empty(4)
+    cnt = np.zeros(1, dtype=np.int64)
     hist = np.empty((hist_cap if hist_cap > 0 else 1, 6))
     nh = 0
     tau = tau_start
@@ -345,6 +374,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     zone = 0.0
     if m[M_COULOMB] == 0.0 and m[M_PI6] > 0.0 and m[M_PI2] < thr:
         zone = 30.0 / m[M_PI6]
+    check = zone > 0.0
     while True:
         # --- mode checks at the current (accepted) point -------------------
         if stick:
@@ -401,7 +431,8 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         while True:
             err = rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, y1)
             steps += 1
-            if err <= 1.0 and not stick and zone > 0.0 and min(abs(y[3]), abs(y1[3])) < zone:
+            if err <= 1.0 and not stick and zone > 0.0 and (
+                    min(abs(y[3]), abs(y1[3])) < zone or y[3] * y1[3] <= 0.0):
                 err = max(err, verify(stick, s, tau, y, h, y1, m, code, params, atol, rtol, K))
                 steps += 2
             if err <= 1.0:
@@ -419,35 +450,47 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             tnew = target
         if stick:
             found = False
+            # demand and its rate at both ends of the step; for the isolated
+            # base the rates come from the step's own first and last stages
+            ar0 = a_req(tau, y, m, code, params)
+            ar1 = a_req(tnew, y1, m, code, params)
+            if fixed:
+                r0 = jerk_at(code, params, tau)
+                r1 = jerk_at(code, params, tnew - max(abs(tnew), 1e-300) * 2.3e-16)
+            else:
+                mt = 1.0 + m[M_P8]
+                r0 = -(m[M_CW] * K[0, 1] + m[M_W2] * y[1]) / mt
+                r1 = -(m[M_CW] * K[NS, 1] + m[M_W2] * y1[1]) / mt
             if not track_max:
                 for sig in (1.0, -1.0):
-                    g0 = sig * a_req(tau, y, m, code, params) - thr
-                    g1 = sig * a_req(tnew, y1, m, code, params) - thr
+                    g0 = sig * ar0 - thr
+                    g1 = sig * ar1 - thr
                     if g1 > 0.0:
-                        hs, herr = locate(0, sig, True, s, tau, y, 0.0, g0, h, g1, m, code, params,
-                                          atol, rtol, K, ye, work)
+                        h0 = hermite_root(g0, sig * r0, g1, sig * r1, h)
+                        hs, herr = locate(0, sig, True, s, tau, y, 0.0, g0, h, g1, h0, check, m, code,
+                                          params, atol, rtol, K, ye, work, cnt)
                         found = True
                         break
             for sig in (1.0, -1.0):
                 if found:
                     break
-                d0 = sig * a_req_rate(tau, y, m, code, params, work)
-                d1 = sig * a_req_rate(tnew, y1, m, code, params, work)
+                d0 = sig * r0
+                d1 = sig * r1
                 if not (d0 > 0.0 and d1 < 0.0):
                     continue
-                g0 = sig * a_req(tau, y, m, code, params) - thr
-                g1 = sig * a_req(tnew, y1, m, code, params) - thr
+                g0 = sig * ar0 - thr
+                g1 = sig * ar1 - thr
                 if not track_max and _hermite_max(g0, d0, g1, d1, h) < -1e-2 * thr:
                     continue
-                hm, herr = locate(2, sig, True, s, tau, y, 0.0, d0, h, d1, m, code, params,
-                                  atol, rtol, K, ye, work)
+                hm, herr = locate(2, sig, True, s, tau, y, 0.0, d0, h, d1, -1.0, False, m, code,
+                                  params, atol, rtol, K, ye, work, cnt)
                 am = sig * a_req(tau + hm, ye, m, code, params)
                 if track_max:
                     if am > amax:
                         amax = am
                 elif am - thr > 0.0:
-                    hs, herr = locate(0, sig, True, s, tau, y, 0.0, g0, hm, am - thr, m, code,
-                                      params, atol, rtol, K, ye, work)
+                    hs, herr = locate(0, sig, True, s, tau, y, 0.0, g0, hm, am - thr, -1.0, check, m,
+                                      code, params, atol, rtol, K, ye, work, cnt)
                     found = True
             if found and herr > 1.0:
                 # the single step to the event is not accurate enough: retry
@@ -484,24 +527,25 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     for k in range(200):
                         hp *= 0.5
                         rk_step(stick, s, tau, y, hp, m, code, params, atol, rtol, K, ye)
+                        cnt[0] += 1
                         gp = s * ye[3]
                         if gp > 0.0 or hp < 1e-300:
                             break
                     if gp > 0.0:
                         lo = hp
                         glo = gp
-                        hs, herr = locate(1, 0.0, False, s, tau, y, lo, glo, h, g1, m, code,
-                                          params, atol, rtol, K, ye, work)
+                        hs, herr = locate(1, 0.0, False, s, tau, y, lo, glo, h, g1, -1.0, check, m,
+                                          code, params, atol, rtol, K, ye, work, cnt)
                     else:
                         hs = 0.0
                         herr = 0.0
                         for i in range(4):
                             ye[i] = y[i]
                 else:
-                    deriv(False, s, tau, y, m, code, params, work)
                     glo = s * y[3]
-                    hs, herr = locate(1, 0.0, False, s, tau, y, 0.0, glo, h, g1, m, code, params,
-                                      atol, rtol, K, ye, work)
+                    h0 = hermite_root(glo, s * K[0, 3], g1, s * K[NS, 3], h)
+                    hs, herr = locate(1, 0.0, False, s, tau, y, 0.0, glo, h, g1, h0, check, m, code,
+                                      params, atol, rtol, K, ye, work, cnt)
                 if herr > 1.0:
                     h = 0.5 * hs
                     continue
@@ -547,6 +591,6 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         if abs(y[2]) > umax:
             umax = abs(y[2])
             tpeak = tau
-    ints = np.array([steps, events, 1 if settled else 0, 1 if slipped else 0, nh], dtype=np.int64)
+    ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh], dtype=np.int64)
     floats = np.array([umax, tpeak, y[2], tau, amax, vmax])
     return ints, floats, hist[:nh]
