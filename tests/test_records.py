@@ -402,3 +402,18 @@ def test_pulse_like_samples_fit_sanely(name):
     assert 0.3 < f.r2 <= 1.0
     assert 0.0 < f.energy_fraction < 1.0
     assert math.isfinite(f.nrmse)
+
+
+def test_at2_crlf_line_endings(tmp_path):
+    p = tmp_path / "crlf.AT2"
+    p.write_bytes((DATA / "nga_west2.AT2").read_text().replace("\n", "\r\n").encode())
+    np.testing.assert_allclose(R.read_at2(p).accel, EXPECTED, rtol=1e-7)
+
+
+def test_record_fit_options_cached_separately():
+    a, dt = _synthetic_ricker(noise=0.0)
+    r = R.Record("syn", a, dt)
+    f1 = r.fit(T_range=(0.5, 2.0))
+    assert r.fit(T_range=(0.5, 2.0)) is f1
+    f2 = r.fit(t_range=(0.0, 3.0))  # excludes the true peak at 6.3 s
+    assert f2 is not f1 and f2.t_peak <= 3.0 + 1e-9
