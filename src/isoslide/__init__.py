@@ -14,6 +14,7 @@ from importlib.metadata import PackageNotFoundError, version
 from .pulses import Pulse, get_pulse
 from .scene import G_STANDARD, PhysicalScale, Scene, paper_groups
 from .solver import Batch, Solution, solve, solve_many
+from . import records  # noqa: E402  (isoslide.records.read_at2, sample, fit_pulse, ...)
 
 try:
     __version__ = version("isoslide")

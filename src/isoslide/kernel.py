@@ -173,6 +173,8 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
     if e5 == 0.0 and e3 == 0.0:
         return 0.0
     den = e5 + 0.01 * e3
+    if den == 0.0:  # both estimates underflowed: the step is exact to round-off
+        return 0.0
     return abs(h) * e5 / math.sqrt(den * 4.0)
 
 

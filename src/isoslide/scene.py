@@ -187,7 +187,8 @@ class Scene:
         g = check_range("g", g, 0.0, math.inf, False, False)
         return cls(
             pi2=mu_k * g / a_p, pi3=T_b / T_p, pi4=xi_b, pi5=mu_k / mu_s,
-            pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b, pulse=pulse,
+            pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b,
+            pulse=_resolve_pulse(pulse, a_p=a_p, T_p=T_p),
             scale=PhysicalScale(a_p, T_p, M_b, g),
         )
 
@@ -210,12 +211,17 @@ class Scene:
         return {k: getattr(self, k) for k in PI_RANGES}
 
 
-def _resolve_pulse(pulse) -> Pulse:
+def _resolve_pulse(pulse, a_p=None, T_p=None) -> Pulse:
+    """A Pulse from a Pulse, a shape name, or a record (anything with ``as_pulse``).
+
+    A record is scaled by the given ``a_p`` (m/s^2) and ``T_p`` (s) when a scene
+    is built from physical units, else by its own fitted pulse.
+    """
     if isinstance(pulse, Pulse):
         return pulse
     as_pulse = getattr(pulse, "as_pulse", None)
-    if callable(as_pulse):  # a record object that knows its own scales
-        return as_pulse()
+    if callable(as_pulse):
+        return as_pulse() if a_p is None else as_pulse(a_p=a_p, T_p=T_p)
     return get_pulse(pulse)
 
 
