@@ -84,7 +84,7 @@ def test_dry_run_plans_the_whole_dag(wf):
 def test_invalid_config_fails_before_any_job_naming_the_key(tmp_path, overlay, key):
     d = copy_workflow(tmp_path / "bad")
     (d / "config" / "bad.yaml").write_text(yaml.safe_dump(overlay))
-    code, out = snakemake(d, "--cores", "1", *TEST_CONFIG, "--configfile", "config/bad.yaml", check=False,
+    code, out = snakemake(d, "--cores", "1", *TEST_CONFIG, "config/bad.yaml", check=False,
                           timeout=300)
     assert code != 0
     assert key in out, out[-3000:]
@@ -129,7 +129,7 @@ def test_second_run_does_nothing(full_run):
 def test_changing_one_study_reruns_only_that_study(full_run):
     wf, _ = full_run
     (wf / "config" / "change.yaml").write_text(yaml.safe_dump({"studies": {"fig7_pi7": {"dims": {"pi7": [0.0, 1.0]}}}}))
-    _, out = snakemake(wf, "-n", *TEST_CONFIG, "--configfile", "config/change.yaml", timeout=300)
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/change.yaml", timeout=300)
     jobs = planned_jobs(out)
     per_study = {(r, w) for r, w in jobs if "study=" in w}
     assert per_study and all("study=fig7_pi7" in w for _, w in per_study), per_study
@@ -143,20 +143,20 @@ def test_sigkill_then_restart_gives_the_same_datasets(full_run, tmp_path):
     wf, _ = full_run
     d = copy_workflow(tmp_path / "killed")
     targets = [f"results/datasets/{s}.nc" for s in STUDIES]
-    cmd = [sys.executable, "-m", "snakemake", "--cores", "2", *TEST_CONFIG, *targets]
+    cmd = [sys.executable, "-m", "snakemake", *targets, "--cores", "2", *TEST_CONFIG]
     proc = subprocess.Popen(cmd, cwd=d, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
     try:
         deadline = time.monotonic() + 600
         while time.monotonic() < deadline and proc.poll() is None:
-            if len(list((d / "results" / "chunks").rglob("*.nc"))) >= 2 if (d / "results").exists() else False:
+            if len(list((d / "results" / "chunks").rglob("*.nc"))) >= 2:   # killed mid-run
                 break
             time.sleep(0.2)
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)        # the run and every job it started
         proc.wait()
-    snakemake(d, "--cores", "2", *TEST_CONFIG, *targets, timeout=1500)
+    snakemake(d, *targets, "--cores", "2", *TEST_CONFIG, timeout=1500)
     for s in STUDIES:
         a = datasets.open_dataset(d / "results" / "datasets" / f"{s}.nc")
         b = datasets.open_dataset(wf / "results" / "datasets" / f"{s}.nc")
