@@ -364,6 +364,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     amax = 0.0
     vmax = 0.0
     h = h_restart
+    hlast = h_restart
     ib = 0
     nb = breakpoints.shape[0]
     if hist_cap > 0:
@@ -509,7 +510,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 just_started = True
                 slipped = True
                 events += 1
-                h = h_restart
+                h = h_restart if check else max(h_restart, 0.5 * hlast)
                 if hist_cap > 0 and nh < hist_cap:
                     hist[nh, 0] = tau
                     hist[nh, 1:5] = y
@@ -567,7 +568,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 else:
                     s = -1.0 if ar > 0.0 else 1.0
                     just_started = True
-                h = h_restart
+                h = h_restart if (check and not stick) else max(h_restart, 0.5 * hlast)
                 if hist_cap > 0 and nh < hist_cap:
                     hist[nh, 0] = tau
                     hist[nh, 1:5] = y
@@ -583,6 +584,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             y[i] = y1[i]
         if stick:
             y[3] = 0.0
+        hlast = h
         h = hnext
         if hist_cap > 0 and nh < hist_cap:
             hist[nh, 0] = tau
