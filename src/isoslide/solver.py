@@ -185,11 +185,30 @@ def _long_run_factor(scene: Scene, horizon: float) -> float:
     return max(1.0, periods / 10.0)
 
 
+def integrator_rtol(scene: Scene, rtol: float, horizon: float = DEFAULT_HORIZON) -> float:
+    """Local (per-step) relative tolerance of the integrator for a target ``rtol`` on Pi1."""
+    return max(rtol * INTEGRATOR_FACTOR / _long_run_factor(scene, horizon), MIN_INTEGRATOR_RTOL)
+
+
+def near_threshold_rtol(scene: Scene, rtol: float, pi1: float) -> float:
+    """Local tolerance a slide of size ``pi1`` needs (near the no-slide threshold).
+
+    A slide just above the threshold is driven by the small excess ``d`` of
+    the floor demand over ``mu_s g``: ``Pi1 ~ d^2 / k`` with ``k`` the demand's
+    curvature at its peak (``k ~ 10`` in units of a_p / T_p^2), so a relative
+    demand error ``e`` becomes a relative Pi1 error ``~ 2 e thr / d``.  The
+    tolerance returned keeps that below ``rtol / 10``.
+    """
+    d = math.sqrt(10.0 * pi1)
+    return max(0.1 * rtol * d / (2.0 * scene.static_level), MIN_INTEGRATOR_RTOL)
+
+
 def _run(scene: Scene, pi8: float, coulomb: float, rtol: float, hist_cap: int = 0,
          horizon: float = DEFAULT_HORIZON, track_max: bool = False, max_step: float = math.inf,
-         settle: bool = True):
+         settle: bool = True, irtol: float | None = None):
     pulse = scene.pulse
-    irtol = max(rtol * INTEGRATOR_FACTOR / _long_run_factor(scene, horizon), MIN_INTEGRATOR_RTOL)
+    if irtol is None:
+        irtol = integrator_rtol(scene, rtol, horizon)
     m = _model_array(scene, pi8, coulomb, thr=math.inf if track_max else None)
     h_free = min(max(scene.pi3, 1.0) / 8.0, max_step)
     return kernel.run(m, pulse.code, pulse.param_array, pulse.breakpoint_array,
@@ -327,6 +346,13 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
                 out, oneway = trial, True
     if out is None:
         out = run(pi8)
+        # near the no-slide threshold Pi1 is ill-conditioned: refine once
+        pi1 = out[1][kernel.F_UMAX]
+        if 0.0 < pi1 and not fixed:
+            need = near_threshold_rtol(scene, rtol, pi1)
+            if need < integrator_rtol(scene, rtol, horizon):
+                out = _run(scene, pi8, friction, rtol, hist_cap, horizon, max_step=max_step,
+                           settle=settle, irtol=need)
     ints, floats, hist = out
     noslide = ints[kernel.R_SLIPPED] == 0
     label = _label(fixed, noslide, coulomb, oneway)
