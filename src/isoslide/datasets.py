@@ -146,6 +146,32 @@ def git_commit() -> str:
     return sha + ("+dirty" if dirty else "")
 
 
+def code_hash(include=None, exclude=()) -> str:
+    """SHA-256 (first 16 hex digits) of the source of isoslide's modules.
+
+    The workflow passes it as a rule parameter, so that editing the package code a rule depends
+    on reruns that rule's jobs (Snakemake's own ``code`` trigger only sees the rule's script).
+
+    Parameters
+    ----------
+    include : iterable of str, optional
+        Module names (``"solver"``, ``"figures"``, ...); default: every module of the package.
+    exclude : iterable of str
+        Module names to leave out.
+    """
+    import hashlib
+
+    pkg = Path(__file__).resolve().parent
+    files = sorted(pkg.glob("*.py"))
+    if include is not None:
+        files = [f for f in files if f.stem in set(include)]
+    files = [f for f in files if f.stem not in set(exclude)]
+    h = hashlib.sha256()
+    for f in files:
+        h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+    return h.hexdigest()[:16]
+
+
 def source_text() -> str:
     """``source`` attribute: package version and git commit."""
     from . import __version__

@@ -412,32 +412,40 @@ def fig6(datasets, settings=None):
 
 
 def fig7(datasets, settings=None):
-    """Fig. 7: master curves for Pi6 (left) and Pi7 (right)."""
+    """Fig. 7: master curves for Pi6 (one panel per Pi5 of the study) and Pi7 (last panel)."""
     import matplotlib.pyplot as plt
 
     left, right = _open(datasets, "fig7_pi6"), _open(datasets, "fig7_pi7")
-    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 3.1))
+    pi5s = [float(v) for v in left["pi5"].values] if "pi5" in left.dims else [None]
+    n = len(pi5s) + 1
+    fig, axs = plt.subplots(1, n, figsize=(WIDTH * (1.0 if n <= 2 else 1.25), 3.1), squeeze=False)
+    axs = axs[0]
     if "beta" in left.coords and left["beta"].ndim:
         fmt = lambda k, v: rf"${float(v):.4g}$ ($\beta$ = {float(left['beta'][k]):g})"  # noqa: E731
         title = r"$\Pi_6 = \beta a_p T_p$ ($\beta$ in s/m)"
     else:
         fmt, title = None, None
-    sub = master_curves(a, left, "pi6", label_fmt=fmt, legend_title=title)
-    _subtitle(a, r"(a) Stribeck transition $\Pi_6 = \beta a_p T_p$", _fixed_text(sub, skip=("pi6",)))
-    sub = master_curves(b, right, "pi7", label_fmt=lambda k, v: f"${float(v):.4g}$")
-    _subtitle(b, r"(b) viscous contact $\Pi_7 = \gamma g T_p$", _fixed_text(sub, skip=("pi7",)))
+    letters = "abcdefgh"
+    for k, pi5 in enumerate(pi5s):
+        sel = {"pi5": pi5} if pi5 is not None else None
+        sub = master_curves(axs[k], left, "pi6", select=sel, label_fmt=fmt, legend_title=title)
+        head = rf"({letters[k]}) Stribeck transition $\Pi_6$" + (rf", $\Pi_5 = {pi5:g}$" if pi5 is not None else "")
+        _subtitle(axs[k], head, _fixed_text(sub, skip=("pi6", "pi5")))
+    sub = master_curves(axs[-1], right, "pi7", label_fmt=lambda k, v: f"${float(v):.4g}$")
+    _subtitle(axs[-1], rf"({letters[n - 1]}) viscous contact $\Pi_7 = \gamma g T_p$", _fixed_text(sub, skip=("pi7",)))
     fig.text(0.01, 0.01, _ref_text(left) + "\n" + r"$\Pi_{7,max} = \gamma_{max}\, g\, T_{p,max}$ = 0.1 s/m "
              r"$\times$ g $\times$ 5 s = 4.90 (the paper prints $\gamma a_p T_p$: $\approx$ 10 at "
              r"$a_{p,max} = 2g$)", fontsize=6.6, color="0.25", ha="left", va="bottom")
     fig.tight_layout(rect=(0, 0.1, 1, 1))
     beta_list = _list(left["beta"]) if "beta" in left.coords else "-"
-    caption = (f"Fig. 7. (a) Effect of the Stribeck transition: beta = {beta_list} s/m, i.e. "
+    pi5_text = _list(left["pi5"]) if "pi5" in left.coords else "-"
+    caption = (f"Fig. 7. Left: effect of the Stribeck transition, beta = {beta_list} s/m, i.e. "
                f"Pi6 = {_list(left['pi6'])} with the reference a_p T_p = {_ref(left)} m/s, at "
-               f"Pi3 = {_scalar(left, 'pi3')}, Pi5 = {_scalar(left, 'pi5')}. (b) Effect of viscous contact "
-               f"Pi7 = gamma g T_p = {_list(right['pi7'])} at Pi3 = {_scalar(right, 'pi3')}; the upper bound "
-               f"4.90 = gamma_max g T_p,max with gamma_max = 0.1 s/m and T_p,max = 5 s. The paper prints "
-               f"this group as gamma a_p T_p, which is not a similarity group unless a_p = g (see the "
-               f"similarity report). xi_b = 0.1 in both.")
+               f"Pi3 = {_scalar(left, 'pi3')} and Pi5 = {pi5_text} (the paper states neither). Right: effect "
+               f"of viscous contact Pi7 = gamma g T_p = {_list(right['pi7'])} at Pi3 = {_scalar(right, 'pi3')}, "
+               f"Coulomb friction; the upper bound 4.90 = gamma_max g T_p,max with gamma_max = 0.1 s/m and "
+               f"T_p,max = 5 s. The paper prints this group as gamma a_p T_p, which is not a similarity group "
+               f"unless a_p = g (see the similarity report). xi_b = 0.1 throughout.")
     return fig, caption
 
 

@@ -385,8 +385,10 @@ def curve_spread(ds: xr.Dataset, group: str, lo: float, hi: float) -> xr.Dataset
     peak = sub.max((group, "pi2"))
     at = spread_pi2.idxmax("pi2")
     rel = spread / peak.where(peak > 0)
+    area = sub.integrate("pi2")
+    area_rel = (area.max(group) - area.min(group)) / area.max(group).where(area.max(group) > 0)
     return xr.Dataset({"spread": spread, "peak": peak, "relative": rel, "pi2_at": at,
-                       "n_curves": int(keep.sum())})
+                       "area_relative": area_rel, "n_curves": int(keep.sum())})
 
 
 def _ratio_mean(a, b, mask):
@@ -404,6 +406,9 @@ def _integral(pi1, pi2):
 
 LOW_PI2 = 0.1
 """'Low Pi2' (low friction or strong pulse) means Pi2 <= 0.1 in the conclusions."""
+
+MATERIAL = 0.02
+"""Relative changes of Pi1 below 2% count as 'no change' in the conclusions' verdicts."""
 
 
 def conclusions(ds: dict, spreads: dict, settings: dict) -> list:
@@ -432,28 +437,40 @@ def conclusions(ds: dict, spreads: dict, settings: dict) -> list:
         pi2 = d["pi2"].values
         low = pi2 <= LOW_PI2 + 1e-12
         pi3s = d["pi3"].values
-        ref = d["pi1"].sel(pi3=pi3s.min()).values
-        amp = {float(p): _ratio_mean(d["pi1"].sel(pi3=p).values, ref, low) for p in pi3s[1:]}
-        best = max(amp, key=lambda k: amp[k])
-        iso = [p for p in pi3s if p >= 1.0]
-        sub = d["pi1"].sel(pi3=iso).values[:, low]
-        decreasing = bool(np.all(np.diff(sub, axis=0) <= 1e-12))
-        frac = float(np.mean(np.all(np.diff(sub, axis=0) <= 1e-12, axis=0)))
-        amplified = [p for p, a in amp.items() if a > 1.0]
-        finding = (f"Mean Pi1 ratio to the stiff system (Pi3 = {pi3s.min():g}) over Pi2 <= {LOW_PI2:g}: "
-                   + ", ".join(f"Pi3 = {p:g}: {a:.2f}" for p, a in amp.items())
-                   + f". Largest at Pi3 = {best:g}. For Pi3 >= 1, Pi1 decreases with Pi3 at "
-                   f"{100 * frac:.0f}% of the low-Pi2 points.")
+        stiff = float(pi3s.min())
+        ref = d["pi1"].sel(pi3=stiff).values
+        amp = {float(p): _ratio_mean(d["pi1"].sel(pi3=p).values, ref, low) for p in pi3s if p != stiff}
+        peaks = {float(p): float(d["pi1"].sel(pi3=p).max()) for p in pi3s}
+        best_peak = max((p for p in peaks if p != stiff), key=lambda k: peaks[k])
+        above = [p for p in pi3s if p > 1.0]
+        sub = d["pi1"].sel(pi3=above).values[:, low] if len(above) > 1 else np.zeros((1, int(low.sum())))
+        frac = float(np.mean(np.all(np.diff(sub, axis=0) <= 1e-12, axis=0))) if sub.size else math.nan
+        cross = {}
+        for p in pi3s:
+            if p == stiff:
+                continue
+            cur = d["pi1"].sel(pi3=p).values
+            below = np.flatnonzero((cur < ref * (1 - MATERIAL)) & (ref > 0))
+            cross[float(p)] = f"{pi2[below[0]]:.2f}" if below.size else "never"
+        amplified = [p for p, r in amp.items() if r > 1 + MATERIAL]
+        finding = (f"Mean Pi1 ratio to the stiff system (Pi3 = {stiff:g}) over Pi2 <= {LOW_PI2:g}: "
+                   + ", ".join(f"Pi3 = {p:g}: {r:.2f}" for p, r in amp.items())
+                   + ". Peak of each curve: " + ", ".join(f"{p:g}: {v:.3f}" for p, v in peaks.items())
+                   + f" (largest at Pi3 = {best_peak:g}). For Pi3 > 1, Pi1 decreases with Pi3 at "
+                   f"{100 * frac:.0f}% of the Pi2 <= {LOW_PI2:g} points. Pi2 from which the isolated curve "
+                   f"falls below the stiff one: " + ", ".join(f"Pi3 = {p:g}: {c}" for p, c in cross.items()) + ".")
         ok1 = len(amplified) > 0
-        ok2 = abs(best - 1.0) <= 0.25
-        v = 1 if (ok1 and ok2 and decreasing) else (2 if ok1 else 0)
+        ok2 = abs(best_peak - 1.0) <= 0.25
+        ok3 = frac >= 0.9
+        v = 1 if (ok1 and ok2 and ok3) else (2 if (ok1 or ok2 or ok3) else 0)
         out.append(dict(key="isolation_amplifies",
                         claim="Isolation amplifies peak sliding for low Pi2; the highest amplification is at "
                               "resonance (Pi3 ~ 1); for Pi3 > 1, Pi1 decreases with Pi3 (decoupling).",
                         finding=finding, verdict=v,
-                        criterion=f"holds if some Pi3 amplifies (ratio > 1), the largest ratio is within 0.25 "
-                                  f"of Pi3 = 1 and Pi1 decreases with Pi3 >= 1 at every Pi2 <= {LOW_PI2:g}; "
-                                  f"partly if only the amplification holds"))
+                        criterion=f"holds if some Pi3 amplifies Pi1 by > {100 * MATERIAL:g}% on average over "
+                                  f"Pi2 <= {LOW_PI2:g}, the highest curve peaks at a Pi3 within 0.25 of 1, and "
+                                  f"Pi1 decreases with Pi3 > 1 at >= 90% of the Pi2 <= {LOW_PI2:g} points; "
+                                  f"partly if some of these hold"))
 
     if "fig5_pi4" in ds:
         d = ds["fig5_pi4"]
@@ -501,9 +518,10 @@ def conclusions(ds: dict, spreads: dict, settings: dict) -> list:
             if nz.size:
                 high[nz[len(nz) // 2]: nz[-1] + 1] = True
             rl, rh = _ratio_mean(a, b, low), _ratio_mean(a, b, high)
-            okl.append(rl > 1.0)
-            okh.append(rh < 1.0)
-            parts.append(f"Pi3 = {p3:g}: x{rl:.2f} at Pi2 <= {LOW_PI2:g}, x{rh:.2f} at large Pi2")
+            okl.append(rl > 1.0 + MATERIAL)
+            okh.append(rh < 1.0 - MATERIAL)
+            parts.append(f"Pi3 = {p3:g}: x{rl:.3f} at Pi2 <= {LOW_PI2:g}, x{rh:.3f} over the upper half "
+                         f"of the Coulomb sliding range")
         finding = f"Pi1 at Pi5 = {p5min:g} over Pi1 at Pi5 = 1 (Coulomb): " + "; ".join(parts) + "."
         n_ok = sum(a and b for a, b in zip(okl, okh))
         v = 1 if n_ok == len(okl) else (2 if n_ok or any(okl) or any(okh) else 0)
@@ -511,8 +529,9 @@ def conclusions(ds: dict, spreads: dict, settings: dict) -> list:
                         claim="Static friction (Pi5 < 1) reduces peak sliding for large Pi2 and amplifies it "
                               "for low Pi2, so neglecting it is unconservative for low friction.",
                         finding=finding, verdict=v,
-                        criterion=f"holds if, for every Pi3, the mean ratio is > 1 for Pi2 <= {LOW_PI2:g} and "
-                                  f"< 1 over the upper half of the sliding range; partly if for some"))
+                        criterion=f"holds if, for every Pi3, the mean ratio exceeds 1 by > {100 * MATERIAL:g}% "
+                                  f"for Pi2 <= {LOW_PI2:g} and is below 1 by > {100 * MATERIAL:g}% over the upper "
+                                  f"half of the sliding range; partly if for some"))
 
     for group, key, claim in (
         ("pi5", "pi5_similarity", "Peak sliding is similar over 0.7 <= Pi5 <= 1 (Pi1 almost independent of Pi5)."),
@@ -531,9 +550,12 @@ def conclusions(ds: dict, spreads: dict, settings: dict) -> list:
             where = ", ".join(f"{dname} = {float(s[dname].values.ravel()[k] if s[dname].ndim else s[dname]):g}"
                               for dname in s["relative"].dims)
             where = f" (at {where})"
+        arel = np.atleast_1d(s["area_relative"].values).ravel()
         finding = (f"Largest spread between the curves over {s.attrs.get('range_text', '')}: "
-                   f"{100 * worst:.1f}% of the peak Pi1{where}; "
-                   + ", ".join(f"{100 * float(r):.1f}%" for r in rel) + " per case.")
+                   f"{100 * worst:.1f}% of the peak Pi1{where}; per case "
+                   + ", ".join(f"{100 * float(r):.1f}%" for r in rel)
+                   + ". Spread of the areas under the curves: "
+                   + ", ".join(f"{100 * float(r):.1f}%" for r in arel) + ".")
         v = 1 if worst <= tol else (2 if np.nanmin(rel) <= tol else 0)
         out.append(dict(key=key, claim=claim, finding=finding, verdict=v,
                         criterion=f"holds if the spread is <= {100 * tol:g}% of the peak Pi1 in every case; "
@@ -570,16 +592,17 @@ def conclusions(ds: dict, spreads: dict, settings: dict) -> list:
             high[nz[len(nz) // 2]: nz[-1] + 1] = True
         rl = _ratio_mean(a, b, low)
         hi_a, hi_b = float(a[high].mean()) if high.any() else math.nan, float(b[high].mean()) if high.any() else math.nan
-        finding = (f"At Pi3 = {p3:g}, Pi8 = 1 against Pi8 = {float(d['pi8'].min()):g}: mean ratio {rl:.2f} "
+        finding = (f"At Pi3 = {p3:g}, Pi8 = 1 against Pi8 = {float(d['pi8'].min()):g}: mean ratio {rl:.3f} "
                    f"for Pi2 <= {LOW_PI2:g}; mean Pi1 over the upper half of the sliding range {hi_a:.3g} "
                    f"against {hi_b:.3g}.")
-        v = 1 if (rl < 1 and hi_a > hi_b) else (2 if (rl < 1 or hi_a > hi_b) else 0)
+        dec, inc = rl < 1 - MATERIAL, hi_a > hi_b * (1 + MATERIAL)
+        v = 1 if (dec and inc) else (2 if (dec or inc) else 0)
         out.append(dict(key="heavy_contents", claim="For Pi3 = 0.1 and contents as heavy as the isolated mass "
                                                     "(Pi8 = 1), Pi1 decreases for low Pi2 (friction dissipation) "
                                                     "and increases for large Pi2.",
                         finding=finding, verdict=v,
-                        criterion="holds if both the decrease at low Pi2 and the increase at large Pi2 "
-                                  "are seen; partly if one"))
+                        criterion=f"holds if both the decrease at low Pi2 and the increase at large Pi2 "
+                                  f"exceed {100 * MATERIAL:g}%; partly if one does"))
     return out
 
 
@@ -712,7 +735,7 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
 
     # (b) complete similarity
     spreads = {}
-    claims, cases, rel, spread, peak, at, ranges = [], [], [], [], [], [], []
+    claims, cases, rel, spread, peak, at, ranges, arel = [], [], [], [], [], [], [], []
     tol_s = float(settings.get("spread_tolerance", 0.1))
     for group, c in (settings.get("complete") or {}).items():
         d = studies.get(c["study"])
@@ -738,6 +761,7 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
             spread.append(float(pick["spread"]))
             peak.append(float(pick["peak"]))
             at.append(float(pick["pi2_at"]))
+            arel.append(float(pick["area_relative"]))
             ranges.append(f"{lo:g} <= {group} <= {hi:g} (study {c['study']}, {int(s['n_curves'])} curves)")
     v, va = _verdict_var([1 if r <= tol_s else 0 for r in rel],
                          f"complete similarity holds: spread <= {tol_s:g} of the peak Pi1",
@@ -757,6 +781,9 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
                                                              "units": "1"}),
             "complete_pi2_at": ("claim_case", np.array(at), {"long_name": "Pi2 where the spread is largest",
                                                              "units": "1"}),
+            "complete_area_relative": ("claim_case", np.array(arel),
+                                       {"long_name": "spread of the areas under the curves (integral of Pi1 "
+                                                     "over Pi2) over the largest area", "units": "1"}),
             "complete_verdict": ("claim_case", v, va),
         }), join="outer")
 

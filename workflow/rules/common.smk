@@ -4,6 +4,7 @@
 from snakemake.exceptions import WorkflowError
 
 import isoslide.sweep as sweep
+from isoslide.datasets import code_hash
 
 # Semantic checks beyond the JSON schema (Pi ranges, pulse names, key consistency); a bad value
 # stops the workflow here, before any job runs, with its key path in the message.
@@ -19,6 +20,12 @@ FORMATS = config["figures"]["formats"]
 FIGURE_FILES = expand("reports/figures/{fig}.{ext}", fig=FIGURES, ext=FORMATS)
 SIMILARITY_SETTINGS = sweep.jsonable(config["similarity"])
 FIGURE_SETTINGS = sweep.jsonable(config["figures"])
+
+# Hashes of the package code each rule runs: a rule parameter, so that editing isoslide reruns the
+# jobs that depend on the edited modules (Snakemake's `code` trigger only sees the script itself).
+SOLVER_CODE = code_hash(exclude=("figures", "similarity", "cli", "records"))
+SIMILARITY_CODE = code_hash(include=("similarity", "pulses", "scene", "datasets"))
+FIGURE_CODE = code_hash(include=("figures", "pulses", "scene", "datasets"))
 
 for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
     if _c["study"] not in SPECS:

@@ -7,6 +7,7 @@ rule figure:
     output:
         expand("reports/figures/{{fig}}.{ext}", ext=FORMATS),
     params:
+        code=FIGURE_CODE,
         settings=FIGURE_SETTINGS,
     conda:
         "../envs/isoslide.yaml"

@@ -8,6 +8,7 @@ rule similarity_study:
     output:
         "results/similarity/{study}.nc",
     params:
+        code=SIMILARITY_CODE,
         settings=SIMILARITY_SETTINGS,
         spec=lambda wildcards: SPECS[wildcards.study],
     conda:
@@ -25,6 +26,7 @@ rule similarity:
     output:
         "results/datasets/similarity.nc",
     params:
+        code=SIMILARITY_CODE,
         settings=SIMILARITY_SETTINGS,
     conda:
         "../envs/isoslide.yaml"

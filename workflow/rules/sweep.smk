@@ -6,6 +6,7 @@ rule solve_chunk:
     output:
         "results/chunks/{study}/{chunk}.nc",
     params:
+        code=SOLVER_CODE,
         # the study's full specification: editing one study reruns only its chunks
         spec=lambda wildcards: SPECS[wildcards.study],
     conda:
@@ -23,6 +24,7 @@ rule merge_study:
     output:
         "results/datasets/{study}.nc",
     params:
+        code=SOLVER_CODE,
         spec=lambda wildcards: SPECS[wildcards.study],
     conda:
         "../envs/isoslide.yaml"
