@@ -246,7 +246,11 @@ def _point_pis(ds: xr.Dataset, index: tuple) -> dict:
 
 
 def sample_points(ds: xr.Dataset, n: int, rng, max_tau_end: float = 40.0) -> list:
-    """Indices (tuples over ``ds.pi1.dims``) of ``n`` random grid points that slide and settle."""
+    """Indices (tuples over ``ds.pi1.dims``) of ``n`` random grid points that slide and settle.
+
+    Points are drawn so that the values of the swept groups other than ``pi2`` are as varied as
+    possible: a point whose combination of those values was not drawn yet is preferred.
+    """
     pi1 = ds["pi1"].values
     ok = (pi1 > 0) & np.isfinite(pi1)
     if "settled" in ds:
@@ -256,7 +260,19 @@ def sample_points(ds: xr.Dataset, n: int, rng, max_tau_end: float = 40.0) -> lis
     flat = np.flatnonzero(ok.ravel())
     if flat.size == 0:
         return []
-    pick = np.sort(rng.choice(flat, size=min(n, flat.size), replace=False))
+    order = rng.permutation(flat)
+    curve = [np.unravel_index(f, pi1.shape)[:-1] for f in order]     # indices of the swept groups
+    picked, seen = [], set()
+    for f, c in zip(order, curve):
+        if len(picked) < n and c not in seen:
+            picked.append(f)
+            seen.add(c)
+    for f in order:
+        if len(picked) >= n:
+            break
+        if f not in picked:
+            picked.append(f)
+    pick = np.sort(np.asarray(picked[:n]))
     return [tuple(int(i) for i in np.unravel_index(f, pi1.shape)) for f in pick]
 
 
