@@ -21,7 +21,7 @@ FIGURE_FILES = expand("reports/figures/{fig}.{ext}", fig=FIGURES, ext=FORMATS)
 SIMILARITY_SETTINGS = sweep.jsonable(config["similarity"])
 FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 
-# Hashes of the package code each rule runs: a rule parameter, so that editing isoslide reruns the
+# Hashes of the package code behind each step, passed as parameters so that editing isoslide reruns the
 # jobs that depend on the edited modules (Snakemake's `code` trigger only sees the script itself).
 SOLVER_CODE = code_hash(exclude=("figures", "similarity", "cli", "records"))
 SIMILARITY_CODE = code_hash(include=("similarity", "pulses", "scene", "datasets"))
