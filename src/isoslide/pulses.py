@@ -56,6 +56,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
+
+from .validation import check_range
 from scipy.optimize import brentq
 
 RICKER = 0
@@ -456,25 +458,7 @@ def _peak_abs(f, df, lo: float, hi: float, per_unit: int = 512) -> tuple[float, 
 # validation
 # ---------------------------------------------------------------------------
 
-def _range_text(lo, hi, lo_in, hi_in) -> str:
-    return f"{lo:g} {'<=' if lo_in else '<'} value {'<=' if hi_in else '<'} {hi:g}"
-
-
-def _check(name: str, value, lo: float, hi: float, lo_in: bool = True, hi_in: bool = True) -> float:
-    """Return ``float(value)`` or raise ``ValueError`` naming the parameter, value and range."""
-    if isinstance(value, bool):
-        x = math.nan
-    else:
-        try:
-            x = float(value)
-        except (TypeError, ValueError):
-            raise ValueError(f"{name} = {value!r} is not a number; allowed range: "
-                             f"{_range_text(lo, hi, lo_in, hi_in)}") from None
-    ok = math.isfinite(x) and (x >= lo if lo_in else x > lo) and (x <= hi if hi_in else x < hi)
-    if not ok:
-        raise ValueError(f"{name} = {value!r} is out of range; allowed range: "
-                         f"{_range_text(lo, hi, lo_in, hi_in)}")
-    return x
+_check = check_range
 
 
 # ---------------------------------------------------------------------------

@@ -42,6 +42,7 @@ import math
 from dataclasses import dataclass, field
 
 from .pulses import Pulse, get_pulse
+from .validation import check_range
 
 G_STANDARD = 9.80665
 """Standard gravity, m/s^2."""
@@ -56,24 +57,6 @@ PI_RANGES = {
     "pi8": (0.0, 1e3, True, True),
 }
 """Valid range of each input group: (low, high, low inclusive, high inclusive)."""
-
-
-def _range_text(lo, hi, lo_in, hi_in) -> str:
-    return f"{lo:g} {'<=' if lo_in else '<'} value {'<=' if hi_in else '<'} {hi:g}"
-
-
-def check_range(name: str, value, lo: float, hi: float, lo_in: bool = True, hi_in: bool = True) -> float:
-    """Return ``float(value)`` or raise ``ValueError`` naming the parameter, value and range."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} = {value!r} is not a number; allowed range: "
-                         f"{_range_text(lo, hi, lo_in, hi_in)}") from None
-    ok = math.isfinite(x) and (x >= lo if lo_in else x > lo) and (x <= hi if hi_in else x < hi)
-    if not ok:
-        raise ValueError(f"{name} = {value!r} is out of range; allowed range: "
-                         f"{_range_text(lo, hi, lo_in, hi_in)}")
-    return x
 
 
 @dataclass(frozen=True)
