@@ -359,3 +359,16 @@ def test_every_pulse_shape_solves():
 
 def test_package_exports():
     assert isoslide.solve is solve and isoslide.Scene is Scene
+
+
+def test_peer_methods_through_solve():
+    """method='reference' and 'regularized' answer the same Newmark scene
+    (the regularised one to its stiffness-limited accuracy)."""
+    sc = Scene(0.3, 0.0, pulse="rectangular")
+    exact = 0.5 * (1 / 0.3 - 1)
+    ref = solve(sc, method="reference")
+    reg = solve(sc, method="regularized", stiffness=1e6)
+    assert ref.model == "reference" and rel(ref.pi1, exact) < 1e-10
+    assert reg.model == "regularized" and 1e-5 < rel(reg.pi1, exact) < 1e-2
+    with pytest.raises(TypeError):
+        solve(sc, stiffness=1e6)          # not an option of the exact method

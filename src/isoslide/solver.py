@@ -383,7 +383,7 @@ def _from_peer(scene, res, label) -> Solution:
     tpk = float(get("tau_peak", math.nan))
     return Solution(pi1=pi1, u_max=pi1 * L, pi1_residual=resid, u_residual=resid * L, tau_peak=tpk,
                     t_peak=tpk * Tp, settled=bool(get("settled", True)), model=label,
-                    tau_end=float(get("tau_end", math.nan)), n_steps=int(get("n_steps", -1) or -1),
+                    tau_end=float(get("tau_final", math.nan)), n_steps=int(get("nsteps", get("nfev", -1))),
                     n_events=int(get("n_events", -1) or -1), history=get("history"))
 
 
