@@ -1,0 +1,425 @@
+"""Numerical stability at the extremes of the valid domain (isoslide.accuracy.DOMAIN).
+
+Property-based (hypothesis) over every corner and edge: Pi2 1e-4 .. far past the no-slide
+threshold, Pi3 0 (fixed base), 1e-3 .. 100, xi_b 0 .. over-damped (10), Pi5 0.05 .. 1,
+Pi6 0 .. 1e7, Pi7 0 .. 100, Pi8 0 .. 10, every pulse shape.  Checked: never NaN/inf, never
+an exception, Pi1 >= 0, bounded cost per scene, Buckingham and mirror invariance, energy
+balance, agreement between accuracy settings, and (slow) with the SciPy reference solver.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+
+from isoslide import Scene, solve
+from isoslide.accuracy import DOMAIN
+from isoslide.pulses import PULSE_NAMES, sampled
+from isoslide.scene import G_STANDARD, PI_RANGES
+from isoslide.solver import peak_stuck_demand, solve_many
+
+COST_LIMIT_S = 5.0
+"""No scene of the domain may take longer than this (wall clock, on a loaded 2-core machine)."""
+
+HYP = settings(deadline=None, max_examples=40, suppress_health_check=[HealthCheck.too_slow],
+               derandomize=True)
+HYP_FEW = settings(deadline=None, max_examples=15, suppress_health_check=[HealthCheck.too_slow],
+                   derandomize=True)
+
+
+def log_uniform(lo_exp, hi_exp):
+    return st.floats(lo_exp, hi_exp, allow_nan=False).map(lambda e: float(10.0 ** e))
+
+
+pi2_s = st.one_of(log_uniform(-4, 2), st.sampled_from([1e-4, 100.0]))
+pi3_s = st.one_of(st.just(0.0), log_uniform(-3, 2), st.sampled_from([1e-3, 100.0]))
+pi4_s = st.one_of(st.just(0.0), log_uniform(-3, 1), st.sampled_from([1.0, 10.0]))
+pi5_s = st.one_of(st.just(1.0), st.floats(0.05, 1.0), st.just(0.05))
+pi6_s = st.one_of(st.just(0.0), log_uniform(-1, 7), st.just(1e7))
+pi7_s = st.one_of(st.just(0.0), log_uniform(-3, 2), st.just(100.0))
+pi8_s = st.one_of(st.just(0.0), log_uniform(-6, 1), st.just(10.0))
+pulse_s = st.sampled_from(PULSE_NAMES)
+
+
+def many_marginal_slips(sc: Scene) -> bool:
+    """Very stiff, (nearly) undamped base: thousands of slips during the pulse.
+
+    Near the threshold many of them are marginal and the default tolerance misses some
+    (finding 4, test_marginal_slips_on_a_stiff_undamped_base); excluded from the rtol sweeps.
+    """
+    return 0.0 < sc.pi3 < 0.02 and sc.pi4 < 0.05
+
+
+@st.composite
+def scenes(draw, pulses=pulse_s):
+    sc = Scene(pi2=draw(pi2_s), pi3=draw(pi3_s), pi4=draw(pi4_s), pi5=draw(pi5_s), pi6=draw(pi6_s),
+               pi7=draw(pi7_s), pi8=draw(pi8_s), pulse=draw(pulses))
+    return sc
+
+
+@st.composite
+def sliding_scenes(draw, pulses=st.sampled_from(["ricker", "antisymmetric_ricker", "makris_b",
+                                                 "mavroeidis_papageorgiou"])):
+    """Scenes that slide: Pi2/Pi5 a fraction of the stuck demand."""
+    sc = draw(scenes(pulses))
+    frac = draw(st.floats(0.02, 0.9))
+    A = peak_stuck_demand(sc)
+    out = Scene(pi2=frac * A * sc.pi5, pi3=sc.pi3, pi4=sc.pi4, pi5=sc.pi5, pi6=sc.pi6, pi7=sc.pi7,
+                pi8=sc.pi8, pulse=sc.pulse)
+    return out
+
+
+def check_solution(s, horizon=50.0):
+    assert math.isfinite(s.pi1) and s.pi1 >= 0.0
+    assert math.isfinite(s.pi1_residual) and abs(s.pi1_residual) <= s.pi1 * (1 + 1e-12) + 1e-300
+    assert math.isfinite(s.tau_peak) and math.isfinite(s.tau_end)
+    assert s.n_steps >= 0 and s.n_events >= 0
+
+
+# ----------------------------------------------------------------------------------------------
+# the domain
+# ----------------------------------------------------------------------------------------------
+
+def test_domain_is_inside_the_scene_ranges():
+    for k, (lo, hi, text) in DOMAIN.items():
+        plo, phi, lo_in, hi_in = PI_RANGES[k]
+        assert (lo > plo or (lo == plo and lo_in)) and (hi < phi or (hi == phi and hi_in)), k
+        assert text
+        for v in (lo, hi):
+            kw = {"pi2": 1.0, "pi3": 0.0}
+            kw[k] = v
+            assert getattr(Scene(**kw), k) == v
+
+
+CORNERS = {k: (DOMAIN[k][0], DOMAIN[k][1]) for k in DOMAIN}
+CORNERS["pi3"] = (0.0, 1e-3, 100.0)
+CORNERS["pi2"] = (1e-4, 0.05, 100.0)
+
+
+@pytest.mark.parametrize("pi3", CORNERS["pi3"])
+@pytest.mark.parametrize("pi4", CORNERS["pi4"])
+@pytest.mark.parametrize("pi2", CORNERS["pi2"])
+def test_corners_of_the_base(pi2, pi3, pi4):
+    """Every corner of (Pi2, Pi3, xi_b), with the friction and mass groups at their corners too."""
+    for pi5, pi6, pi7, pi8 in itertools.product(CORNERS["pi5"], CORNERS["pi6"], CORNERS["pi7"], CORNERS["pi8"]):
+        sc = Scene(pi2=pi2, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8)
+        t0 = time.perf_counter()
+        s = solve(sc)
+        assert time.perf_counter() - t0 < COST_LIMIT_S, sc
+        check_solution(s)
+
+
+# ----------------------------------------------------------------------------------------------
+# properties over the whole domain
+# ----------------------------------------------------------------------------------------------
+
+@HYP
+@given(scenes())
+def test_valid_scene_is_solved_finite_nonnegative_and_fast(sc):
+    t0 = time.perf_counter()
+    s = solve(sc)
+    dt = time.perf_counter() - t0
+    check_solution(s)
+    assert dt < COST_LIMIT_S, f"{dt:.2f} s for {sc!r}"
+    if s.pi1 == 0.0:
+        assert "no-slide" in s.model
+    if sc.static_level > peak_stuck_demand(sc) * (1 + 1e-9):
+        assert s.pi1 == 0.0
+
+
+@HYP
+@given(scenes())
+def test_batch_agrees_with_single_solves(sc):
+    b = solve_many([sc])
+    s = solve(sc)
+    assert b.pi1[0] == pytest.approx(s.pi1, rel=1e-12, abs=0.0) or (b.pi1[0] == 0.0 and s.pi1 == 0.0)
+
+
+@HYP
+@given(sliding_scenes(), st.floats(-1.0, 1.0), st.floats(-0.7, 0.7), st.floats(1.0, 7.0))
+def test_buckingham_invariance(sc, log_ap_g, log_tp, log_mb):
+    """Any a_p, T_p, M_b with the same Pi-groups give the same Pi1 (and u_max = Pi1 a_p T_p^2)."""
+    a_p = G_STANDARD * 10.0 ** log_ap_g
+    T_p = 10.0 ** log_tp
+    M_b = 10.0 ** log_mb
+    mu_k = sc.pi2 * a_p / G_STANDARD
+    phys = Scene.from_physical(a_p=a_p, T_p=T_p, M_b=M_b, T_b=sc.pi3 * T_p, xi_b=sc.pi4,
+                               m_ec=sc.pi8 * M_b, mu_s=mu_k / sc.pi5, mu_k=mu_k,
+                               beta=sc.pi6 / (a_p * T_p), gamma=sc.pi7 / (G_STANDARD * T_p), pulse=sc.pulse)
+    a, b = solve(sc), solve(phys)
+    # the Pi-groups agree to round-off, so Pi1 agrees to well within the solver's rtol
+    assert b.pi1 == pytest.approx(a.pi1, rel=1e-7, abs=1e-12)
+    assert b.u_max == pytest.approx(b.pi1 * a_p * T_p ** 2, rel=1e-14)
+
+
+@HYP
+@given(st.lists(st.floats(-1.0, 1.0), min_size=3, max_size=24), st.floats(0.02, 0.3),
+       pi3_s, pi4_s, pi5_s, pi6_s, pi7_s, pi8_s, st.floats(0.02, 0.9))
+def test_mirror_invariance(acc, dtau, pi3, pi4, pi5, pi6, pi7, pi8, frac):
+    """Reversing the ground motion (a_g -> -a_g) mirrors the response: same Pi1, opposite residual."""
+    a = np.asarray(acc)
+    if not np.any(a != 0.0):
+        a = np.array([0.0, 1.0, 0.0])
+    a = a / np.max(np.abs(a))
+    plus, minus = sampled(a, dtau, name="plus"), sampled(-a, dtau, name="minus")
+    base = Scene(pi2=1.0, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8, pulse=plus)
+    pi2 = frac * peak_stuck_demand(base) * pi5
+    if pi2 <= 0.0:
+        return
+    sp = solve(Scene(pi2=pi2, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8, pulse=plus))
+    sm = solve(Scene(pi2=pi2, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8, pulse=minus))
+    assert sm.pi1 == pytest.approx(sp.pi1, rel=1e-10, abs=1e-15)
+    assert sm.pi1_residual == pytest.approx(-sp.pi1_residual, rel=1e-10, abs=1e-14)
+
+
+def friction_level(sc, v):
+    av = np.abs(v)
+    sech = 1.0 / np.cosh(np.minimum(sc.pi6 * av, 700.0))
+    return sc.static_level * sech + sc.pi2 * (1.0 - sech) + sc.pi7 * av
+
+
+def energy_residual(sc, max_step=5e-4, horizon=3.0):
+    """Energy balance over a solve, relative to the work done by the ground.
+
+    Isolated base (per unit M_b): with T = x'^2/2 + Pi8 (x'+u')^2/2 and V = w^2 x^2/2,
+    d(T+V)/dtau = -p (x' + Pi8 (x'+u')) - 2 z w x'^2 - Pi8 phi(|u'|) |u'|.
+    Fixed base (per unit m_EC): d(u'^2/2)/dtau = -p u' - phi(|u'|) |u'|.
+    The history is taken with steps of at most ``max_step`` T_p (every step point and every
+    transition is a history point, so the integrands are smooth between points) and the
+    power is integrated by the trapezoid rule, with p taken as its left limit at the end of
+    each interval (the pulse may jump at breakpoints, where steps end): quadrature error
+    ~ max_step^2 / 12 * |f''| * duration ~ 1e-6 of the input work.
+    """
+    s = solve(sc, history=True, max_step=max_step, horizon=horizon)
+    h = s.history
+    t, x, xd, u, ud = h.tau, h.x, h.xd, h.u, h.ud
+    p_right = sc.pulse.accel(t[:-1])
+    p_left = sc.pulse.accel(np.nextafter(t[1:], -np.inf))
+    if sc.fixed_base:
+        E = 0.5 * ud ** 2
+        inp0, inp1 = -p_right * ud[:-1], -p_left * ud[1:]
+        dis = friction_level(sc, ud) * np.abs(ud)
+    else:
+        w = 2.0 * math.pi / sc.pi3
+        z = sc.pi4
+        E = 0.5 * xd ** 2 + 0.5 * sc.pi8 * (xd + ud) ** 2 + 0.5 * w * w * x ** 2
+        inp0 = -p_right * (xd[:-1] + sc.pi8 * (xd[:-1] + ud[:-1]))
+        inp1 = -p_left * (xd[1:] + sc.pi8 * (xd[1:] + ud[1:]))
+        dis = 2.0 * z * w * xd ** 2 + sc.pi8 * friction_level(sc, ud) * np.abs(ud)
+    dt = np.diff(t)
+    work_in = np.sum(0.5 * dt * (inp0 + inp1))
+    dissipated = np.sum(0.5 * dt * (dis[:-1] + dis[1:]))
+    scale = np.sum(0.5 * dt * (np.abs(inp0) + np.abs(inp1)))
+    return (E[-1] - E[0] - work_in + dissipated) / scale, s
+
+
+@HYP_FEW
+@given(sliding_scenes(st.sampled_from(["ricker", "rectangular", "makris_a", "antisymmetric_ricker"])))
+def test_energy_balance(sc):
+    if sc.pi3 != 0.0 and sc.pi3 < 0.05:
+        sc = Scene(pi2=sc.pi2, pi3=0.05, pi4=sc.pi4, pi5=sc.pi5, pi6=sc.pi6, pi7=sc.pi7, pi8=sc.pi8,
+                   pulse=sc.pulse)  # a stiffer base needs far more history points
+    if sc.pi6 * sc.pi2 > 1e5:
+        sc = Scene(pi2=sc.pi2, pi3=sc.pi3, pi4=sc.pi4, pi5=sc.pi5, pi6=1e5 / sc.pi2, pi7=sc.pi7,
+                   pi8=sc.pi8, pulse=sc.pulse)  # the transition must span several history points
+    res, s = energy_residual(sc)
+    assert abs(res) < 2e-5, (res, s.model)
+
+
+@pytest.mark.parametrize("sc", [
+    Scene(pi2=0.2, pi3=1.0, pi4=0.1),
+    Scene(pi2=0.1, pi3=1.0, pi4=0.1, pi5=0.5, pi6=300.0, pi8=1.0),
+    Scene(pi2=0.05, pi3=2.0, pi4=0.0, pi7=2.0, pi8=0.3),
+    Scene(pi2=0.3, pi3=0.0, pulse="rectangular"),
+    Scene(pi2=0.1, pi3=0.0, pi5=0.5, pi6=100.0, pi7=1.0),
+])
+def test_energy_balance_named(sc):
+    """The residual is the trapezoid rule's error: it falls like max_step^2 (to round-off)."""
+    coarse, _ = energy_residual(sc, max_step=5e-4)
+    fine, _ = energy_residual(sc, max_step=1e-4)
+    assert abs(coarse) < 2e-6
+    assert abs(fine) < max(abs(coarse) / 10.0, 1e-11)
+
+
+@HYP
+@given(sliding_scenes().filter(lambda s: not many_marginal_slips(s)))
+def test_accuracy_settings_agree(sc):
+    """Each rtol meets its target against rtol = 1e-12 (relative above 1e-6 a_p T_p^2)."""
+    conv = solve(sc, rtol=1e-12, model="full").pi1
+    for rtol in (1e-3, 1e-6):
+        p = solve(sc, rtol=rtol).pi1
+        assert abs(p - conv) <= rtol * max(conv, 1e-6), (rtol, p, conv)
+
+
+@pytest.mark.slow
+@settings(deadline=None, max_examples=400, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+@given(scenes())
+def test_valid_scene_heavy_sweep(sc):
+    """Many more scenes of the domain (slow): finite, non-negative, fast, batch = single."""
+    t0 = time.perf_counter()
+    s = solve(sc)
+    assert time.perf_counter() - t0 < COST_LIMIT_S, sc
+    check_solution(s)
+    assert solve_many([sc]).pi1[0] == s.pi1
+
+
+@pytest.mark.slow
+@settings(deadline=None, max_examples=150, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+@given(sliding_scenes(st.sampled_from(PULSE_NAMES)).filter(lambda s: not many_marginal_slips(s)))
+def test_accuracy_settings_agree_heavy(sc):
+    conv = solve(sc, rtol=1e-12, model="full").pi1
+    for rtol in (1e-2, 1e-4, 1e-6, 1e-8):
+        p = solve(sc, rtol=rtol).pi1
+        assert abs(p - conv) <= rtol * max(conv, 1e-6), (rtol, p, conv)
+
+
+def test_plateau_at_threshold_is_solved_fast():
+    """Regression (found by the heavy sweep): the stuck demand sits on the static level for the
+    whole rectangular pulse (stiff over-damped base, heavy contents, strong viscous contact).
+    The kernel once chattered through 1.6e6 stick/slip transitions (1.6e8 steps, 115 s); fixed
+    in the solver (b29f397 and before), now ~2000 transitions in under a second.  Runs in a
+    subprocess: the compiled kernel cannot be interrupted from Python."""
+    import subprocess
+    import sys
+
+    code = ("import time; from isoslide import Scene, solve; solve(Scene(pi2=0.2, pi3=1.0)); "
+            "sc = Scene(pi2=1.0, pi3=1e-3, pi4=10.0, pi7=56.2, pi8=1.0, pulse='rectangular'); "
+            "t = time.perf_counter(); s = solve(sc); print(time.perf_counter() - t, s.pi1)")
+    try:
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=30)
+    except subprocess.TimeoutExpired:
+        pytest.fail("over 30 s")
+    dt, pi1 = map(float, out.stdout.split())
+    assert dt < COST_LIMIT_S and pi1 >= 0.0
+
+
+MANY = Scene(pi2=1.4999999949765033, pi3=1e-3, pi4=0.0, pi8=0.0, pulse="rectangular")
+"""~2000 slips during the pulse (very stiff undamped base under the rectangular pulse)."""
+
+
+def test_error_target_with_thousands_of_transitions():
+    """Regression (found by the heavy sweep): the error accumulated over the transitions, rtol=1e-6
+    gave a relative error of 1.6e-5; fixed in the solver (e2e0c91..b29f397), now 6e-7."""
+    conv = solve(MANY, rtol=1e-12, model="full").pi1
+    s = solve(MANY)
+    assert s.n_events > 1000
+    assert abs(s.pi1 - conv) <= 1e-6 * conv
+
+
+MARGINAL = Scene(pi2=1.0000007860939033, pi3=1e-3, pi4=0.0, pi8=0.0, pulse="makris_b")
+"""Finding 4: ~2000 slips, most of them marginal (Pi2 0.8 ppm above the floor's plateau)."""
+
+
+@pytest.mark.xfail(strict=True, reason="finding 4: rtol=1e-6 finds 1966 of the 1994 transitions of MARGINAL "
+                                       "(very stiff undamped base, Makris B pulse, Pi2 just above the "
+                                       "demand) and Pi1 is off by 5e-5 (rtol=1e-8: 6e-6)")
+def test_marginal_slips_on_a_stiff_undamped_base():
+    conv = solve(MARGINAL, rtol=1e-12, model="full")
+    assert conv.n_events == 1994 and conv.pi1 == pytest.approx(1.843204366730629e-05, rel=1e-9)
+    s = solve(MARGINAL)
+    assert abs(s.pi1 - conv.pi1) <= 1e-6 * conv.pi1
+
+
+UNDAMPED = Scene(pi2=0.06128900902154921, pi3=1.0, pi4=0.0, pi8=0.0)
+"""Finding 3: undamped base followed 200 periods (405 transitions)."""
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="finding 3: at rtol <= 1e-11 the compiled solver gives 0.42576758646 "
+                                       "for UNDAMPED, 4e-9 (relative) below the SciPy reference "
+                                       "(0.4257675881..., rtol 1e-10 .. 1e-13) and below its own rtol=1e-9, "
+                                       "1e-10 and max_step-capped answers")
+def test_tightest_tolerance_agrees_with_reference_undamped():
+    from isoslide.reference import solve_reference
+
+    ref = solve_reference(UNDAMPED, rtol=1e-12, atol=1e-16, tau_max=UNDAMPED.pulse.tau_end + 200.0).pi1
+    assert solve(UNDAMPED, rtol=1e-12).pi1 == pytest.approx(ref, rel=1e-10)
+
+
+def test_no_slide_threshold_is_sharp():
+    for pi3, pi4 in ((0.0, 0.0), (1.0, 0.1), (2.0, 0.0), (0.5, 1.5)):
+        A = peak_stuck_demand(Scene(pi2=1.0, pi3=pi3, pi4=pi4), rtol=1e-12)
+        assert solve(Scene(pi2=A * (1 + 1e-9), pi3=pi3, pi4=pi4)).pi1 == 0.0
+        assert solve(Scene(pi2=A * (1 - 1e-6), pi3=pi3, pi4=pi4)).pi1 > 0.0
+
+
+# ----------------------------------------------------------------------------------------------
+# the independent SciPy reference (slow)
+# ----------------------------------------------------------------------------------------------
+
+@pytest.mark.slow
+@settings(deadline=None, max_examples=12, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
+@given(sliding_scenes(st.sampled_from(["ricker", "makris_b"])).filter(lambda s: s.rate_independent
+                                                                      and s.pi3 >= 0.05))
+def test_agrees_with_reference_coulomb(sc):
+    from isoslide.reference import solve_reference
+
+    H = 20.0
+    a = solve(sc, rtol=1e-10, horizon=H).pi1
+    b = solve_reference(sc, rtol=1e-12, tau_max=sc.pulse.tau_end + H * max(1.0, sc.pi3)).pi1
+    assert b == pytest.approx(a, rel=1e-7, abs=1e-12)
+
+
+SHARP = Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.5, pi6=9806.65)
+"""Fig. 6/7 scene (beta = 1000 s/m): the SciPy reference ends the second slip 8.5e-6 T_p late."""
+
+
+def test_sharp_stribeck_exact_matches_brute_force():
+    """The compiled solver's end of the 2nd slip of SHARP equals a brute-force small-step solve."""
+    from scipy.integrate import solve_ivp
+
+    from isoslide.pulses import accel_at
+
+    s = solve(SHARP, rtol=1e-12, history=True, max_step=1e-3)
+    h = s.history
+    stops = h.tau[(h.ud == 0.0) & (h.phase != 0)]
+    t_stop = stops[stops > 0.5][0]
+    k = np.searchsorted(h.tau, 0.70)
+    y0 = np.array([h.x[k], h.xd[k], h.u[k], h.ud[k]])
+    w = 2.0 * math.pi
+    code, pa = SHARP.pulse.code, SHARP.pulse.param_array
+
+    def rhs(t, y):
+        ph = friction_level(SHARP, y[3])
+        p = accel_at(code, pa, t)
+        xdd = -p - 2 * 0.1 * w * y[1] - w * w * y[0] + SHARP.pi8 * (-1.0) * ph
+        return [y[1], xdd, y[3], ph - p - xdd]
+
+    def stop(t, y):
+        return -y[3]
+    stop.terminal, stop.direction = True, -1.0
+    sol = solve_ivp(rhs, (h.tau[k], 0.8), y0, method="DOP853", rtol=1e-13, atol=1e-16, events=stop,
+                    max_step=1e-4)
+    assert sol.t_events[0][0] == pytest.approx(t_stop, abs=1e-9)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="isoslide.reference (SciPy events on a DOP853 step over the sharp "
+                                       "Stribeck transition) ends the 2nd slip 8.5e-6 T_p late: Pi1 off "
+                                       "by 9e-5; the compiled solver agrees with a brute-force solve")
+def test_reference_agrees_on_sharp_stribeck():
+    from isoslide.reference import solve_reference
+
+    a = solve(SHARP, rtol=1e-12).pi1
+    b = solve_reference(SHARP, rtol=1e-12).pi1
+    assert b == pytest.approx(a, rel=1e-7)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="isoslide.reference misses a breakaway whose demand exceeds the "
+                                       "static level only briefly (sign-change event detection between "
+                                       "steps): Pi1 = 0 instead of 2e-9 just below the no-slide threshold")
+def test_reference_finds_slips_just_below_threshold():
+    from isoslide.reference import solve_reference
+
+    A = peak_stuck_demand(Scene(pi2=1.0, pi3=1.0, pi4=0.1), rtol=1e-12)
+    sc = Scene(pi2=A * (1 - 1e-4), pi3=1.0, pi4=0.1)
+    a = solve(sc, rtol=1e-12).pi1
+    assert a > 0.0
+    assert solve_reference(sc, rtol=1e-6).pi1 > 0.0
