@@ -57,7 +57,7 @@ def run(per_study: int = 4, hard: bool = True, repeats: int = 15, peer_repeats: 
     entries = accuracy.scene_set(None, settings)
     accuracy._warm_up()
     ref = accuracy.Setting(f"scipy event-driven rtol={reference_rtol:g}", "reference", reference_rtol)
-    reg = accuracy.Setting(f"regularized K={stiffness:g}", "regularized", regularized_rtol, stiffness)
+    reg = accuracy.Setting(f"regularized K={stiffness:.0e}", "regularized", regularized_rtol, stiffness)
     reg_idx = set(entries.subset(regularized_scenes))
     rows = []
     for i, e in enumerate(entries):

@@ -1,0 +1,265 @@
+"""isoslide.accuracy (the speed-vs-accuracy measurement), isoslide.bench and the report notebook."""
+
+from __future__ import annotations
+
+import io
+import math
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from isoslide import Scene, accuracy, bench
+from isoslide.datasets import open_dataset, write_netcdf
+
+ROOT = Path(__file__).resolve().parents[1]
+
+TINY = {"accuracy": {"per_study": 1, "hard": False, "repeats": 1, "exact_rtols": [1e-3, 1e-6],
+                     "reference_rtols": [1e-6], "reference_scenes": 2, "regularized_stiffness": [1e4],
+                     "regularized_rtol": 1e-4, "regularized_scenes": 1, "peer_timeout": 30.0,
+                     "reduction_repeats": 1, "map_points": 3, "map_repeats": 1, "horizon": 20.0}}
+
+
+@pytest.fixture(scope="module")
+def tiny_parts():
+    return {p: accuracy.measure_part(p, TINY, log=lambda *a: None) for p in accuracy.PARTS}
+
+
+@pytest.fixture(scope="module")
+def tiny(tiny_parts):
+    return accuracy.combine(tiny_parts, TINY)
+
+
+# ----------------------------------------------------------------------------------------------
+# settings and scene sets
+# ----------------------------------------------------------------------------------------------
+
+def test_settings_defaults_and_validation():
+    s = accuracy.settings_from(None)
+    assert s == accuracy.settings_from({}) == accuracy.settings_from({"studies": {"x": {}}})
+    assert s["default_rtol"] in s["exact_rtols"]
+    assert accuracy.settings_from({"accuracy": {"repeats": 2}})["repeats"] == 2
+    assert 1e-5 in accuracy.settings_from({"exact_rtols": [1e-3], "default_rtol": 1e-5})["exact_rtols"]
+    with pytest.raises(ValueError, match="accuracy.bogus"):
+        accuracy.settings_from({"accuracy": {"bogus": 1}})
+    with pytest.raises(ValueError, match="horizon"):
+        accuracy.settings_from({"horizon": -1})
+    with pytest.raises(ValueError, match="repeats"):
+        accuracy.settings_from({"repeats": 0})
+
+
+def test_scene_set_is_deterministic_and_covers_studies_and_hard_classes():
+    a = accuracy.scene_set(None)
+    b = accuracy.scene_set(None)
+    assert [e.scene for e in a] == [e.scene for e in b]
+    studies = {e.study for e in a if e.cls == "study"}
+    assert studies == set(accuracy.PAPER_STUDIES)
+    classes = {e.cls for e in a}
+    for c in ("near-threshold", "above-threshold", "resonance", "undamped", "overdamped", "sharp-stribeck",
+              "heavy", "long-period", "viscous", "low-friction", "stiff-base", "pulses"):
+        assert c in classes
+    assert all(isinstance(e.scene, Scene) and e.label for e in a)
+    # a different seed draws other study scenes
+    c = accuracy.scene_set(None, {"seed": 1})
+    assert [e.scene for e in c if e.cls == "study"] != [e.scene for e in a if e.cls == "study"]
+
+
+def test_scene_set_from_a_pipeline_config():
+    import yaml
+
+    cfg = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    s = accuracy.scene_set(cfg, {"per_study": 2, "hard": False})
+    assert len(s) == 2 * len(cfg["studies"])
+    assert {e.study for e in s} == set(cfg["studies"])
+
+
+def test_hard_scenes_sit_where_they_claim():
+    from isoslide.solver import peak_stuck_demand, solve
+
+    for e in accuracy.hard_scenes():
+        sc = e.scene
+        if e.cls == "above-threshold":
+            assert solve(sc).pi1 == 0.0
+        if e.cls == "near-threshold":
+            A = peak_stuck_demand(sc, rtol=1e-12)
+            assert 0.989 * A < sc.static_level < A
+            assert solve(sc).pi1 > 0.0
+
+
+def test_subset_spreads_over_classes_and_avoids_long_runs():
+    s = accuracy.scene_set(None)
+    idx = s.subset(8)
+    assert len(idx) == len(set(idx)) == 8 and idx == sorted(idx)
+    cls = [s[i].cls for i in idx]
+    assert len(set(cls)) == 8
+    assert not {"undamped", "long-period", "low-friction"} & set(cls)
+    assert len(s.subset(10_000)) == len(s)
+    assert s.subset(0) == []
+
+
+def test_time_limit_interrupts_python_code():
+    with pytest.raises(accuracy.SceneTimeout):
+        with accuracy.time_limit(0.05):
+            t0 = time.perf_counter()
+            while time.perf_counter() - t0 < 5:
+                pass
+    with accuracy.time_limit(None):
+        pass
+
+
+def test_pareto_front():
+    cost = [1.0, 2.0, 3.0, 0.5, 4.0, np.nan]
+    err = [1e-3, 1e-6, 1e-5, 1e-1, 1e-9, 1e-12]
+    assert accuracy.pareto_front(cost, err).tolist() == [3, 0, 1, 4]
+
+
+# ----------------------------------------------------------------------------------------------
+# the measurement
+# ----------------------------------------------------------------------------------------------
+
+def test_every_variable_has_long_name_and_units(tiny):
+    for name in list(tiny.data_vars) + list(tiny.coords):
+        attrs = tiny[name].attrs
+        assert "long_name" in attrs and "units" in attrs, name
+    assert tiny.attrs["Conventions"].startswith("CF")
+    nondet = tiny.attrs["nondeterministic_variables"].split()
+    assert nondet and all(v.endswith("_seconds") for v in nondet)
+    assert all(tiny[v].attrs.get("nondeterministic") == "true" for v in nondet)
+
+
+def test_trade_numbers_make_sense(tiny):
+    names = list(tiny["setting"].values)
+    assert names[:2] == ["exact rtol=1e-03", "exact rtol=1e-06"]
+    assert "reference rtol=1e-06" in names and "regularized K=1e+04" in names
+    exact = tiny["method"] == "exact"
+    # the compiled solver runs on every scene, without failures, and meets its tolerance
+    assert (tiny["status"].where(exact, 0) == 0).all()
+    j = names.index("exact rtol=1e-06")
+    assert tiny["error_max_significant"].values[j] <= 1e-6
+    assert tiny.attrs["default_setting"] == "exact rtol=1e-06"
+    assert tiny.attrs["default_error_bound_significant"] <= 1e-6
+    assert np.all(tiny["cost_seconds"].values[j] > 0)
+    assert np.all(tiny["work"].values[j] >= 0)
+    # peers only on their subsets
+    k = names.index("regularized K=1e+04")
+    assert int((tiny["status"].values[k] == 0).sum()) == 1
+    assert int((tiny["status"].values[names.index("reference rtol=1e-06")] == 0).sum()) == 2
+    # the converged answer is checked by the reference wherever that ran
+    ref = tiny["pi1_reference"].values
+    conv = tiny["pi1_converged"].values
+    ok = np.isfinite(ref) & (conv > 0)
+    assert ok.any()
+    assert np.allclose(ref[ok], conv[ok], rtol=1e-8, atol=1e-14)
+    rows = accuracy.trade_table(tiny)
+    assert [r["setting"] for r in rows] == names
+    assert all(math.isfinite(r["cost_median_ms"]) for r in rows)
+
+
+def test_reductions_are_exact_where_they_claim(tiny):
+    r = [str(x) for x in tiny["reduction"].values]
+    err = tiny["red_error"]
+    for red in ("coulomb", "settlement", "no-slide"):
+        e = err.values[r.index(red)]
+        e = e[np.isfinite(e)]
+        assert e.size > 0, red
+        assert np.all(e == 0.0), red
+    # wherever it applies the reduction never costs more steps than the full model
+    for red in ("fixed-base", "no-slide", "settlement"):
+        k = r.index(red)
+        ok = tiny["red_work"].values[k] >= 0
+        assert np.all(tiny["red_work"].values[k][ok] <= tiny["red_work_full"].values[k][ok]), red
+
+
+def test_domain_map(tiny):
+    assert [str(g) for g in tiny["group"].values] == list(accuracy.PI_INPUTS)
+    v = tiny["map_value"].values
+    assert v.shape == (7, 3)
+    for g, name in enumerate(accuracy.PI_INPUTS):
+        lo, hi, _ = accuracy.DOMAIN[name]
+        assert v[g].min() == pytest.approx(lo) and v[g].max() == pytest.approx(hi)
+    assert np.all(tiny["map_steps"].values >= 0)
+    assert np.all(np.isfinite(tiny["map_pi1"].values))
+
+
+def test_deterministic_part_reproduces(tiny_parts, tiny):
+    again = accuracy.combine({p: accuracy.measure_part(p, TINY, log=lambda *a: None)
+                              for p in ("exact", "reductions")} | {p: tiny_parts[p] for p in ("regularized", "map")},
+                             TINY)
+    a, b = accuracy.deterministic_part(tiny), accuracy.deterministic_part(again)
+    for ds in (a, b):
+        ds.attrs.pop("source", None)
+        ds.attrs.pop("history", None)
+    xr.testing.assert_identical(a, b)
+    assert not any(v.endswith("_seconds") for v in a.data_vars)
+
+
+def test_round_trip_through_netcdf(tiny, tmp_path):
+    path = write_netcdf(tiny, tmp_path / "accuracy.nc")
+    back = open_dataset(path)
+    xr.testing.assert_allclose(accuracy.deterministic_part(back), accuracy.deterministic_part(tiny))
+    assert back.attrs["default_setting"] == "exact rtol=1e-06"
+
+
+@pytest.mark.slow
+def test_report_notebook_runs(tiny, tmp_path):
+    papermill = shutil.which("papermill")
+    if papermill is None:
+        pytest.skip("papermill not installed")
+    data = write_netcdf(tiny, tmp_path / "accuracy.nc")
+    out = tmp_path / "accuracy.ipynb"
+    subprocess.run([papermill, str(ROOT / "workflow" / "notebooks" / "accuracy.ipynb"), str(out), "-k", "python3",
+                    "-p", "accuracy_path", str(data), "--no-progress-bar"], check=True, cwd=tmp_path,
+                   capture_output=True, timeout=600)
+    import nbformat
+
+    nb = nbformat.read(out, as_version=4)
+    errors = [o for c in nb.cells for o in c.get("outputs", []) if o.get("output_type") == "error"]
+    assert not errors
+    text = "".join(str(o.get("data", {}).get("text/markdown", "")) for c in nb.cells for o in c.get("outputs", []))
+    assert "Default setting" in text
+
+
+def test_notebook_has_a_parameters_cell():
+    import nbformat
+
+    nb = nbformat.read(ROOT / "workflow" / "notebooks" / "accuracy.ipynb", as_version=4)
+    tagged = [c for c in nb.cells if "parameters" in c.get("metadata", {}).get("tags", [])]
+    assert len(tagged) == 1 and "accuracy_path" in tagged[0].source
+    assert nb.metadata["kernelspec"]["name"] == "python3"
+
+
+def test_rule_file_names_its_outputs():
+    text = (ROOT / "workflow" / "rules" / "accuracy.smk").read_text()
+    for s in ("results/datasets/accuracy.nc", "reports/accuracy.html", "rule accuracy:", "logs/"):
+        assert s in text
+
+
+# ----------------------------------------------------------------------------------------------
+# the benchmark
+# ----------------------------------------------------------------------------------------------
+
+def test_bench_runs_and_reports():
+    res = bench.run(per_study=1, hard=False, repeats=2, peer_repeats=1, regularized_scenes=1,
+                    stiffness=1e4, regularized_rtol=1e-4, horizon=20.0)
+    summ = bench.summarize(res)
+    assert summ["n"] == len(accuracy.PAPER_STUDIES)
+    assert summ["ref_n"] == summ["n"] and summ["reg_n"] == 1
+    assert summ["iso_err_max_significant"] <= 1e-6
+    assert summ["ref_ratio_median"] > 1.0
+    out = io.StringIO()
+    bench.report(res, summ, file=out)
+    text = out.getvalue()
+    for s in ("isoslide.solve (default rtol=1e-6)", "scipy event-driven", "regularized K=1e+04", "target:",
+              "where the time goes", "scene class"):
+        assert s in text
+
+
+def test_bench_command_line_help():
+    out = subprocess.run([sys.executable, "-m", "isoslide.bench", "--help"], capture_output=True, text=True,
+                         check=True, timeout=120)
+    assert "--quick" in out.stdout and "--json" in out.stdout
