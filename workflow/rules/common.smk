@@ -1,6 +1,8 @@
 # Helpers shared by the rules: the checked study specifications and the file lists.
 # Everything here is computed from the config; nothing runs the solver.
 
+import sys
+
 from snakemake.exceptions import WorkflowError
 
 import isoslide.sweep as sweep
@@ -23,7 +25,9 @@ FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 
 # Hashes of the package code behind each step, passed as parameters so that editing isoslide reruns the
 # jobs that depend on the edited modules (Snakemake's `code` trigger only sees the script itself).
-SOLVER_CODE = code_hash(exclude=("figures", "similarity", "cli", "records"))
+# The solver's modules: those the package loads on import, plus the peer solvers of `method:`.
+_LOADED = {m.split(".")[1] for m in sys.modules if m.startswith("isoslide.")}
+SOLVER_CODE = code_hash(include=_LOADED | {"regularized", "reference"}, exclude=("figures", "similarity"))
 SIMILARITY_CODE = code_hash(include=("similarity", "pulses", "scene", "datasets"))
 FIGURE_CODE = code_hash(include=("figures", "pulses", "scene", "datasets"))
 
