@@ -167,7 +167,7 @@ def test_reductions_are_exact_where_they_claim(tiny):
         e = err.values[r.index(red)]
         e = e[np.isfinite(e)]
         assert e.size > 0, red
-        assert np.all(e == 0.0), red
+        assert np.all(e <= 1e-12), red  # coulomb: the full model sums sech terms that cancel
     # wherever it applies the reduction never costs more steps than the full model
     for red in ("fixed-base", "no-slide", "settlement"):
         k = r.index(red)

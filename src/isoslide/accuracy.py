@@ -66,7 +66,7 @@ PI_INPUTS = ("pi2", "pi3", "pi4", "pi5", "pi6", "pi7", "pi8")
 
 DEFAULTS = {
     "seed": 20240611,
-    "per_study": 4,
+    "per_study": 6,
     "hard": True,
     "horizon": 50.0,
     "repeats": 5,
@@ -74,13 +74,13 @@ DEFAULTS = {
     "default_rtol": 1e-6,
     "converged_rtol": 1e-12,
     "reference_rtols": [1e-6, 1e-9],
-    "reference_scenes": 12,
+    "reference_scenes": 16,
     "regularized_stiffness": [1e4, 1e5, 1e6],
     "regularized_rtol": 1e-6,
     "regularized_method": "Radau",
-    "regularized_scenes": 4,
+    "regularized_scenes": 6,
     "peer_repeats": 1,
-    "peer_timeout": 20.0,
+    "peer_timeout": 8.0,
     "opensees": False,
     "reduction_repeats": 5,
     "map_points": 9,
@@ -946,8 +946,13 @@ def combine(parts: dict, config: dict | None = None) -> xr.Dataset:
     trade = [parts[p] for p in ("exact", "regularized") if p in parts]
     if trade:
         per_setting = [v for v in trade[0].data_vars if "setting" in trade[0][v].dims]
-        cat = xr.concat([t[per_setting] for t in trade], dim="setting", coords="minimal",
-                        compat="equals", join="exact")
+        # string coordinates along `setting` are concatenated as objects (xarray would keep the
+        # first part's fixed width and truncate longer names)
+        str_coords = [c for c in trade[0].coords if "setting" in trade[0][c].dims
+                      and trade[0][c].dtype.kind == "U"]
+        cat = xr.concat([t[per_setting].assign_coords({c: t[c].astype(object) for c in str_coords})
+                         for t in trade], dim="setting", coords="minimal", compat="equals", join="exact")
+        cat = cat.assign_coords({c: cat[c].astype(str) for c in str_coords})
         scene_only = trade[0].drop_vars(per_setting + [c for c in trade[0].coords
                                                        if "setting" in trade[0][c].dims])
         trade_ds = summarize_trade(xr.merge([cat, scene_only], compat="equals", join="exact"),
