@@ -110,9 +110,11 @@ def _fixed_text(ds, skip=()) -> str:
     return ", ".join(parts) + (f"; {PULSE_NAMES.get(pulse, pulse)}" if pulse else "")
 
 
-def _subtitle(ax, title, note):
-    """Panel title with a one-line note (the fixed groups) in small type beneath it."""
-    ax.set_title(title, pad=13 if note else 6)
+def _subtitle(ax, title, note, wrap=False):
+    """Panel title with a note (the fixed groups) in small type beneath it (two lines if ``wrap``)."""
+    if wrap:
+        note = note.replace("; ", "\n")
+    ax.set_title(title, pad=(20 if wrap else 13) if note else 6)
     if note:
         ax.text(0.5, 1.012, note, transform=ax.transAxes, ha="center", va="bottom", fontsize=6.3,
                 color="0.25")
@@ -430,9 +432,10 @@ def fig7(datasets, settings=None):
         sel = {"pi5": pi5} if pi5 is not None else None
         sub = master_curves(axs[k], left, "pi6", select=sel, label_fmt=fmt, legend_title=title)
         head = rf"({letters[k]}) Stribeck transition $\Pi_6$" + (rf", $\Pi_5 = {pi5:g}$" if pi5 is not None else "")
-        _subtitle(axs[k], head, _fixed_text(sub, skip=("pi6", "pi5")))
+        _subtitle(axs[k], head, _fixed_text(sub, skip=("pi6", "pi5")), wrap=n > 2)
     sub = master_curves(axs[-1], right, "pi7", label_fmt=lambda k, v: f"${float(v):.4g}$")
-    _subtitle(axs[-1], rf"({letters[n - 1]}) viscous contact $\Pi_7 = \gamma g T_p$", _fixed_text(sub, skip=("pi7",)))
+    _subtitle(axs[-1], rf"({letters[n - 1]}) viscous contact $\Pi_7 = \gamma g T_p$", _fixed_text(sub, skip=("pi7",)),
+              wrap=n > 2)
     fig.text(0.01, 0.01, _ref_text(left) + "\n" + r"$\Pi_{7,max} = \gamma_{max}\, g\, T_{p,max}$ = 0.1 s/m "
              r"$\times$ g $\times$ 5 s = 4.90 (the paper prints $\gamma a_p T_p$: $\approx$ 10 at "
              r"$a_{p,max} = 2g$)", fontsize=6.6, color="0.25", ha="left", va="bottom")
