@@ -29,6 +29,15 @@ independent code.  Errors are relative, ``|Pi1 - Pi1_conv| / Pi1_conv``, over
 the scenes that slide; on scenes that do not slide ``abs_error`` is the whole
 error (the exact solver answers exactly 0 there).
 
+Peers
+-----
+``reference``: the plain SciPy event-driven solver (:mod:`isoslide.reference`);
+``regularized``: the paper's method, signum replaced by a stiff elastic-plastic spring,
+SciPy Radau (:mod:`isoslide.regularized`); ``opensees`` (optional, ``accuracy.opensees``
+``auto``/``true``/``false``; needs ``pip install openseespy`` and, on Debian, ``libblas3``
+``liblapack3``): the same bilinear spring in OpenSees (:func:`solve_opensees`), Coulomb
+scenes only.  The peers run on evenly spread subsets of the scene set.
+
 Horizon
 -------
 Every method follows a scene that does not settle (``xi_b = 0``) to the same
@@ -81,7 +90,8 @@ DEFAULTS = {
     "regularized_scenes": 6,
     "peer_repeats": 1,
     "peer_timeout": 8.0,
-    "opensees": False,
+    "opensees": "auto",
+    "opensees_scenes": 10,
     "reduction_repeats": 5,
     "map_points": 9,
     "map_repeats": 3,
@@ -150,7 +160,9 @@ def settings_from(config: dict | None) -> dict:
         out[k] = [float(x) for x in out[k]]
     if out["default_rtol"] not in out["exact_rtols"]:
         out["exact_rtols"] = sorted(set(out["exact_rtols"]) | {out["default_rtol"]}, reverse=True)
-    for k in ("per_study", "repeats", "reference_scenes", "regularized_scenes", "peer_repeats",
+    if out["opensees"] not in (True, False, "auto"):
+        raise ValueError(f"accuracy.opensees = {out['opensees']!r}; allowed: true, false, auto")
+    for k in ("per_study", "repeats", "reference_scenes", "regularized_scenes", "opensees_scenes", "peer_repeats",
               "reduction_repeats", "map_points", "map_repeats", "seed"):
         out[k] = int(out[k])
         if out[k] < 0 or (k.endswith("repeats") and out[k] < 1):
@@ -195,8 +207,11 @@ def method_settings(settings: dict, part: str | None = None) -> list[Setting]:
     if part in (None, "regularized"):
         out += [Setting(f"regularized K={k:.0e}", "regularized", settings["regularized_rtol"], k)
                 for k in settings["regularized_stiffness"]]
-        if settings["opensees"] and opensees_available():
-            out += [Setting(f"opensees K={k:.0e}", "opensees", settings["regularized_rtol"], k)
+        if settings["opensees"] is True and not opensees_available():
+            raise RuntimeError("accuracy.opensees = true but openseespy does not import: pip install "
+                               "openseespy (on Debian also apt-get install libblas3 liblapack3)")
+        if settings["opensees"] is True or (settings["opensees"] == "auto" and opensees_available()):
+            out += [Setting(f"opensees K={k:.0e}", "opensees", math.nan, k)
                     for k in settings["regularized_stiffness"]]
     return out
 
@@ -555,6 +570,8 @@ def measure_trade(entries, settings: dict, part: str | None = None, log=print) -
     status = np.full((m, n), STATUS["not-run"], dtype=np.int8)
     ref_idx = entries.subset(settings["reference_scenes"])
     reg_idx = entries.subset(settings["regularized_scenes"])
+    coulomb = [i for i, e in enumerate(entries) if e.scene.rate_independent]
+    os_idx = [coulomb[k] for k in SceneSet(tuple(entries[i] for i in coulomb)).subset(settings["opensees_scenes"])]
     _warm_up()
     extra = {"regularized_method": settings["regularized_method"]}
     exact_rows = [j for j, s in enumerate(sets) if s.method == "exact"]
@@ -570,7 +587,7 @@ def measure_trade(entries, settings: dict, part: str | None = None, log=print) -
     for j, s in enumerate(sets):
         if s.method == "exact":
             continue
-        idx = ref_idx if s.method == "reference" else reg_idx
+        idx = {"reference": ref_idx, "regularized": reg_idx, "opensees": os_idx}[s.method]
         for i in idx:
             ts = []
             for _ in range(settings["peer_repeats"]):
@@ -1042,14 +1059,17 @@ def opensees_available() -> bool:
 
 
 def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None = None,
-                   dtau: float = 1e-3) -> tuple[float, int]:
+                   dtau: float | None = None) -> tuple[float, int]:
     """Pi1 of a Coulomb scene with OpenSees (elastic-perfectly-plastic friction spring, Newmark).
 
     Two-DOF model in dimensionless units (masses 1 and Pi8, lengths a_p T_p^2, time T_p):
-    the base on a linear spring ``w^2`` and dashpot ``2 z w``, the block on an
-    ``ElasticPP`` spring of stiffness ``K Pi8`` and yield force ``Pi8 Pi2``, under the
-    ground acceleration ``p``.  Supports Coulomb friction only (``Pi5 = 1`` or
-    ``Pi6 = 0``, ``Pi7 = 0``).  Returns ``(pi1, steps)``.
+    the base on a linear spring ``w^2`` with a dashpot ``2 z w`` (``Elastic`` material with
+    damping tangent), the block on an ``ElasticPP`` spring of stiffness ``K Pi8`` and yield
+    force ``Pi8 Pi2/Pi5`` (the paper's bilinear regularisation with a very large initial
+    stiffness), under ``UniformExcitation`` by the ground acceleration ``p`` sampled every
+    ``dtau`` (default ``min(1e-3, T_r / 10)``, ``T_r = 2 pi / sqrt(K)``), average-acceleration
+    Newmark with Newton iterations.  A fixed base ties the block to the ground.  Coulomb
+    friction only (``Pi7 = 0`` and ``Pi5 = 1`` or ``Pi6 = 0``).  Returns ``(pi1, steps)``.
     """
     import openseespy.opensees as ops
 
@@ -1057,43 +1077,46 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
         raise ValueError("the OpenSees peer models Coulomb friction only")
     pulse = scene.pulse
     mu = scene.static_level
+    K = float(stiffness)
+    if dtau is None:
+        dtau = min(1e-3, 2.0 * math.pi / math.sqrt(K) / 10.0)
     end = tau_max if tau_max is not None else pulse.tau_end + 50.0 * max(1.0, scene.pi3)
     n = int(math.ceil((end - pulse.tau_start) / dtau))
     tt = pulse.tau_start + dtau * np.arange(n + 1)
     acc = pulse.accel(tt)
-    m_b = 1.0
-    m_c = max(scene.pi8, 1e-12)
+    m_c = max(scene.pi8, 1e-6)
     ops.wipe()
     ops.model("basic", "-ndm", 1, "-ndf", 1)
     ops.node(1, 0.0)
-    ops.node(2, 0.0)
-    ops.node(3, 0.0)
     ops.fix(1, 1)
-    ops.mass(2, m_b)
+    ops.node(3, 0.0)
     ops.mass(3, m_c)
-    if scene.fixed_base:
-        ops.uniaxialMaterial("Elastic", 1, 1e12)
-    else:
+    floor = 1
+    if not scene.fixed_base:
         w = 2.0 * math.pi / scene.pi3
-        ops.uniaxialMaterial("Elastic", 1, w * w * m_b, 2.0 * scene.pi4 * w * m_b)
-    k_r = stiffness * m_c
+        ops.node(2, 0.0)
+        ops.mass(2, 1.0)
+        ops.uniaxialMaterial("Elastic", 1, w * w, 2.0 * scene.pi4 * w)
+        ops.element("zeroLength", 1, 1, 2, "-mat", 1, "-dir", 1)
+        floor = 2
+    k_r = K * m_c
     ops.uniaxialMaterial("ElasticPP", 2, k_r, mu * m_c / k_r)
-    ops.element("zeroLength", 1, 1, 2, "-mat", 1, "-dir", 1)
-    ops.element("zeroLength", 2, 2, 3, "-mat", 2, "-dir", 1)
+    ops.element("zeroLength", 2, floor, 3, "-mat", 2, "-dir", 1)
     ops.timeSeries("Path", 1, "-dt", dtau, "-values", *acc.tolist())
     ops.pattern("UniformExcitation", 1, 1, "-accel", 1)
     ops.constraints("Plain")
     ops.numberer("Plain")
-    ops.system("BandGeneral")
-    ops.test("NormDispIncr", 1e-12, 50)
+    ops.system("FullGeneral")
+    ops.test("NormDispIncr", 1e-14, 50)
     ops.algorithm("Newton")
     ops.integrator("Newmark", 0.5, 0.25)
     ops.analysis("Transient")
     umax = 0.0
     for _ in range(n):
         if ops.analyze(1, dtau) != 0:
+            ops.wipe()
             raise RuntimeError("OpenSees analysis failed")
-        u = ops.nodeDisp(3, 1) - ops.nodeDisp(2, 1)
+        u = ops.nodeDisp(3, 1) - (ops.nodeDisp(floor, 1) if floor != 1 else 0.0)
         umax = max(umax, abs(u))
     ops.wipe()
     return umax, n
