@@ -263,3 +263,16 @@ def test_bench_command_line_help():
     out = subprocess.run([sys.executable, "-m", "isoslide.bench", "--help"], capture_output=True, text=True,
                          check=True, timeout=120)
     assert "--quick" in out.stdout and "--json" in out.stdout
+
+
+def test_opensees_peer_converges_like_the_regularised_method():
+    pytest.importorskip("openseespy.opensees")
+    from isoslide import solve
+
+    sc = Scene(pi2=0.2, pi3=1.0, pi4=0.1)
+    exact = solve(sc, horizon=10.0).pi1
+    errs = [abs(accuracy.solve_opensees(sc, k, tau_max=sc.pulse.tau_end + 10.0)[0] - exact) / exact
+            for k in (1e4, 1e6)]
+    assert errs[1] < errs[0] < 0.1 and errs[1] < 1e-2
+    with pytest.raises(ValueError, match="Coulomb"):
+        accuracy.solve_opensees(Scene(pi2=0.2, pi3=1.0, pi5=0.5, pi6=10.0))

@@ -48,7 +48,7 @@ def _rel(p, c):
     return abs(p - c) / c
 
 
-def run(per_study: int = 4, hard: bool = True, repeats: int = 15, peer_repeats: int = 3,
+def run(per_study: int = 6, hard: bool = True, repeats: int = 15, peer_repeats: int = 3,
         reference_rtol: float = 1e-6, regularized_scenes: int = 6, stiffness: float = 1e6,
         regularized_rtol: float = 1e-6, horizon: float = 50.0, timeout: float = 30.0,
         log=None) -> dict:
@@ -184,7 +184,7 @@ def report(res: dict, summ: dict, file=sys.stdout) -> None:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m isoslide.bench", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--per-study", type=int, default=4, help="scenes drawn from each paper study (4)")
+    ap.add_argument("--per-study", type=int, default=6, help="scenes drawn from each paper study (6)")
     ap.add_argument("--no-hard", action="store_true", help="leave out the hard scene classes")
     ap.add_argument("--repeats", type=int, default=15, help="isoslide runs per scene (15)")
     ap.add_argument("--peer-repeats", type=int, default=3, help="SciPy reference runs per scene (3)")
