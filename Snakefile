@@ -30,6 +30,7 @@ include: "workflow/rules/sweep.smk"
 include: "workflow/rules/similarity.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reports.smk"
+include: "workflow/rules/accuracy.smk"
 
 
 rule all:

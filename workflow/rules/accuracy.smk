@@ -28,6 +28,8 @@ rule accuracy_part:
         config=ACCURACY_CONFIG,
     wildcard_constraints:
         part="|".join(ACCURACY_PARTS),
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/accuracy/{part}.log",
     script:
@@ -41,6 +43,8 @@ rule accuracy_dataset:
         "results/datasets/accuracy.nc",
     params:
         config=ACCURACY_CONFIG,
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/accuracy/combine.log",
     script:
@@ -54,6 +58,8 @@ rule report_accuracy:
     output:
         notebook="reports/accuracy.ipynb",
         html="reports/accuracy.html",
+    conda:
+        "../envs/isoslide.yaml"
     log:
         "logs/report/accuracy.log",
     shell:
