@@ -6,6 +6,8 @@
 # The science lives in the isoslide package; rules only wire files together
 # (see workflow/rules/*.smk).  Default options come from profiles/default/config.yaml.
 
+import re
+
 from snakemake.utils import min_version, validate
 
 min_version("9.0")
@@ -24,12 +26,14 @@ wildcard_constraints:
     study="|".join(STUDIES),
     chunk=r"\d+",
     fig=r"fig[1-8]",
+    record="|".join(re.escape(r) for r in RECORDS),
 
 
 include: "workflow/rules/sweep.smk"
 include: "workflow/rules/similarity.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reports.smk"
+include: "workflow/rules/records.smk"
 include: "workflow/rules/accuracy.smk"
 
 
@@ -39,5 +43,9 @@ rule all:
         "results/datasets/similarity.nc",
         FIGURE_FILES,
         "reports/similarity.html",
+        "results/datasets/fig4_record.nc",
+        "results/datasets/records.nc",
+        RECORD_FIGURE_FILES,
+        "reports/records.html",
         "reports/figures.html",
     default_target: True

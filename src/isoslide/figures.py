@@ -325,23 +325,73 @@ def fig3(datasets, settings=None):
 
 
 def fig4(datasets=None, settings=None):
-    """Fig. 4: a pulse-like record with its fitted Ricker (the Ricker alone until records land)."""
+    """Fig. 4: a real pulse-like record (acceleration, velocity) with its fitted Ricker wavelet.
+
+    ``datasets["record"]`` is the output of :func:`isoslide.record_study.fig4_data`
+    (``results/datasets/fig4_record.nc``); without it the Ricker wavelet is drawn alone.
+    """
+    import matplotlib.pyplot as plt
+
+    datasets = datasets or {}
+    if datasets.get("record") is None:
+        return _fig4_ricker_only()
+    rec = _open(datasets, "record")
+    at = rec.attrs
+    t = rec["time"].values
+    lo, hi = float(at["t_plot_min"]), float(at["t_plot_max"])
+    keep = (t >= lo) & (t <= hi)
+    t = t[keep]
+    fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 2.9))
+    name = str(at.get("record", "record"))
+    fits = [("ricker", "C3", "-", "fitted Ricker")]
+    if "accel_mp" in rec:
+        fits.append(("mp", "C0", "--", "fitted M-P pulse"))
+    a.plot(t, rec["accel_record"].values[keep], color="0.55", lw=0.8, label=name)
+    b.plot(t, rec["velocity_record"].values[keep], color="0.55", lw=0.8, label=name)
+    for key, color, ls, label in fits:
+        a.plot(t, rec[f"accel_{key}"].values[keep], color=color, ls=ls, lw=1.2, label=label)
+        b.plot(t, rec[f"velocity_{key}"].values[keep], color=color, ls=ls, lw=1.2, label=label)
+    a.set_xlabel("t (s)")
+    a.set_ylabel(r"$\ddot u_g$ (g)")
+    a.set_title("(a) ground acceleration")
+    b.set_xlabel("t (s)")
+    b.set_ylabel(r"$\dot u_g$ (m/s)")
+    b.set_title("(b) ground velocity")
+    for ax in (a, b):
+        ax.set_xlim(lo, hi)
+    a.legend(loc="lower left", fontsize=6.3, handlelength=1.6)
+    stand_in = str(at.get("stand_in_for", ""))
+    fit_text = (rf"Ricker fit: $a_p$ = {float(at['ricker_a_p_g']):.3f} g, $T_p$ = {float(at['ricker_T_p']):.2f} s, "
+                rf"$R^2$ = {float(at['ricker_r2']):.2f}")
+    if "mp_r2" in at:
+        fit_text += rf"; M-P fit: $T_p$ = {float(at['mp_T_p']):.2f} s, $R^2$ = {float(at['mp_r2']):.2f}"
+    note = (f"{name} ({at.get('event', '')}, {at.get('station', '')} {at.get('component', '')})"
+            + (f" stands in for the paper's Rinaldi RRS228 (1994 Northridge), not available offline."
+               if stand_in else ".") + "\n" + fit_text)
+    fig.text(0.01, 0.01, note, fontsize=6.6, color="0.25", ha="left", va="bottom")
+    fig.tight_layout(rect=(0, 0.12, 1, 1))
+    caption = (f"Fig. 4. Real pulse-like record {name} ({at.get('event', '')}, {at.get('station', '')} "
+               f"{at.get('component', '')}; {at.get('source', '')}) and the analytical pulse fitted to its dominant "
+               f"acceleration pulse: (a) acceleration, (b) velocity (integrated from rest). "
+               + (f"It stands in for the paper's record, {stand_in}. " if stand_in else "")
+               + f"Fitted symmetric Ricker wavelet: a_p = {float(at['ricker_a_p_g']):.3f} g, "
+               f"T_p = {float(at['ricker_T_p']):.2f} s, R^2 = {float(at['ricker_r2']):.2f} over the pulse window"
+               + (f"; Mavroeidis-Papageorgiou pulse: T_p = {float(at['mp_T_p']):.2f} s, "
+                  f"R^2 = {float(at['mp_r2']):.2f}" if "mp_r2" in at else "")
+               + ". The paper's Rinaldi record is fitted with T_p = 1 s.")
+    return fig, caption
+
+
+def _fig4_ricker_only():
     import matplotlib.pyplot as plt
 
     from .pulses import get_pulse
 
-    datasets = datasets or {}
     p = get_pulse("ricker")
-    T_p, a_p = 1.0, 1.0
     t = np.linspace(-2.5, 2.5, 2001)
     fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 2.4))
-    record = datasets.get("record")
-    if record is not None:  # pragma: no cover - arrives with the records issue
-        rec = _open(datasets, "record")
-        a.plot(rec["t"].values, rec["accel"].values, color="0.6", lw=0.8, label=rec.attrs.get("title", "record"))
-        b.plot(rec["t"].values, rec["velocity"].values, color="0.6", lw=0.8, label=rec.attrs.get("title", "record"))
-    a.plot(t * T_p, a_p * p.accel(t), color="C3", label=r"symmetric Ricker, $T_p = 1$ s")
-    b.plot(t * T_p, a_p * T_p * p.velocity(t), color="C3", label=r"symmetric Ricker, $T_p = 1$ s")
+    a.plot(t, p.accel(t), color="C3", label=r"symmetric Ricker, $T_p = 1$ s")
+    b.plot(t, p.velocity(t), color="C3", label=r"symmetric Ricker, $T_p = 1$ s")
     a.set_xlabel("t (s)")
     a.set_ylabel(r"$\ddot u_g / a_p$")
     a.set_title("(a) ground acceleration")
@@ -350,18 +400,127 @@ def fig4(datasets=None, settings=None):
     b.set_title("(b) ground velocity")
     for ax in (a, b):
         ax.legend(loc="upper right")
-    if record is None:
-        for ax in (a, b):
-            _text_box(ax, "Ricker wavelet only: the Rinaldi (1994 Northridge)\nrecord is not yet in "
-                          "isoslide (records issue)", loc="lower left")
+        _text_box(ax, "Ricker wavelet only: no record dataset\nwas given (results/datasets/fig4_record.nc)",
+                  loc="lower left")
     fig.tight_layout()
     caption = ("Fig. 4. Symmetric Ricker wavelet (paper Eq. 3) with T_p = 1 s, whose Fourier amplitude "
-               "peaks at 1/T_p: (a) acceleration, (b) velocity. "
-               + ("The real pulse-like record it is fitted to is overlaid in grey."
-                  if record is not None else
-                  "The paper overlays the 1994 Northridge record at Rinaldi Receiving Station; that record "
-                  "is not yet available to the pipeline, so the Ricker wavelet is drawn alone."))
+               "peaks at 1/T_p: (a) acceleration, (b) velocity. No record dataset was given, so the "
+               "Ricker wavelet is drawn alone.")
     return fig, caption
+
+
+def records(datasets, settings=None):
+    """Peak sliding under each real record against under its fitted pulse (``records.nc``).
+
+    One panel per record: Pi1(Pi2) under the record (solid) and under its fitted pulse (dashed), one
+    colour per Pi3; a last panel: Pi1_pulse against Pi1_record over every cell where both slide.
+    """
+    import matplotlib.pyplot as plt
+
+    from .record_study import ratio_summary
+
+    ds = _open(datasets, "records")
+    tol = float(ds.attrs.get("tolerance", 0.25))
+    summ = ratio_summary(ds, tol)
+    names = [str(r) for r in ds["record"].values]
+    n = len(names) + 1
+    ncols = min(3, n)
+    nrows = math.ceil(n / ncols)
+    fig, axs = plt.subplots(nrows, ncols, figsize=(WIDTH, 2.9 * nrows + 0.3), squeeze=False)
+    axs = axs.ravel()
+    pi3s = ds["pi3"].values
+    colors = _colors(len(pi3s))
+    for k, name in enumerate(names):
+        ax = axs[k]
+        sub = ds.sel(record=name)
+        for c, pi3 in zip(colors, pi3s):
+            ax.plot(ds["pi2"].values, sub["pi1_record"].sel(pi3=pi3).values, color=c, ls="-",
+                    label=rf"${_fmt(float(pi3))}$")
+            ax.plot(ds["pi2"].values, sub["pi1_pulse"].sel(pi3=pi3).values, color=c, ls="--")
+        ax.set_xlabel(LABELS["pi2"])
+        ax.set_ylabel(LABELS["pi1"] if k % ncols == 0 else "")
+        ax.set_xlim(0.0, float(ds["pi2"].max()))
+        ax.set_ylim(bottom=0.0)
+        s = summ.sel(record=name)
+        _note_title(ax, f"({'abcdefghijkl'[k]}) {name}",
+                    rf"$a_p$ = {float(sub['a_p_g']):.2f} g, $T_p$ = {float(sub['T_p']):.2f} s, "
+                    rf"$R^2$ = {float(sub['r2']):.2f}" + "\n" + _summary_line(s, tol))
+        if k == 0:
+            ax.legend(title=LABELS["pi3"], loc="best", handlelength=1.6, fontsize=6.5)
+    ax = axs[len(names)]
+    marks = "osD^v<>p*hX"
+    both = ds["slides_record"].values.astype(bool) & ds["slides_pulse"].values.astype(bool)
+    hi = 0.0
+    for k, name in enumerate(names):
+        m = both[k]
+        x, y = ds["pi1_record"].values[k][m], ds["pi1_pulse"].values[k][m]
+        ax.scatter(x, y, s=9, marker=marks[k % len(marks)], label=name, alpha=0.8, lw=0)
+        if x.size:
+            hi = max(hi, float(x.max()), float(y.max()))
+    if hi > 0:
+        lo = hi * 1e-3
+        xs = np.array([lo, hi * 1.5])
+        ax.plot(xs, xs, color="k", lw=0.8)
+        ax.fill_between(xs, xs * (1 - tol), xs * (1 + tol), color="0.5", alpha=0.2, lw=0,
+                        label=rf"$\pm${tol:.0%}")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlim(lo, hi * 1.5)
+        ax.set_ylim(lo, hi * 1.5)
+    ax.set_xlabel(r"$\Pi_1$ under the record")
+    ax.set_ylabel(r"$\Pi_1$ under the fitted pulse")
+    _note_title(ax, f"({'abcdefghijkl'[len(names)]}) all records, cells where both slide",
+                _summary_line(summ.sel(record="all"), tol))
+    ax.legend(loc="lower right", fontsize=5.8, handlelength=1.0)
+    for ax in axs[n:]:
+        ax.set_visible(False)
+    note = (f"Solid: real record; dashed: its fitted {_shape_name(ds)} pulse. The fitted a_p and "
+            f"T_p scale both, so the ratio Pi1_pulse/Pi1_record is the ratio of the physical peak sliding. "
+            f"Fixed: Pi4 = {float(ds.attrs['pi4']):g}, Pi5 = {float(ds.attrs['pi5']):g}, "
+            f"Pi6 = {float(ds.attrs['pi6']):g}, Pi7 = {float(ds.attrs['pi7']):g}, "
+            f"Pi8 = {float(ds.attrs['pi8']):g}.")
+    fig.text(0.01, 0.005, note, fontsize=6.3, color="0.25", ha="left", va="bottom", wrap=True)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    a = summ.sel(record="all")
+    caption = (f"Records. Peak sliding Pi1 under {len(names)} real pulse-like records ({', '.join(names)}) "
+               f"and under each record's fitted {_shape_name(ds)} pulse, over Pi2 = "
+               f"{float(ds['pi2'].min()):g}...{float(ds['pi2'].max()):g} ({ds.sizes['pi2']} values) and "
+               f"Pi3 = {_list(ds['pi3'])}, with the fitted a_p and T_p as the scales. Over all "
+               f"{int(a['n_cells'])} cells: both slide in {int(a['n_both_slide'])}, where the ratio "
+               f"Pi1_pulse/Pi1_record has median {float(a['median_ratio']):.2f}, P10-P90 "
+               f"{float(a['p10_ratio']):.2f}-{float(a['p90_ratio']):.2f}, and {_pct(a['within_tol'])} of cells lie "
+               f"within +-{tol:.0%}; only the record slides in {int(a['n_only_record'])} cells, only the pulse in "
+               f"{int(a['n_only_pulse'])}. Fixed: Pi4 = {float(ds.attrs['pi4']):g}, Coulomb friction "
+               f"(Pi5 = {float(ds.attrs['pi5']):g}, Pi6 = {float(ds.attrs['pi6']):g}), "
+               f"Pi7 = {float(ds.attrs['pi7']):g}, Pi8 = {float(ds.attrs['pi8']):g}.")
+    return fig, caption
+
+
+def _shape_name(ds) -> str:
+    shape = str(ds.attrs.get("shape", "ricker"))
+    return {"ricker": "Ricker", "mavroeidis_papageorgiou": "Mavroeidis-Papageorgiou"}.get(shape, shape)
+
+
+def _pct(x) -> str:
+    x = float(x)
+    return f"{x:.0%}" if np.isfinite(x) else "n/a"
+
+
+def _summary_line(s, tol) -> str:
+    """Three or two lines: the ratio statistics of one record (or all) from :func:`ratio_summary`."""
+    only = f"slides under record only / pulse only: {int(s['n_only_record'])} / {int(s['n_only_pulse'])}"
+    if int(s["n_both_slide"]) == 0:
+        return "no cell where both slide\n" + only
+    return (f"ratio median {float(s['median_ratio']):.2f} (P10-P90 {float(s['p10_ratio']):.2f}-"
+            f"{float(s['p90_ratio']):.2f})\nwithin $\\pm${tol:.0%}: {_pct(s['within_tol'])}\n" + only)
+
+
+def _note_title(ax, title, note):
+    """Panel title with a multi-line note in small type beneath it."""
+    lines = note.count("\n") + 1
+    ax.set_title(title, pad=4 + 7.5 * lines, fontsize=8)
+    ax.text(0.5, 1.012, note, transform=ax.transAxes, ha="center", va="bottom", fontsize=5.9,
+            color="0.25", linespacing=1.15)
 
 
 def fig5(datasets, settings=None):
@@ -464,6 +623,7 @@ def fig8(datasets, settings=None):
 
 
 FIGURES = {f"fig{n}": f for n, f in enumerate((fig1, fig2, fig3, fig4, fig5, fig6, fig7, fig8), start=1)}
+FIGURES["records"] = records
 
 
 def _open(datasets, name):
@@ -503,9 +663,9 @@ def draw(name: str, datasets: dict, outputs, settings: dict | None = None):
     Parameters
     ----------
     name : str
-        Figure name.
+        Figure name: ``"fig1"`` ... ``"fig8"`` or ``"records"`` (record versus pulse).
     datasets : dict of str -> path or xarray.Dataset
-        Study datasets by study name.
+        Study datasets by study name; ``"record"`` (Fig. 4) and ``"records"`` for the record figures.
     outputs : sequence of path
         Files to write; the format follows the extension (png, pdf, svg).
     settings : dict, optional

@@ -34,7 +34,8 @@ from . import records as _rec
 from .records import G, Record
 from .scene import Scene
 
-__all__ = ["FIG4_RECORD", "STAND_IN_FOR", "compare_grid", "fig4_data", "ratio_summary",
+__all__ = ["FIG4_RECORD", "RECORDS_DEFAULTS", "STAND_IN_FOR", "compare_grid", "fig4_data", "fig4_dataset",
+           "ratio_summary", "record_dataset", "records_dataset", "records_settings",
            "resolve_record", "summary_markdown"]
 
 FIG4_RECORD = "Kobe_1995_TAK-090"
@@ -344,3 +345,111 @@ def summary_markdown(ds: xr.Dataset, tolerance: float = 0.25) -> str:
                  f"{float(row['within_tol']):.0%}" if np.isfinite(float(row['within_tol'])) else "n/a"]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
+
+
+# ----------------------------------------------------------------------------------------------
+# pipeline datasets (rules fig4_record, record_compare, records_dataset)
+# ----------------------------------------------------------------------------------------------
+
+RECORDS_DEFAULTS = {
+    "names": list(_rec.PULSE_LIKE_SAMPLES),
+    "fig4": FIG4_RECORD,
+    "pi2": {"start": 0.05, "stop": 1.5, "num": 15},
+    "pi3": [0.5, 1.0, 1.5, 2.0, 3.0],
+    "pi4": 0.1,
+    "tolerance": 0.25,
+}
+"""Defaults of the ``records`` configuration section (as in ``config/schema.yaml``)."""
+
+
+def records_settings(config: dict | None) -> dict:
+    """The ``records`` section of a configuration with defaults, plus the groups it inherits.
+
+    ``config`` is a whole configuration (keys ``records``, ``defaults``, ``solver``); returns
+    ``{"records": ..., "defaults": ..., "solver": ...}`` with the records defaults filled in.
+    """
+    config = dict(config or {})
+    rec = {**RECORDS_DEFAULTS, **(config.get("records") or {})}
+    rec["pi2"] = {**RECORDS_DEFAULTS["pi2"], **(rec.get("pi2") or {})}
+    return {"records": rec, "defaults": dict(config.get("defaults") or {}),
+            "solver": dict(config.get("solver") or {})}
+
+
+def _axes(settings: dict):
+    rec = settings["records"]
+    a = rec["pi2"]
+    pi2 = np.linspace(float(a["start"]), float(a["stop"]), int(a["num"]))
+    pi3 = np.asarray(rec["pi3"], dtype=float)
+    return pi2, pi3
+
+
+def _groups(settings: dict) -> dict:
+    d = settings.get("defaults") or {}
+    return {"pi4": float(settings["records"]["pi4"]), "pi5": float(d.get("pi5", 1.0)),
+            "pi6": float(d.get("pi6", 0.0)), "pi7": float(d.get("pi7", 0.0)), "pi8": float(d.get("pi8", 1e-5))}
+
+
+def fig4_dataset(settings: dict) -> xr.Dataset:
+    """:func:`fig4_data` of the configured Fig. 4 record, with CF global attributes."""
+    from .datasets import global_attrs
+
+    settings = records_settings(settings) if "records" not in settings or "solver" not in settings else settings
+    ds = fig4_data(settings["records"]["fig4"])
+    extra = dict(ds.attrs)
+    title = extra.pop("title")
+    ds.attrs = global_attrs(
+        title=f"isoslide {title}",
+        history=f"isoslide.record_study.fig4_data({extra['record']!r}): record read from the installed "
+                f"pyslammer package, Ricker and Mavroeidis-Papageorgiou pulses fitted by least squares "
+                f"(isoslide.records.fit_pulse)",
+        config={"fig4": settings["records"]["fig4"]}, **extra)
+    return ds
+
+
+def record_dataset(name: str, settings: dict) -> xr.Dataset:
+    """:func:`compare_grid` of one record over the configured grid (dimension ``record`` of length 1)."""
+    settings = records_settings(settings) if "records" not in settings or "solver" not in settings else settings
+    pi2, pi3 = _axes(settings)
+    rtol = (settings.get("solver") or {}).get("rtol")
+    return compare_grid([name], pi2, pi3, rtol=rtol, **_groups(settings))
+
+
+def records_dataset(parts, settings: dict) -> xr.Dataset:
+    """Concatenate per-record :func:`record_dataset` outputs (in the configured order) and add CF
+    global attributes, the ``tolerance`` and the summary of :func:`ratio_summary`."""
+    from .datasets import global_attrs
+
+    settings = records_settings(settings) if "records" not in settings or "solver" not in settings else settings
+    parts = list(parts)
+    by_name = {str(p["record"].values[0]): p for p in parts}
+    order = [resolve_record(n).name for n in settings["records"]["names"]]
+    missing = [n for n in order if n not in by_name]
+    if missing:
+        raise ValueError(f"records_dataset: no part for record(s) {missing}; parts: {sorted(by_name)}")
+    ds = xr.concat([by_name[n] for n in order], dim="record", data_vars="minimal", coords="minimal",
+                   combine_attrs="drop_conflicts")
+    ds["record"] = ds["record"].astype(str)
+    ds["record"].attrs["long_name"] = "record name"
+    for v in ("slides_record", "slides_pulse", "settled_record", "settled_pulse"):
+        if v in ds:
+            ds[v] = ds[v].astype(np.int8).assign_attrs(
+                {**ds[v].attrs, "flag_values": np.array([0, 1], np.int8), "flag_meanings": "no yes"})
+    tol = float(settings["records"]["tolerance"])
+    summ = ratio_summary(ds.assign({v: ds[v].astype(bool) for v in ("slides_record", "slides_pulse")}), tol)
+    a = summ.sel(record="all")
+    first = parts[0].attrs
+    keep = {k: first[k] for k in ("shape", "pi4", "pi5", "pi6", "pi7", "pi8", "rtol", "g", "scales") if k in first}
+    sources = sorted({p.attrs.get("sources", "") for p in parts} - {""})
+    ds.attrs = global_attrs(
+        title="isoslide peak sliding under real pulse-like records and under their fitted pulses",
+        history=(f"isoslide.record_study.compare_grid, one job per record ({len(order)} records x "
+                 f"{ds.sizes['pi2']} Pi2 x {ds.sizes['pi3']} Pi3), concatenated by "
+                 f"isoslide.record_study.records_dataset; no timestamps are stored"),
+        config=settings, **keep, tolerance=tol, sources="; ".join(sources),
+        fig4_record=(f"{settings['records']['fig4']}" + (f" (stands in for {STAND_IN_FOR})"
+                     if resolve_record(settings["records"]["fig4"]).name == FIG4_RECORD else "")),
+        summary_median_ratio=float(a["median_ratio"]), summary_p10_ratio=float(a["p10_ratio"]),
+        summary_p90_ratio=float(a["p90_ratio"]), summary_within_tol=float(a["within_tol"]),
+        summary_n_cells=int(a["n_cells"]), summary_n_both_slide=int(a["n_both_slide"]),
+        summary_n_only_record=int(a["n_only_record"]), summary_n_only_pulse=int(a["n_only_pulse"]))
+    return ds

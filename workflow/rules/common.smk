@@ -29,7 +29,16 @@ FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 _LOADED = {m.split(".")[1] for m in sys.modules if m.startswith("isoslide.")}
 SOLVER_CODE = code_hash(include=_LOADED | {"regularized", "reference"}, exclude=("figures", "similarity"))
 SIMILARITY_CODE = code_hash(include=("similarity", "pulses", "scene", "datasets"))
-FIGURE_CODE = code_hash(include=("figures", "pulses", "scene", "datasets"))
+FIGURE_CODE = code_hash(include=("figures", "pulses", "scene", "datasets", "record_study"))
+RECORDS_CODE = code_hash(include=_LOADED | {"records", "record_study", "pulses", "datasets"},
+                         exclude=("figures", "similarity", "accuracy"))
+
+# Real records against their fitted pulses (workflow/rules/records.smk).
+RECORDS_SETTINGS = sweep.jsonable(
+    {"records": config["records"], "defaults": config["defaults"], "solver": config["solver"]}
+)
+RECORDS = list(config["records"]["names"])
+RECORD_FIGURE_FILES = expand("reports/figures/records.{ext}", ext=FORMATS)
 
 for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
     if _c["study"] not in SPECS:
@@ -52,8 +61,11 @@ def chunk_files(wildcards):
 def figure_datasets(wildcards):
     """Datasets a figure is drawn from (by the studies' `figure:` number)."""
     number = int(wildcards.fig[3:])
-    return {
+    out = {
         name: f"results/datasets/{name}.nc"
         for name in STUDIES
         if SPECS[name]["figure"] == number
     }
+    if number == 4:  # the real record that stands in for the paper's Rinaldi record
+        out["record"] = "results/datasets/fig4_record.nc"
+    return out

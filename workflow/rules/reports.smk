@@ -28,7 +28,7 @@ rule report_similarity:
 rule report_figures:
     input:
         notebook="workflow/notebooks/figures.ipynb",
-        figures=expand("reports/figures/{fig}.png", fig=FIGURES),
+        figures=expand("reports/figures/{fig}.png", fig=FIGURES + ["records"]),
     output:
         notebook="reports/figures.ipynb",
         html="reports/figures.html",

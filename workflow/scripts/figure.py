@@ -1,4 +1,4 @@
-"""Rule figure: draw one paper figure from its datasets (isoslide.figures.draw)."""
+"""Rules figure and figure_records: draw one figure from its datasets (isoslide.figures.draw)."""
 
 import matplotlib
 
@@ -8,4 +8,5 @@ from isoslide.datasets import logging_to  # noqa: E402
 from isoslide.figures import draw  # noqa: E402
 
 with logging_to(snakemake.log[0]):  # noqa: F821 - injected by Snakemake
-    draw(snakemake.wildcards.fig, dict(snakemake.input.items()), snakemake.output, snakemake.params.settings)
+    name = getattr(snakemake.wildcards, "fig", "records")  # noqa: F821 - rule figure_records has no wildcard
+    draw(name, dict(snakemake.input.items()), snakemake.output, snakemake.params.settings)  # noqa: F821
