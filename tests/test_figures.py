@@ -70,3 +70,53 @@ def test_stribeck_law_limits():
     assert mu[0] == pytest.approx(0.5) and mu[1] == pytest.approx(0.5, rel=1e-5)
     assert mu[2] == pytest.approx(0.3)
     assert figures.stribeck_mu(2.0, 0.5, 0.3, 0.0, 0.1) == pytest.approx(0.7)   # beta = 0: mu_s + gamma v
+
+
+# ---------------------------------------------------------------------------------------------
+# the record figures: Fig. 4 from a real record, and record versus pulse
+# ---------------------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def record_sets():
+    from isoslide import record_study
+
+    settings = record_study.records_settings({
+        "records": {"names": ["Northridge_1994_PAC-175"], "pi2": {"start": 0.2, "stop": 0.8, "num": 2},
+                    "pi3": [0.5, 1.0]},
+        "defaults": {"pi5": 1.0, "pi6": 0.0, "pi7": 0.0, "pi8": 1e-5}, "solver": {}})
+    part = record_study.record_dataset("Northridge_1994_PAC-175", settings)
+    return {"record": record_study.fig4_dataset(settings),
+            "records": record_study.records_dataset([part], settings)}
+
+
+def test_fig4_draws_the_stand_in_record(tmp_path, record_sets):
+    out = tmp_path / "fig4.png"
+    caption = figures.draw("fig4", {"record": record_sets["record"]}, [out], {"dpi": 60})
+    at = record_sets["record"].attrs
+    assert caption.startswith("Fig. 4.") and "Kobe_1995_TAK-090" in caption
+    assert "stands in" in caption and "RRS228" in caption
+    assert f"T_p = {at['ricker_T_p']:.2f} s" in caption and f"R^2 = {at['ricker_r2']:.2f}" in caption
+    assert "Mavroeidis-Papageorgiou" in caption
+    assert figures.read_caption(out) == caption
+    # without the record dataset: the Ricker wavelet alone, saying so
+    assert "drawn alone" in figures.draw("fig4", {}, [tmp_path / "alone.png"], {"dpi": 60})
+
+
+def test_records_figure_states_the_numbers(tmp_path, record_sets):
+    from isoslide.record_study import ratio_summary
+
+    ds = record_sets["records"]
+    outs = [tmp_path / "records.png", tmp_path / "records.pdf"]
+    caption = figures.draw("records", {"records": ds}, outs, {"dpi": 60})
+    a = ratio_summary(ds, ds.attrs["tolerance"]).sel(record="all")
+    assert caption.startswith("Records.") and "Northridge_1994_PAC-175" in caption
+    assert f"median {float(a['median_ratio']):.2f}" in caption
+    assert f"only the pulse in {int(a['n_only_pulse'])}" in caption
+    for p in outs:
+        assert p.stat().st_size > 1000
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    a2, b2 = tmp_path / "a" / "records.pdf", tmp_path / "b" / "records.pdf"
+    figures.draw("records", {"records": ds}, [a2], {"dpi": 50})
+    figures.draw("records", {"records": ds}, [b2], {"dpi": 50})
+    assert a2.read_bytes() == b2.read_bytes()

@@ -138,3 +138,28 @@ def test_compare_grid_real_record_smoke():
     ds = S.compare_grid(["Northridge_1994_PAC-175"], [0.4], [0.0, 1.0])
     assert np.all(ds["pi1_record"].values >= 0) and np.all(np.isfinite(ds["pi1_record"].values))
     assert np.all(ds["pi1_pulse"].values > 0)
+
+
+def test_pipeline_datasets_cf_attrs_and_order(tmp_path):
+    from isoslide import datasets
+
+    settings = S.records_settings({"records": {"names": ["Northridge_1994_VSP-360", "Northridge_1994_PAC-175"],
+                                               "pi2": {"start": 0.3, "stop": 0.6, "num": 2}, "pi3": [1.0]},
+                                   "defaults": {"pi8": 1e-5}})
+    assert settings["records"]["pi4"] == S.RECORDS_DEFAULTS["pi4"]
+    parts = [S.record_dataset(n, settings) for n in ("Northridge_1994_PAC-175", "Northridge_1994_VSP-360")]
+    ds = S.records_dataset(parts, settings)
+    assert list(ds["record"].values) == ["Northridge_1994_VSP-360", "Northridge_1994_PAC-175"]   # config order
+    assert ds["pi1_record"].dims == ("record", "pi2", "pi3")
+    for v in ("pi1_record", "pi1_pulse", "ratio", "a_p", "T_p", "pi2", "pi3"):
+        assert ds[v].attrs["long_name"] and "units" in ds[v].attrs
+    assert ds["slides_record"].dtype == np.int8 and ds["slides_record"].attrs["flag_meanings"] == "no yes"
+    assert ds.attrs["Conventions"].startswith("CF") and "isoslide_config" in ds.attrs
+    assert ds.attrs["tolerance"] == 0.25 and ds.attrs["summary_n_cells"] == 4
+    path = datasets.write_netcdf(ds, tmp_path / "records.nc")
+    back = datasets.open_dataset(path)
+    datasets.assert_same_data(ds, back)
+    with pytest.raises(ValueError, match="no part for record"):
+        S.records_dataset(parts[:1], settings)
+    f4 = S.fig4_dataset(settings)
+    assert f4.attrs["Conventions"].startswith("CF") and f4.attrs["record"] == S.FIG4_RECORD

@@ -482,7 +482,7 @@ def records(datasets, settings=None):
     fig.text(0.01, 0.005, note, fontsize=6.3, color="0.25", ha="left", va="bottom", wrap=True)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     a = summ.sel(record="all")
-    caption = (f"Records. Peak sliding Pi1 under {len(names)} real pulse-like records ({', '.join(names)}) "
+    caption = (f"Records. Peak sliding Pi1 under {len(names)} real pulse-like record{'s' if len(names) > 1 else ''} ({', '.join(names)}) "
                f"and under each record's fitted {_shape_name(ds)} pulse, over Pi2 = "
                f"{float(ds['pi2'].min()):g}...{float(ds['pi2'].max()):g} ({ds.sizes['pi2']} values) and "
                f"Pi3 = {_list(ds['pi3'])}, with the fitted a_p and T_p as the scales. Over all "
