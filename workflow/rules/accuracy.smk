@@ -11,6 +11,14 @@
 import isoslide.accuracy as _accuracy
 import isoslide.sweep as _sweep
 
+try:  # hash of the package code the measurement runs, so that editing it reruns the jobs
+    from isoslide.datasets import code_hash as _code_hash
+
+    ACCURACY_CODE = _code_hash(include=("accuracy", "solver", "kernel", "pulses", "scene", "reference",
+                                        "regularized", "sweep", "datasets"))
+except ImportError:  # pragma: no cover - older package without code_hash
+    ACCURACY_CODE = ""
+
 ACCURACY_PARTS = list(_accuracy.PARTS)
 # what the measurement depends on: the accuracy settings and the studies with the keys they inherit
 ACCURACY_CONFIG = _sweep.jsonable(
@@ -26,6 +34,7 @@ rule accuracy_part:
         "results/accuracy/{part}.nc",
     params:
         config=ACCURACY_CONFIG,
+        code=ACCURACY_CODE,
     wildcard_constraints:
         part="|".join(ACCURACY_PARTS),
     conda:
@@ -43,6 +52,7 @@ rule accuracy_dataset:
         "results/datasets/accuracy.nc",
     params:
         config=ACCURACY_CONFIG,
+        code=ACCURACY_CODE,
     conda:
         "../envs/isoslide.yaml"
     log:
