@@ -48,4 +48,6 @@ rule all:
         RECORD_FIGURE_FILES,
         "reports/records.html",
         "reports/figures.html",
+        "results/datasets/accuracy.nc",
+        "reports/accuracy.html",
     default_target: True

@@ -69,7 +69,8 @@ def test_dry_run_plans_the_whole_dag(wf):
     _, out = snakemake(wf, "-n", *TEST_CONFIG, timeout=300)
     rules = {r for r, _ in planned_jobs(out)}
     assert {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure", "report_similarity",
-            "report_figures", "all"} <= rules
+            "report_figures", "fig4_record", "record_compare", "records_dataset", "figure_records",
+            "report_records", "accuracy_part", "accuracy_dataset", "report_accuracy", "all"} <= rules
     chunk_wildcards = [w for r, w in planned_jobs(out) if r == "solve_chunk"]
     assert all(re.fullmatch(r"study=\w+, chunk=\d+", w) for w in chunk_wildcards)
 
@@ -115,7 +116,35 @@ def test_tiny_config_runs_end_to_end(full_run):
     assert "Buckingham" in sim and "Verdict" in sim and "Traceback" not in sim
     gallery = (wf / "reports" / "figures.html").read_text()
     assert "Figure 8" in gallery and "Fig. 8." in gallery and "Traceback" not in gallery
+    assert "Record versus pulse" in gallery and "Records. Peak sliding" in gallery
     assert not list((wf / "results").rglob(".*.tmp")) and not list((wf / "reports").glob(".*tmp*"))
+
+
+@pytest.mark.slow
+def test_records_outputs(full_run):
+    from isoslide.figures import read_caption
+    from isoslide.record_study import FIG4_RECORD, ratio_summary
+
+    wf, _ = full_run
+    cfg = yaml.safe_load((wf / "config" / "test.yaml").read_text())["records"]
+    ds = datasets.open_dataset(wf / "results" / "datasets" / "records.nc")
+    assert ds["pi1_record"].dims == ("record", "pi2", "pi3")
+    assert dict(ds.sizes) == {"record": len(cfg["names"]), "pi2": cfg["pi2"]["num"], "pi3": len(cfg["pi3"])}
+    assert list(ds["record"].values) == cfg["names"]
+    for v in ("pi1_record", "pi1_pulse", "ratio", "pi2", "pi3", "a_p", "T_p", "r2"):
+        assert ds[v].attrs.get("long_name") and "units" in ds[v].attrs, v
+    assert ds.attrs["Conventions"].startswith("CF") and "isoslide_config" in ds.attrs
+    f4 = datasets.open_dataset(wf / "results" / "datasets" / "fig4_record.nc")
+    assert f4.attrs["record"] == FIG4_RECORD and "accel_record" in f4 and "accel_ricker" in f4
+    caption = read_caption(wf / "reports" / "figures" / "fig4.png")
+    assert FIG4_RECORD in caption and "RRS228" in caption and "R^2" in caption
+    for ext in ("png", "pdf"):
+        assert (wf / "reports" / "figures" / f"records.{ext}").stat().st_size > 1000
+    html = (wf / "reports" / "records.html").read_text()
+    a = ratio_summary(ds, ds.attrs["tolerance"]).sel(record="all")
+    assert "Record versus pulse" in html and "Traceback" not in html
+    assert f"{float(a['median_ratio']):.2f}" in html and f"{int(a['n_both_slide'])}" in html
+    assert "accuracy" in (wf / "reports" / "accuracy.html").read_text().lower()
 
 
 @pytest.mark.slow
@@ -133,9 +162,22 @@ def test_changing_one_study_reruns_only_that_study(full_run):
     jobs = planned_jobs(out)
     per_study = {(r, w) for r, w in jobs if "study=" in w}
     assert per_study and all("study=fig7_pi7" in w for _, w in per_study), per_study
+    # the accuracy scene set is drawn from the studies, so it is measured again; the records are not
     assert {r for r, _ in jobs} <= {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure",
-                                     "report_similarity", "report_figures", "all"}
+                                     "report_similarity", "report_figures", "accuracy_part", "accuracy_dataset",
+                                     "report_accuracy", "all"}
     assert {w for r, w in jobs if r == "figure"} == {"fig=fig7"}
+
+
+@pytest.mark.slow
+def test_changing_the_records_reruns_only_record_jobs(full_run):
+    wf, _ = full_run
+    (wf / "config" / "rec.yaml").write_text(yaml.safe_dump({"records": {"pi4": 0.2}}))
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/rec.yaml", timeout=300)
+    rules = {r for r, _ in planned_jobs(out)}
+    assert {"record_compare", "records_dataset", "figure_records", "report_records"} <= rules
+    assert rules <= {"record_compare", "records_dataset", "figure_records", "report_records", "report_figures",
+                     "all"}, rules
 
 
 @pytest.mark.slow

@@ -38,6 +38,7 @@ RECORDS_SETTINGS = sweep.jsonable(
     {"records": config["records"], "defaults": config["defaults"], "solver": config["solver"]}
 )
 RECORDS = list(config["records"]["names"])
+FIG4_SETTINGS = {"records": {"fig4": config["records"]["fig4"]}}  # Fig. 4 depends on its record only
 RECORD_FIGURE_FILES = expand("reports/figures/records.{ext}", ext=FORMATS)
 
 for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():

@@ -8,7 +8,7 @@ rule fig4_record:
         "results/datasets/fig4_record.nc",
     params:
         code=RECORDS_CODE,
-        settings=RECORDS_SETTINGS,
+        settings=FIG4_SETTINGS,
     conda:
         "../envs/isoslide.yaml"
     log:
