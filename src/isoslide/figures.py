@@ -471,11 +471,18 @@ def records(datasets, settings=None):
     ax.set_ylabel(r"$\Pi_1$ under the fitted pulse")
     _note_title(ax, f"({'abcdefghijkl'[len(names)]}) all records, cells where both slide",
                 _summary_line(summ.sel(record="all"), tol))
-    ax.legend(loc="lower right", fontsize=5.8, handlelength=1.0)
-    for ax in axs[n:]:
+    if len(axs) > n:   # an empty panel: the legend of the scatter goes there, clear of the points
+        handles, labels = ax.get_legend_handles_labels()
+        axs[n].legend(handles, labels, loc="center left", fontsize=6.5, title="panel "
+                      f"({'abcdefghijkl'[len(names)]})", title_fontsize=6.5)
+        axs[n].set_axis_off()
+    else:
+        ax.legend(loc="upper left", fontsize=5.8, handlelength=1.0, borderaxespad=0.2)
+    for ax in axs[n + 1:]:
         ax.set_visible(False)
-    note = (f"Solid: real record; dashed: its fitted {_shape_name(ds)} pulse. The fitted a_p and "
-            f"T_p scale both, so the ratio Pi1_pulse/Pi1_record is the ratio of the physical peak sliding. "
+    note = (f"Solid: real record; dashed: its fitted {_shape_name(ds)} pulse (in its own a_p and T_p the same "
+            f"master curves for every record). The fitted a_p and T_p scale both, so the ratio "
+            f"Pi1_pulse/Pi1_record is the ratio of the physical peak sliding. "
             f"Fixed: Pi4 = {float(ds.attrs['pi4']):g}, Pi5 = {float(ds.attrs['pi5']):g}, "
             f"Pi6 = {float(ds.attrs['pi6']):g}, Pi7 = {float(ds.attrs['pi7']):g}, "
             f"Pi8 = {float(ds.attrs['pi8']):g}.")
@@ -485,7 +492,9 @@ def records(datasets, settings=None):
     caption = (f"Records. Peak sliding Pi1 under {len(names)} real pulse-like record{'s' if len(names) > 1 else ''} ({', '.join(names)}) "
                f"and under each record's fitted {_shape_name(ds)} pulse, over Pi2 = "
                f"{float(ds['pi2'].min()):g}...{float(ds['pi2'].max()):g} ({ds.sizes['pi2']} values) and "
-               f"Pi3 = {_list(ds['pi3'])}, with the fitted a_p and T_p as the scales. Over all "
+               f"Pi3 = {_list(ds['pi3'])}, with the fitted a_p and T_p as the scales (solid: record, dashed: pulse; "
+               f"scaled by its own a_p and T_p the fitted pulse gives the same master curves for every record). "
+               f"Over all "
                f"{int(a['n_cells'])} cells: both slide in {int(a['n_both_slide'])}, where the ratio "
                f"Pi1_pulse/Pi1_record has median {float(a['median_ratio']):.2f}, P10-P90 "
                f"{float(a['p10_ratio']):.2f}-{float(a['p90_ratio']):.2f}, and {_pct(a['within_tol'])} of cells lie "
