@@ -59,7 +59,7 @@ M_W2, M_CW, M_P8, M_THR, M_PI2, M_PI6, M_PI7, M_FIXED, M_COULOMB = range(9)
 N_M = 9
 
 # integer results
-R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST = range(5)
+R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_LOC_STICK, R_LOC_SLIP, R_LOC_PEAK, R_REJECTED = range(9)
 # float results
 F_UMAX, F_TPEAK, F_URES, F_TEND, F_AMAX, F_VMAX = range(6)
 
@@ -196,9 +196,18 @@ def _event_value(kind, sig, stick, s, tau, y, m, code, params, work):
     if kind == 1:
         deriv(False, s, tau, y, m, code, params, work)
         return s * y[3], s * work[3]
-    # kind 2: derivative of the rate by a centred difference of the rate itself
-    r = sig * a_req_rate(tau, y, m, code, params, work)
-    return r, NAN
+    # kind 2: the rate of the stuck demand and, for the isolated base, its
+    # derivative in closed form (x''' = -p' - (c x'' + k x') / (1 + Pi8))
+    if m[M_FIXED] != 0.0:
+        return sig * jerk_at(code, params, tau), NAN
+    mt = 1.0 + m[M_P8]
+    cw = m[M_CW]
+    w2 = m[M_W2]
+    xdd = -accel_at(code, params, tau) - (cw * y[1] + w2 * y[0]) / mt
+    xddd = -jerk_at(code, params, tau) - (cw * xdd + w2 * y[1]) / mt
+    r = -(cw * xdd + w2 * y[1]) / mt
+    dr = -(cw * xddd + w2 * xdd) / mt
+    return sig * r, sig * dr
 
 
 @njit(cache=True)
@@ -272,7 +281,7 @@ def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, h0, check, m, code, para
         if not (lo < h < hi):
             h = 0.5 * (lo + hi)
         err = rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, yout)
-        cnt[0] += 1
+        cnt[kind] += 1
         g, dg = _event_value(kind, sig, stick, s, tau + h, yout, m, code, params, work)
         if g == 0.0:
             res, on_res = h, True
@@ -301,11 +310,11 @@ def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, h0, check, m, code, para
             h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
     if not on_res:
         err = rk_step(stick, s, tau, y, res, m, code, params, atol, rtol, K, yout)
-        cnt[0] += 1
+        cnt[kind] += 1
     if check and err <= 1.0:
         yv = yout.copy()
         err = max(err, verify(stick, s, tau, y, res, yv, m, code, params, atol, rtol, K))
-        cnt[0] += 2
+        cnt[kind] += 2
         for i in range(4):
             yout[i] = yv[i]
     return res, err
@@ -351,7 +360,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     ye = np.empty(4)
     K = np.empty((NS + 2, 4))
     work = np.empty(4)
-    cnt = np.zeros(1, dtype=np.int64)
+    cnt = np.zeros(4, dtype=np.int64)
     hist = np.empty((hist_cap if hist_cap > 0 else 1, 6))
     nh = 0
     tau = tau_start
@@ -443,6 +452,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 steps += 2
             if err <= 1.0:
                 break
+            cnt[3] += 1
             fac = max(0.2, 0.9 * err ** (-1.0 / 8.0))
             h *= fac
             hit_target = False
@@ -533,7 +543,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     for k in range(200):
                         hp *= 0.5
                         rk_step(stick, s, tau, y, hp, m, code, params, atol, rtol, K, ye)
-                        cnt[0] += 1
+                        cnt[1] += 1
                         gp = s * ye[3]
                         if gp > 0.0 or hp < 1e-300:
                             break
@@ -598,6 +608,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         if abs(y[2]) > umax:
             umax = abs(y[2])
             tpeak = tau
-    ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh], dtype=np.int64)
+    ints = np.array([steps + cnt[0] + cnt[1] + cnt[2], events, 1 if settled else 0, 1 if slipped else 0, nh,
+                     cnt[0], cnt[1], cnt[2], cnt[3]], dtype=np.int64)
     floats = np.array([umax, tpeak, y[2], tau, amax, vmax])
     return ints, floats, hist[:nh]
