@@ -56,6 +56,8 @@ ATOL_SCALE = 1e-3
 H_MAX_PULSE = 0.15
 H_RESTART = 1e-4
 MIN_INTEGRATOR_RTOL = 1e-14
+MANY_EVENTS = 50
+"""Above this many transitions the local tolerance is tightened in proportion (one refinement pass)."""
 DEFAULT_HORIZON = 200.0
 """Follow-up after the pulse, in isolation periods (pulse periods for a fixed base)."""
 
@@ -347,13 +349,17 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
                 out, oneway = trial, True
     if out is None:
         out = run(pi8)
-        # near the no-slide threshold Pi1 is ill-conditioned: refine once
+        # refine once where Pi1 is ill-conditioned: near the no-slide threshold,
+        # and where errors add up over very many transitions
         pi1 = out[1][kernel.F_UMAX]
-        if 0.0 < pi1 and not fixed:
-            need = near_threshold_rtol(scene, rtol, pi1)
-            if need < integrator_rtol(scene, rtol, horizon):
+        if 0.0 < pi1:
+            used = integrator_rtol(scene, rtol, horizon)
+            need = used * min(1.0, MANY_EVENTS / max(out[0][kernel.R_EVENTS], 1))
+            if not fixed:
+                need = min(need, near_threshold_rtol(scene, rtol, pi1))
+            if need < used:
                 out = _run(scene, pi8, friction, rtol, hist_cap, horizon, max_step=max_step,
-                           settle=settle, irtol=need)
+                           settle=settle, irtol=max(need, MIN_INTEGRATOR_RTOL))
     ints, floats, hist = out
     noslide = ints[kernel.R_SLIPPED] == 0
     label = _label(fixed, noslide, coulomb, oneway)
