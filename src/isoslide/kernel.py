@@ -24,7 +24,7 @@ When ``u'`` returns to zero the block sticks if ``|a_req| <= Pi2/Pi5``,
 otherwise it reverses at once.  Phases are integrated with the explicit
 Dormand-Prince 8(5,3) pair (coefficients from SciPy); every transition is
 located by a safeguarded Newton iteration on the step length, re-stepping from
-the last accepted point, so it is found to round-off.  Steps end exactly on the
+the last accepted point, so it is found to ~1e-13 T_p.  Steps end exactly on the
 pulse breakpoints.
 
 Stopping (settlement): after the pulse (``tau >= tau_end``, ``p = 0``) the
