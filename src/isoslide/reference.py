@@ -76,7 +76,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .pulses import accel_at
-from .scene import Scene
+from .scene import Scene, to_metres
 
 __all__ = ["ReferenceResult", "History", "solve_reference", "friction_level", "stuck_supremum"]
 
@@ -149,9 +149,7 @@ class ReferenceResult:
 
     def metres(self, scene: Scene) -> float:
         """``u_max`` in metres for a scene built with :meth:`Scene.from_physical`."""
-        if scene.scale is None:
-            raise ValueError("scene has no physical scale; build it with Scene.from_physical")
-        return self.pi1 * scene.scale.length
+        return to_metres(self.pi1, scene)
 
 
 def _sech(a: float) -> float:

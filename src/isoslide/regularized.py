@@ -83,7 +83,7 @@ from scipy.optimize import minimize_scalar
 
 from .pulses import accel_at
 from .reference import History, _default_horizon, _sech
-from .scene import Scene
+from .scene import Scene, to_metres
 
 __all__ = ["RegularizedResult", "solve_regularized"]
 
@@ -132,9 +132,7 @@ class RegularizedResult:
 
     def metres(self, scene: Scene) -> float:
         """``u_max`` in metres for a scene built with :meth:`Scene.from_physical`."""
-        if scene.scale is None:
-            raise ValueError("scene has no physical scale; build it with Scene.from_physical")
-        return self.pi1 * scene.scale.length
+        return to_metres(self.pi1, scene)
 
 
 def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,

@@ -208,6 +208,14 @@ def _resolve_pulse(pulse, a_p=None, T_p=None) -> Pulse:
     return get_pulse(pulse)
 
 
+def to_metres(pi1: float, scene: Scene) -> float:
+    """A dimensionless length (units of ``a_p T_p^2``, e.g. Pi1) in metres for a
+    scene built with :meth:`Scene.from_physical`."""
+    if scene.scale is None:
+        raise ValueError("scene has no physical scale; build it with Scene.from_physical")
+    return pi1 * scene.scale.length
+
+
 def paper_groups(a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0, g=G_STANDARD) -> dict:
     """The eight groups exactly as the paper prints them (Eq. 5), for comparison.
 
