@@ -2,7 +2,7 @@
 
 Every expected value here is either a closed form, an invariance of the
 physics, or the public reference values of an independent solver (copied
-below; the product never reads ../shared).
+into tests/public_cases.py; the product never reads ../shared).
 """
 
 import math
@@ -14,34 +14,8 @@ import isoslide
 from isoslide import Scene, paper_groups, pulses, solve, solve_many
 from isoslide.solver import peak_stuck_demand
 
-# Independent event-driven solver (adaptive RK8 per phase, rtol 1e-12),
-# converged to about 1e-9 relative: shared/reference/public_cases.json.
-PUBLIC_PI_CASES = [
-    # pi2, pi3, pi4, pi5, pi6, pi7, pi8, pi1
-    (0.15, 0, 0.0, 1.0, 0, 0, 1e-05, 0.054538872938323886),
-    (0.25, 0, 0.0, 1.0, 0, 0, 1e-05, 0.05582108320729039),
-    (0.45, 0, 0.0, 1.0, 0, 0, 1e-05, 0.029266334156860033),
-    (0.6, 0, 0.0, 1.0, 0, 0, 1e-05, 0.01426380926379604),
-    (0.2, 0, 0.0, 0.75, 500, 0, 1e-05, 0.060922851513809745),
-    (0.1, 1.0, 0.1, 1.0, 0, 0, 1e-05, 0.12410347317117676),
-    (0.3, 1.0, 0.1, 1.0, 0, 0, 1e-05, 0.1316826017550003),
-    (0.2, 2.0, 0.05, 1.0, 0, 0, 1e-05, 0.09837793114060712),
-    (0.05, 3.0, 0.2, 1.0, 0, 0, 1e-05, 0.05214987881021767),
-    (0.15, 0.5, 0.15, 1.0, 0, 0, 1e-05, 0.06171021824036774),
-    (0.2, 1.0, 0.1, 0.7, 1000, 0, 1e-05, 0.1480298230458512),
-    (0.1, 1.0, 0.1, 1.0, 0, 0, 0.1, 0.11924631005935986),
-    (0.05, 2.0, 0.1, 1.0, 0, 0, 0.5, 0.07814573309873929),
-    (0.8, 1.0, 0.1, 1.0, 0, 0, 1e-05, 0.05101886047487468),
-    (1.0, 3.0, 0.1, 1.0, 0, 0, 1e-05, 0.0),
-]
-PUBLIC_PHYSICAL_CASES = [
-    (dict(a_p=6.0, T_p=1.2, M_b=8e5, T_b=2.4, xi_b=0.1, m_ec=800.0, mu_s=0.25, mu_k=0.2,
-          beta=200.0, gamma=0.05), 0.22592596746266558),
-    (dict(a_p=6.0, T_p=0.8, M_b=2e6, T_b=0.8, xi_b=0.15, m_ec=2e4, mu_s=0.4, mu_k=0.3,
-          beta=50.0, gamma=0.02), 0.30628117925119686),
-    (dict(a_p=3.0, T_p=1.5, M_b=1e6, T_b=3.0, xi_b=0.1, m_ec=1000.0, mu_s=0.15, mu_k=0.15,
-          beta=0.0, gamma=0.0), 0.020830347570352046),
-]
+from public_cases import PHYSICAL_CASES as PUBLIC_PHYSICAL_CASES  # noqa: E402
+from public_cases import PI_CASES as PUBLIC_PI_CASES  # noqa: E402
 
 
 def rel(a, b):
@@ -50,7 +24,7 @@ def rel(a, b):
 
 @pytest.mark.parametrize("case", PUBLIC_PI_CASES)
 def test_public_pi_cases(case):
-    *pis, expected = case
+    *pis, expected, _note = case
     sol = solve(Scene(*pis))
     assert sol.settled
     if expected == 0.0:
