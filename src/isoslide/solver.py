@@ -225,7 +225,7 @@ def _run(scene: Scene, pi8: float, coulomb: float, rtol: float, hist_cap: int = 
                       hist_cap, min(H_RESTART, max_step), settle)
 
 
-def _impulse_velocity_l1(scene: Scene, pi8: float) -> float:
+def _impulse_velocity_l1(scene: Scene) -> float:
     """Bound on int_0^inf |h'(tau)| dtau for the base oscillator (h: displacement impulse response)."""
     w = 2.0 * math.pi / scene.pi3
     z = scene.pi4
@@ -339,11 +339,14 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     hist_cap = 200_000 if history else 0
     pi8 = 0.0 if fixed else scene.pi8
     oneway = pi8 == 0.0
-    run = lambda p8: _run(scene, p8, friction, rtol, hist_cap, horizon, max_step=max_step,  # noqa: E731
-                          settle=settle)
+    def run(p8, irtol=None):
+        return _run(scene, p8, friction, rtol, hist_cap, horizon, max_step=max_step, settle=settle,
+                    irtol=irtol)
+
     out = None
+    p8_used = pi8
     if model == "auto" and pl["oneway_possible"] and pi8 > 0.0:
-        l1 = _impulse_velocity_l1(scene, pi8)
+        l1 = _impulse_velocity_l1(scene)
         span = scene.pulse.tau_end - scene.pulse.tau_start
         if 2.0 * 2.0 * span * pi8 * scene.static_level * l1 <= 0.1 * rtol:
             trial = run(0.0)
@@ -351,20 +354,19 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
             T = 2.0 * (floats[kernel.F_TEND] - scene.pulse.tau_start)
             bound = 2.0 * T * pi8 * scene.static_level * l1
             if bound <= 0.1 * rtol * floats[kernel.F_UMAX]:
-                out, oneway = trial, True
+                out, oneway, p8_used = trial, True, 0.0
     if out is None:
         out = run(pi8)
-        # refine once where Pi1 is ill-conditioned: near the no-slide threshold,
-        # and where errors add up over very many transitions
-        pi1 = out[1][kernel.F_UMAX]
-        if 0.0 < pi1:
-            used = integrator_rtol(scene, rtol, horizon)
-            need = used * min(1.0, MANY_EVENTS / max(out[0][kernel.R_EVENTS], 1))
-            if not fixed:
-                need = min(need, near_threshold_rtol(scene, rtol, pi1))
-            if need < used:
-                out = _run(scene, pi8, friction, rtol, hist_cap, horizon, max_step=max_step,
-                           settle=settle, irtol=max(need, MIN_INTEGRATOR_RTOL))
+    # refine once where Pi1 is ill-conditioned: near the no-slide threshold,
+    # and where errors add up over very many transitions
+    pi1 = out[1][kernel.F_UMAX]
+    if 0.0 < pi1:
+        used = integrator_rtol(scene, rtol, horizon)
+        need = used * min(1.0, MANY_EVENTS / max(out[0][kernel.R_EVENTS], 1))
+        if not fixed:
+            need = min(need, near_threshold_rtol(scene, rtol, pi1))
+        if need < used:
+            out = run(p8_used, irtol=max(need, MIN_INTEGRATOR_RTOL))
     ints, floats, hist = out
     noslide = ints[kernel.R_SLIPPED] == 0
     label = _label(fixed, noslide, coulomb, oneway)
