@@ -312,11 +312,8 @@ def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, h0, check, m, code, para
         err = rk_step(stick, s, tau, y, res, m, code, params, atol, rtol, K, yout)
         cnt[kind] += 1
     if check and err <= 1.0:
-        yv = yout.copy()
-        err = max(err, verify(stick, s, tau, y, res, yv, m, code, params, atol, rtol, K))
+        err = max(err, verify(stick, s, tau, y, res, yout, m, code, params, atol, rtol, K))
         cnt[kind] += 2
-        for i in range(4):
-            yout[i] = yv[i]
     return res, err
 
 
