@@ -1,0 +1,163 @@
+"""The Pi-group registry: every dimensionless group, defined once.
+
+Buckingham's theorem with the repeating variables ``a_p`` (pulse acceleration
+amplitude, m/s^2), ``T_p`` (pulse period, s) and ``M_b`` (isolated mass, kg)
+turns the eleven physical parameters of the paper's model into one result
+group and seven input groups:
+
+========  =====================  =========================================  =================
+group     definition             meaning                                    valid range
+========  =====================  =========================================  =================
+Pi1       u_max / (a_p T_p^2)    peak sliding displacement (the result)     >= 0
+Pi2       mu_k g / a_p           kinetic friction strength                  0 < Pi2 < inf
+Pi3       T_b / T_p              isolation-to-pulse period ratio, 0 = fixed 0 <= Pi3 <= 1e4
+Pi4       xi_b                   isolation damping ratio (>= 1 overdamped)  0 <= Pi4 <= 1e3
+Pi5       mu_k / mu_s            kinetic-to-static friction ratio           0 < Pi5 <= 1
+Pi6       beta a_p T_p           Stribeck transition sharpness              0 <= Pi6 <= 1e12
+Pi7       gamma g T_p            viscous contact group                      0 <= Pi7 <= 1e6
+Pi8       m_EC / M_b             contents-to-isolated mass ratio            0 <= Pi8 <= 1e3
+========  =====================  =========================================  =================
+
+Scene validation, dataset attributes, figure labels, the similarity check's
+definitions, study dimension names and the command-line help are all derived
+from :data:`GROUPS`; adding a group here adds it everywhere.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .validation import check_range, range_text
+
+
+@dataclass(frozen=True)
+class Group:
+    """One dimensionless group.
+
+    Attributes
+    ----------
+    name : str
+        Identifier (``"pi2"``); the keyword of :class:`isoslide.Scene` and the
+        dataset dimension name.
+    definition : str
+        Plain-text definition in physical parameters (``"mu_k g / a_p"``).
+    meaning : str
+        Short meaning (``"kinetic friction strength"``).
+    tex : str
+        TeX symbol without dollars (``r"\\Pi_2"``).
+    tex_definition : str
+        TeX definition without dollars (``r"\\mu_k g / a_p"``).
+    unicode : str
+        Plain Unicode symbol (``"Π₂"``).
+    lo, hi : float
+        Bounds of the valid range.
+    lo_in, hi_in : bool
+        Whether the bounds are included.
+    default : float or None
+        Value a :class:`isoslide.Scene` takes when the group is not given;
+        ``None`` when the group must be given.
+    comment : str
+        Longer note for dataset attributes.
+    paper_definition : str
+        The definition as the paper prints it (Eq. 5) when it differs.
+    units : str
+        CF units string; ``"1"`` for every dimensionless group.
+    """
+
+    name: str
+    definition: str
+    meaning: str
+    tex: str
+    tex_definition: str
+    unicode: str
+    lo: float = 0.0
+    hi: float = math.inf
+    lo_in: bool = True
+    hi_in: bool = True
+    default: float | None = None
+    comment: str = ""
+    paper_definition: str = ""
+    units: str = "1"
+
+    @property
+    def label(self) -> str:
+        """Axis label in TeX (with dollars): ``$\\Pi_2 = \\mu_k g / a_p$``."""
+        return f"${self.tex} = {self.tex_definition}$"
+
+    @property
+    def long_name(self) -> str:
+        """CF ``long_name``: ``"Pi2 = mu_k g / a_p: kinetic friction strength"``."""
+        return f"{self.name.capitalize()} = {self.definition}: {self.meaning}"
+
+    @property
+    def range_text(self) -> str:
+        """The valid range as text, e.g. ``0 < value <= 1``."""
+        return range_text(self.lo, self.hi, self.lo_in, self.hi_in)
+
+    @property
+    def printed(self) -> str:
+        """The definition as the paper prints it."""
+        return self.paper_definition or self.definition
+
+    def check(self, value) -> float:
+        """``float(value)`` or ``ValueError`` naming the group, the value and the range."""
+        return check_range(self.name, value, self.lo, self.hi, self.lo_in, self.hi_in)
+
+    def attrs(self) -> dict:
+        """CF attributes of a variable or coordinate holding this group."""
+        out = {"long_name": self.long_name, "units": self.units}
+        if self.comment:
+            out["comment"] = self.comment
+        return out
+
+
+RESULT = Group(
+    "pi1", "u_max / (a_p T_p^2)",
+    "peak sliding displacement of the contents relative to the floor",
+    r"\Pi_1", r"u_{max}\,/\,(a_p T_p^2)", "Π₁",
+    comment="peak |u_s| over the whole response, in units of the pulse length scale a_p T_p^2")
+"""The result group Pi1."""
+
+INPUTS = (
+    Group("pi2", "mu_k g / a_p", "kinetic friction strength", r"\Pi_2", r"\mu_k g\,/\,a_p", "Π₂",
+          lo_in=False, hi_in=False,
+          comment="kinetic friction coefficient times g over the pulse acceleration amplitude; "
+                  "the abscissa of the master curves"),
+    Group("pi3", "T_b / T_p", "isolation-to-pulse period ratio", r"\Pi_3", r"T_b/T_p", "Π₃",
+          hi=1e4, comment="T_b = 2 pi sqrt(M_b / k_b) with the isolated mass M_b alone; 0 = fixed base"),
+    Group("pi4", "xi_b", "isolation damping ratio", r"\Pi_4", r"\xi_b", "Π₄",
+          hi=1e3, default=0.0, comment="xi_b = c_b / (2 sqrt(k_b M_b)); >= 1 is over-damped"),
+    Group("pi5", "mu_k / mu_s", "kinetic-to-static friction ratio", r"\Pi_5", r"\mu_k/\mu_s", "Π₅",
+          lo_in=False, hi=1.0, default=1.0, comment="1 = Coulomb friction"),
+    Group("pi6", "beta a_p T_p", "Stribeck transition sharpness", r"\Pi_6", r"\beta a_p T_p", "Π₆",
+          hi=1e12, default=0.0,
+          comment="beta (s/m) sets the speed of the static-to-kinetic transition in mu(v); "
+                  "0 = friction mu_s at every speed"),
+    Group("pi7", "gamma g T_p", "viscous contact group", r"\Pi_7", r"\gamma g T_p", "Π₇",
+          hi=1e6, default=0.0, paper_definition="gamma a_p T_p",
+          comment="the paper prints gamma a_p T_p, which is a similarity group only when a_p = g; "
+                  "see isoslide.scene"),
+    Group("pi8", "m_EC / M_b", "contents-to-isolated mass ratio", r"\Pi_8", r"m_{EC}/M_b", "Π₈",
+          hi=1e3, default=1e-5, comment="mass of the sliding contents over the isolated mass"),
+)
+"""The input groups, in the order of :class:`isoslide.Scene`'s arguments."""
+
+GROUPS = {g.name: g for g in (RESULT, *INPUTS)}
+"""Every group by name, the result first."""
+
+INPUT_NAMES = tuple(g.name for g in INPUTS)
+"""Names of the input groups, in order (``("pi2", ..., "pi8")``)."""
+
+
+def group(name: str) -> Group:
+    """The group called ``name``; ``KeyError`` naming the known groups otherwise."""
+    try:
+        return GROUPS[name]
+    except KeyError:
+        raise KeyError(f"unknown Pi-group {name!r}; known: {list(GROUPS)}") from None
+
+
+def defaults() -> dict:
+    """Default value of every input group that has one (``{"pi4": 0.0, ...}``)."""
+    return {g.name: g.default for g in INPUTS if g.default is not None}
