@@ -31,6 +31,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from .groups import RESULT, group
+from .models import MODEL_LABELS
+
 CONVENTIONS = "CF-1.10"
 
 REFERENCES = (
@@ -39,27 +42,8 @@ REFERENCES = (
     "Newmark, N. M. (1965): Effects of earthquakes on dams and embankments, Geotechnique 15(2), 139-160."
 )
 
-PI_META = {
-    "pi1": ("Pi1 = u_max / (a_p T_p^2): peak sliding displacement of the contents relative to the floor",
-            "peak |u_s| over the whole response, in units of the pulse length scale a_p T_p^2"),
-    "pi2": ("Pi2 = mu_k g / a_p: kinetic friction coefficient times g over pulse acceleration amplitude",
-            "dimensionless frictional resistance; the abscissa of the master curves"),
-    "pi3": ("Pi3 = T_b / T_p: nominal isolation period over pulse period",
-            "T_b = 2 pi sqrt(M_b / k_b) with the isolated mass M_b alone; 0 = fixed base"),
-    "pi4": ("Pi4 = xi_b: isolation damping ratio",
-            "xi_b = c_b / (2 sqrt(k_b M_b))"),
-    "pi5": ("Pi5 = mu_k / mu_s: kinetic over static friction coefficient",
-            "1 = Coulomb friction"),
-    "pi6": ("Pi6 = beta a_p T_p: Stribeck transition sharpness",
-            "beta (s/m) sets the speed of the static-to-kinetic transition in mu(v)"),
-    "pi7": ("Pi7 = gamma g T_p: viscous contact group",
-            "the paper prints gamma a_p T_p, which is a similarity group only when a_p = g; "
-            "see isoslide.scene"),
-    "pi8": ("Pi8 = m_EC / M_b: mass of the contents over isolated mass", ""),
-}
-
 VAR_META = {
-    "pi1": dict(long_name=PI_META["pi1"][0], units="1", comment=PI_META["pi1"][1]),
+    "pi1": RESULT.attrs(),
     "pi1_residual": dict(long_name="residual sliding displacement u_s(t_end) / (a_p T_p^2)", units="1",
                          comment="signed permanent displacement of the contents relative to the floor "
                                  "when the response has settled"),
@@ -77,24 +61,9 @@ VAR_META = {
 
 SOLUTION_FIELDS = ("pi1", "pi1_residual", "tau_peak", "settled", "model", "tau_end", "n_steps", "n_events")
 
-MODELS_FALLBACK = ("no-slide", "fixed-base+no-slide", "coulomb", "coulomb+one-way", "stribeck",
-                   "stribeck+one-way", "fixed-base+coulomb", "fixed-base+stribeck", "regularized",
-                   "reference")
-"""Model labels of :func:`isoslide.solve`, in flag order (codes must never change; new labels
-exported by the solver as ``MODELS`` are appended)."""
-
-
 def model_names() -> tuple:
-    """Model names in the stable order used for the ``model`` flag variable."""
-    try:
-        from . import solver
-        names = getattr(solver, "MODELS", None)
-    except Exception:  # pragma: no cover - solver import failure is reported elsewhere
-        names = None
-    names = tuple(names) if names else MODELS_FALLBACK
-    # keep the fallback order first so codes stay stable when the solver adds names
-    extra = tuple(n for n in names if n not in MODELS_FALLBACK)
-    return MODELS_FALLBACK + extra
+    """Model labels in the stable order of the ``model`` flag variable (:data:`MODEL_LABELS`)."""
+    return MODEL_LABELS
 
 
 def encode_models(models) -> tuple[np.ndarray, dict]:
@@ -179,12 +148,8 @@ def source_text() -> str:
 
 
 def pi_attrs(name: str) -> dict:
-    """``long_name``/``units``/``comment`` of an input or output Pi-group."""
-    long_name, comment = PI_META[name]
-    out = {"long_name": long_name, "units": "1"}
-    if comment:
-        out["comment"] = comment
-    return out
+    """``long_name``/``units``/``comment`` of an input or output Pi-group (from the registry)."""
+    return group(name).attrs()
 
 
 def global_attrs(title: str, history: str, config: dict | None = None, **extra) -> dict:
@@ -248,7 +213,7 @@ def chunk_dataset(grid, indices, batch) -> xr.Dataset:
     ds.attrs = global_attrs(
         title=f"isoslide chunk of study {grid.name}",
         history=f"isoslide.sweep.solve_chunk: {idx.size} scenes (flat indices {idx[0]}..{idx[-1]}) "
-                f"of study {grid.name}" if idx.size else f"isoslide.sweep.solve_chunk: empty chunk",
+                f"of study {grid.name}" if idx.size else "isoslide.sweep.solve_chunk: empty chunk",
         config=grid.spec, study=grid.name)
     return ds
 
@@ -312,7 +277,7 @@ def merge_chunks(chunks, grid) -> xr.Dataset:
     ds.attrs = global_attrs(
         title=f"isoslide master curves: {spec.get('title', grid.name)}",
         history=(f"isoslide.sweep: {grid.size} scenes of study {grid.name} "
-                 f"({' x '.join(f'{d}[{n}]' for d, n in zip(dims, shape))}), solved in "
+                 f"({' x '.join(f'{d}[{n}]' for d, n in zip(dims, shape, strict=True))}), solved in "
                  f"{len(chunks)} chunk(s) of at most {spec.get('chunk_size')} scenes and merged by "
                  f"isoslide.datasets.merge_chunks (exact coordinate join); no timestamps are stored "
                  f"so that identical inputs give identical files"),
@@ -330,7 +295,7 @@ def merge_chunks(chunks, grid) -> xr.Dataset:
 # ----------------------------------------------------------------------------------------------
 
 def encoding_for(ds: xr.Dataset, complevel: int = 4) -> dict:
-    """zlib compression (with shuffle) for every numeric variable and non-scalar coordinate."""
+    """Compression (zlib with shuffle) for every numeric variable and non-scalar coordinate."""
     enc = {}
     for name, var in ds.variables.items():
         if var.dtype.kind in "fiub" and var.ndim > 0:
@@ -379,16 +344,6 @@ def assert_same_data(a: xr.Dataset, b: xr.Dataset) -> None:
         for k in UNSTABLE_ATTRS:
             d.attrs.pop(k, None)
     xr.testing.assert_identical(a2, b2)
-
-
-def merge_chunk_files(paths, spec: dict) -> xr.Dataset:
-    """Open chunk files and :func:`merge_chunks` them into the study dataset of ``spec``."""
-    from .sweep import build_grid
-
-    grid = build_grid(spec)
-    chunks = [open_dataset(p) for p in paths]
-    print(f"merging {len(chunks)} chunk file(s) of study {grid.name} into grid {grid.shape}")
-    return merge_chunks(chunks, grid)
 
 
 @contextlib.contextmanager

@@ -33,7 +33,7 @@ from .validation import check_range, range_text
 
 @dataclass(frozen=True)
 class Group:
-    """One dimensionless group.
+    r"""One dimensionless group.
 
     Attributes
     ----------
@@ -45,9 +45,9 @@ class Group:
     meaning : str
         Short meaning (``"kinetic friction strength"``).
     tex : str
-        TeX symbol without dollars (``r"\\Pi_2"``).
+        TeX symbol without dollars (``r"\Pi_2"``).
     tex_definition : str
-        TeX definition without dollars (``r"\\mu_k g / a_p"``).
+        TeX definition without dollars (``r"\mu_k g / a_p"``).
     unicode : str
         Plain Unicode symbol (``"Π₂"``).
     lo, hi : float
@@ -82,7 +82,7 @@ class Group:
 
     @property
     def label(self) -> str:
-        """Axis label in TeX (with dollars): ``$\\Pi_2 = \\mu_k g / a_p$``."""
+        r"""Axis label in TeX (with dollars): ``$\Pi_2 = \mu_k g / a_p$``."""
         return f"${self.tex} = {self.tex_definition}$"
 
     @property

@@ -1,22 +1,9 @@
 """One scene: a point in Pi-space with its excitation, validated.
 
-The dimensionless groups (Buckingham; repeating variables a_p, T_p, M_b):
-
-========  =====================  =========================================  ================
-group     definition             meaning                                    valid range
-========  =====================  =========================================  ================
-Pi1       u_max / (a_p T_p^2)    peak sliding displacement (the result)     >= 0
-Pi2       mu_k g / a_p           kinetic friction strength                  0 < Pi2 < inf
-Pi3       T_b / T_p              isolation-to-pulse period ratio, 0 = fixed 0 <= Pi3 <= 1e4
-Pi4       xi_b                   isolation damping ratio (>= 1 overdamped)  0 <= Pi4 <= 1e3
-Pi5       mu_k / mu_s            kinetic-to-static friction ratio           0 < Pi5 <= 1
-Pi6       beta a_p T_p           Stribeck transition sharpness              0 <= Pi6 <= 1e12
-Pi7       gamma g T_p            viscous contact group (see note)           0 <= Pi7 <= 1e6
-Pi8       m_EC / M_b             contents-to-isolated mass ratio            0 <= Pi8 <= 1e3
-========  =====================  =========================================  ================
-
-T_b = 2 pi sqrt(M_b / k_b) and xi_b = c_b / (2 sqrt(k_b M_b)) use the isolated
-mass M_b alone (the block is excluded), as in the paper.
+The dimensionless groups, their definitions and valid ranges are those of
+:mod:`isoslide.groups` (repeating variables a_p, T_p, M_b).  T_b = 2 pi
+sqrt(M_b / k_b) and xi_b = c_b / (2 sqrt(k_b M_b)) use the isolated mass M_b
+alone (the block is excluded), as in the paper.
 
 Note on Pi7
 -----------
@@ -42,21 +29,17 @@ import math
 from dataclasses import dataclass, field
 
 from .pulses import Pulse, get_pulse
+from .groups import INPUT_NAMES, INPUTS
+from .groups import defaults as _group_defaults
 from .validation import check_range
+
+_DEFAULTS = _group_defaults()
 
 G_STANDARD = 9.80665
 """Standard gravity, m/s^2."""
 
-PI_RANGES = {
-    "pi2": (0.0, math.inf, False, False),
-    "pi3": (0.0, 1e4, True, True),
-    "pi4": (0.0, 1e3, True, True),
-    "pi5": (0.0, 1.0, False, True),
-    "pi6": (0.0, 1e12, True, True),
-    "pi7": (0.0, 1e6, True, True),
-    "pi8": (0.0, 1e3, True, True),
-}
-"""Valid range of each input group: (low, high, low inclusive, high inclusive)."""
+PI_RANGES = {g.name: (g.lo, g.hi, g.lo_in, g.hi_in) for g in INPUTS}
+"""Valid range of each input group: (low, high, low inclusive, high inclusive), from the registry."""
 
 
 @dataclass(frozen=True)
@@ -114,17 +97,17 @@ class Scene:
 
     pi2: float
     pi3: float
-    pi4: float = 0.0
-    pi5: float = 1.0
-    pi6: float = 0.0
-    pi7: float = 0.0
-    pi8: float = 1e-5
+    pi4: float = _DEFAULTS["pi4"]
+    pi5: float = _DEFAULTS["pi5"]
+    pi6: float = _DEFAULTS["pi6"]
+    pi7: float = _DEFAULTS["pi7"]
+    pi8: float = _DEFAULTS["pi8"]
     pulse: Pulse | str = "ricker"
     scale: PhysicalScale | None = field(default=None, compare=False)
 
     def __post_init__(self):
-        for name, (lo, hi, lo_in, hi_in) in PI_RANGES.items():
-            object.__setattr__(self, name, check_range(name, getattr(self, name), lo, hi, lo_in, hi_in))
+        for g in INPUTS:
+            object.__setattr__(self, g.name, g.check(getattr(self, g.name)))
         object.__setattr__(self, "pulse", _resolve_pulse(self.pulse))
 
     @classmethod
@@ -182,6 +165,7 @@ class Scene:
 
     @property
     def fixed_base(self) -> bool:
+        """True for ``Pi3 = 0``: the floor moves with the ground."""
         return self.pi3 == 0.0
 
     @property
@@ -191,7 +175,7 @@ class Scene:
 
     def pis(self) -> dict:
         """The input groups as a dict ``{"pi2": ..., ..., "pi8": ...}``."""
-        return {k: getattr(self, k) for k in PI_RANGES}
+        return {k: getattr(self, k) for k in INPUT_NAMES}
 
 
 def _resolve_pulse(pulse, a_p=None, T_p=None) -> Pulse:
@@ -209,8 +193,10 @@ def _resolve_pulse(pulse, a_p=None, T_p=None) -> Pulse:
 
 
 def to_metres(pi1: float, scene: Scene) -> float:
-    """A dimensionless length (units of ``a_p T_p^2``, e.g. Pi1) in metres for a
-    scene built with :meth:`Scene.from_physical`."""
+    """Convert a dimensionless length (units of ``a_p T_p^2``, e.g. Pi1) to metres.
+
+    The scene must be built with :meth:`Scene.from_physical`.
+    """
     if scene.scale is None:
         raise ValueError("scene has no physical scale; build it with Scene.from_physical")
     return pi1 * scene.scale.length

@@ -53,6 +53,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import kernel
+from .models import label as model_label
 from .scene import Scene
 
 DEFAULT_RTOL = 1e-6
@@ -252,25 +253,13 @@ def plan(scene: Scene) -> dict:
     return {"fixed": fixed, "coulomb": coulomb, "oneway_possible": (not fixed) and coulomb}
 
 
-def _label(fixed, noslide, coulomb, oneway):
-    parts = []
-    if fixed:
-        parts.append("fixed-base")
-    if noslide:
-        parts.append("no-slide")
-    else:
-        parts.append("coulomb" if coulomb else "stribeck")
-        if oneway and not fixed:
-            parts.append("one-way")
-    return "+".join(parts)
-
-
 def _history(h: np.ndarray) -> History:
     return History(tau=h[:, 0].copy(), x=h[:, 1].copy(), xd=h[:, 2].copy(), u=h[:, 3].copy(),
                    ud=h[:, 4].copy(), phase=h[:, 5].astype(np.int8))
 
 
-MODELS = ("auto", "full", "static-kinetic")
+MODEL_OPTIONS = ("auto", "full", "static-kinetic")
+"""Values of ``solve(..., model=...)`` (the labels a solve produces are :data:`isoslide.models.MODEL_LABELS`)."""
 
 
 def solve(scene: Scene, rtol: float | None = None, history: bool = False, method: str = "exact",
@@ -322,8 +311,8 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
         raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', 'regularized', 'reference'")
     if options:
         raise TypeError(f"unexpected options for method='exact': {sorted(options)}")
-    if model not in MODELS:
-        raise ValueError(f"model = {model!r} is invalid; allowed: {MODELS}")
+    if model not in MODEL_OPTIONS:
+        raise ValueError(f"model = {model!r} is invalid; allowed: {MODEL_OPTIONS}")
     if not (math.isfinite(horizon) and horizon > 0):
         raise ValueError(f"horizon = {horizon!r} is out of range; allowed range: 0 < horizon < inf")
     if not (max_step > 0):
@@ -369,9 +358,8 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
             out = run(p8_used, irtol=max(need, MIN_INTEGRATOR_RTOL))
     ints, floats, hist = out
     noslide = ints[kernel.R_SLIPPED] == 0
-    label = _label(fixed, noslide, coulomb, oneway)
-    if model == "static-kinetic" and not noslide:
-        label = label.replace("stribeck", "static-kinetic")
+    law = "static-kinetic" if model == "static-kinetic" else ("coulomb" if coulomb else "stribeck")
+    label = model_label(fixed, noslide, law, oneway)
     return _solution(scene, ints, floats, label, _history(hist) if history else None)
 
 
@@ -446,7 +434,7 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
             if key not in demand:
                 demand[key] = peak_stuck_demand(sc, rtol, horizon)
             if sc.static_level > demand[key] * (1.0 + 1e-9):
-                models[i] = _label(sc.pi3 == 0.0, True, False, False)
+                models[i] = model_label(sc.pi3 == 0.0, True, "coulomb", False)
                 settled[i] = True
                 tpk[i] = sc.pulse.tau_start
                 tend[i] = sc.pulse.tau_start

@@ -36,6 +36,7 @@ level ``Pi2 / Pi5``.  So ``Pi1 = 0`` for every ``Pi2 >= Pi5 * A_stick``
 from __future__ import annotations
 
 import functools
+import logging
 import itertools
 import json
 import math
@@ -43,23 +44,26 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+import xarray as xr
+
+from . import solver
+from .config import ConfigError
+from .datasets import chunk_dataset, merge_chunks, open_dataset
+from .groups import INPUT_NAMES, group
 from .pulses import get_pulse
-from .scene import PI_RANGES, Scene, check_range
+from .scene import Scene
+from .validation import check_range
 
-PI_NAMES = ("pi2", "pi3", "pi4", "pi5", "pi6", "pi7", "pi8")
-"""Input groups of a scene, in order."""
+log = logging.getLogger(__name__)
 
-SWEEPABLE = ("pi3", "pi4", "pi5", "pi6", "pi7", "pi8", "beta")
+PI_NAMES = INPUT_NAMES
+"""Input groups of a scene, in order (the registry's :data:`isoslide.groups.INPUT_NAMES`)."""
+
+HELD = INPUT_NAMES[1:]
+"""Groups a study holds or sweeps; ``pi2`` is always the abscissa."""
+
+SWEEPABLE = HELD + ("beta",)
 """Names allowed as study dimensions or fixed values (``beta`` is an alias of ``pi6``)."""
-
-BASE_DEFAULTS = {"pi3": 0.0, "pi4": 0.0, "pi5": 1.0, "pi6": 0.0, "pi7": 0.0, "pi8": 1e-5}
-"""Values of groups neither swept nor fixed, unless the config's ``defaults`` overrides them."""
-
-PI2_DEFAULTS = {"start": 0.02, "stop": "auto", "num": 64, "margin": 1.05, "step_round": 0.05}
-
-
-class ConfigError(ValueError):
-    """An invalid configuration value; the message names its key path."""
 
 
 @dataclass(frozen=True)
@@ -94,14 +98,17 @@ class Grid:
 
     @property
     def shape(self) -> tuple:
+        """Number of values along each dimension."""
         return tuple(len(v) for v in self.dims.values())
 
     @property
     def size(self) -> int:
+        """Number of scenes."""
         return int(np.prod(self.shape))
 
     @property
     def dim_names(self) -> tuple:
+        """Dimension names, ``pi2`` last."""
         return tuple(self.dims)
 
     def n_chunks(self, chunk_size: int) -> int:
@@ -162,15 +169,17 @@ def _num(key: str, value, lo=-math.inf, hi=math.inf, lo_in=True, hi_in=True) -> 
 
 def _pi_value(key: str, name: str, value) -> float:
     """Validate one Pi value against the Scene's allowed range, naming the config key."""
-    lo, hi, lo_in, hi_in = PI_RANGES[name]
-    return _num(key, value, lo, hi, lo_in, hi_in)
+    g = group(name)
+    return _num(key, value, g.lo, g.hi, g.lo_in, g.hi_in)
 
 
 def normalise_study(name: str, study: dict, config: dict) -> dict:
     """Return the full, JSON-serialisable specification of one study.
 
-    Fills defaults from ``config["defaults"]``, ``config["pi2"]`` and
-    :data:`BASE_DEFAULTS`, turns ``beta`` into ``pi6`` and checks every value,
+    Groups neither swept nor fixed take ``config["defaults"]``, the Pi2 axis
+    completes the study's ``pi2`` with ``config["pi2"]`` (the configuration
+    schema fills both, see :func:`isoslide.config.load`), ``beta`` becomes
+    ``pi6`` and every value is checked,
     raising :class:`ConfigError` with the key path (``studies.<name>.<key>``)
     on the first invalid one.
 
@@ -185,20 +194,23 @@ def normalise_study(name: str, study: dict, config: dict) -> dict:
         ``solver``).
     """
     where = f"studies.{name}"
-    defaults = dict(BASE_DEFAULTS)
-    for k, v in (config.get("defaults") or {}).items():
+    defaults = {}
+    for k, v in config["defaults"].items():
         if k == "pulse":
             continue
-        if k not in BASE_DEFAULTS:
-            raise ConfigError(f"defaults.{k}: unknown group; allowed: {sorted(BASE_DEFAULTS)}")
+        if k not in HELD:
+            raise ConfigError(f"defaults.{k}: unknown group; allowed: {list(HELD)}")
         defaults[k] = _pi_value(f"defaults.{k}", k, v)
-    pulse = study.get("pulse", (config.get("defaults") or {}).get("pulse", "ricker"))
+    missing = [k for k in HELD if k not in defaults]
+    if missing:
+        raise ConfigError(f"defaults: no value for {missing}; load the configuration with "
+                          f"isoslide.config.load, which fills the schema defaults")
+    pulse = study.get("pulse", config["defaults"]["pulse"])
     try:
         get_pulse(pulse)
     except ValueError as err:
         raise ConfigError(f"{where}.pulse: {err}") from None
-    ref = (config.get("reference") or {}).get("a_p_T_p", 1.0)
-    a_p_T_p = _num("reference.a_p_T_p", ref, 0.0, math.inf, False, False)
+    a_p_T_p = _num("reference.a_p_T_p", config["reference"]["a_p_T_p"], 0.0, math.inf, False, False)
 
     dims_in = study.get("dims") or {}
     fixed_in = study.get("fixed") or {}
@@ -242,8 +254,7 @@ def normalise_study(name: str, study: dict, config: dict) -> dict:
     for i, v in enumerate(dims.get("pi6", [])):
         _pi_value(f"{where}.dims.pi6[{i}]", "pi6", v)
 
-    pi2 = dict(PI2_DEFAULTS)
-    pi2.update(config.get("pi2") or {})
+    pi2 = dict(config["pi2"])
     pi2.update(study.get("pi2") or {})
     pi2["start"] = _pi_value(f"{where}.pi2.start", "pi2", pi2["start"])
     pi2["num"] = int(_num(f"{where}.pi2.num", pi2["num"], 2))
@@ -254,7 +265,6 @@ def normalise_study(name: str, study: dict, config: dict) -> dict:
         if pi2["stop"] <= pi2["start"]:
             raise ConfigError(f"{where}.pi2.stop = {pi2['stop']!r} must be > start = {pi2['start']!r}")
 
-    solver = dict(config.get("solver") or {})
     return {
         "study": name,
         "title": study.get("title", name),
@@ -266,8 +276,8 @@ def normalise_study(name: str, study: dict, config: dict) -> dict:
         "beta": beta,
         "a_p_T_p": a_p_T_p,
         "pi2": pi2,
-        "chunk_size": int(config.get("chunk_size", 128)),
-        "solver": {"rtol": solver.get("rtol"), "method": solver.get("method", "exact")},
+        "chunk_size": int(_num("chunk_size", config["chunk_size"], 1)),
+        "solver": {"rtol": config["solver"]["rtol"], "method": config["solver"]["method"]},
     }
 
 
@@ -330,9 +340,7 @@ def check_config(config: dict) -> dict:
     studies = config.get("studies") or {}
     if not studies:
         raise ConfigError("studies: at least one study is required")
-    specs = {name: normalise_study(name, s, config) for name, s in studies.items()}
-    _num("chunk_size", config.get("chunk_size", 128), 1)
-    return specs
+    return {name: normalise_study(name, s, config) for name, s in studies.items()}
 
 
 def jsonable(obj):
@@ -364,9 +372,7 @@ def peak_floor_accel(pi3: float, pi4: float, pi8: float = 0.0, pulse="ricker") -
     pulse : str or Pulse
         Ground-acceleration pulse.
     """
-    from .solver import peak_stuck_demand
-
-    return peak_stuck_demand(Scene(pi2=1.0, pi3=pi3, pi4=pi4, pi8=pi8, pulse=pulse))
+    return solver.peak_stuck_demand(Scene(pi2=1.0, pi3=pi3, pi4=pi4, pi8=pi8, pulse=pulse))
 
 
 def auto_pi2_stop(dims: dict, fixed: dict, pulse, margin: float = 1.05, step_round: float = 0.05) -> float:
@@ -380,7 +386,7 @@ def auto_pi2_stop(dims: dict, fixed: dict, pulse, margin: float = 1.05, step_rou
     cache = {}
     for combo in itertools.product(*(dims[k] for k in names)):
         v = dict(fixed)
-        v.update(zip(names, combo))
+        v.update(zip(names, combo, strict=True))
         key = (v["pi3"], v["pi4"], v["pi8"])
         if key not in cache:
             cache[key] = peak_floor_accel(*key, pulse=pulse)
@@ -398,8 +404,6 @@ def solve_points(grid: Grid, indices, rtol=None, method="exact"):
     Uses :func:`isoslide.solve_many` for the exact method and one
     :func:`isoslide.solve` per scene otherwise.
     """
-    from . import solver
-
     scenes = grid.scenes(indices)
     if method == "exact":
         return solver.solve_many(scenes, rtol=rtol)
@@ -424,9 +428,16 @@ def solve_chunk(spec: dict, chunk: int):
     xarray.Dataset
         See :func:`isoslide.datasets.chunk_dataset`.
     """
-    from .datasets import chunk_dataset
-
     grid = build_grid(spec)
     idx = grid.chunk_indices(int(chunk), spec["chunk_size"])
+    log.info("study %s, chunk %d: %d scenes", grid.name, int(chunk), idx.size)
     batch = solve_points(grid, idx, rtol=spec["solver"]["rtol"], method=spec["solver"]["method"])
     return chunk_dataset(grid, idx, batch)
+
+
+def merge_chunk_files(paths, spec: dict) -> xr.Dataset:
+    """Open chunk files and :func:`isoslide.datasets.merge_chunks` them into the dataset of ``spec``."""
+    grid = build_grid(spec)
+    chunks = [open_dataset(p) for p in paths]
+    log.info("merging %d chunk file(s) of study %s into grid %s", len(chunks), grid.name, grid.shape)
+    return merge_chunks(chunks, grid)

@@ -1,0 +1,78 @@
+"""The labels of the mechanical models a solve can run, in one list.
+
+:attr:`isoslide.Solution.model` names the smallest exact model that ran for a
+scene, as parts joined by ``+``:
+
+``fixed-base``
+    ``Pi3 = 0``: the floor moves with the ground; the base is not integrated.
+``no-slide``
+    The floor demand never reaches ``mu_s g``: ``Pi1 = 0`` exactly.
+``coulomb``
+    Friction independent of sliding speed; the Stribeck terms are skipped.
+``stribeck``
+    The full Stribeck law of the paper's Eq. 1.
+``static-kinetic``
+    The limit ``Pi6 -> inf`` (``solve(..., model="static-kinetic")``): stick up to
+    ``mu_s``, kinetic ``mu_k`` at any sliding speed.
+``one-way``
+    The block's back-reaction on the base is dropped (``Pi8 = 0``, or proven
+    below the accuracy target).
+``regularized``, ``reference``
+    A peer solver ran instead (``solve(..., method=...)``).
+
+The position of a label in :data:`MODEL_LABELS` is its code in the ``model``
+flag variable of every dataset; codes never change, new labels are appended.
+"""
+
+from __future__ import annotations
+
+FRICTION_MODELS = ("coulomb", "stribeck", "static-kinetic")
+"""Friction laws the exact solver integrates."""
+
+PEER_LABELS = ("regularized", "reference")
+"""Labels of the peer solvers ``solve(..., method=...)`` can run."""
+
+
+def label(fixed: bool, noslide: bool, friction: str, oneway: bool) -> str:
+    """The model label of an exact solve.
+
+    Parameters
+    ----------
+    fixed : bool
+        The base is fixed (``Pi3 = 0``).
+    noslide : bool
+        The block never slid.
+    friction : {"coulomb", "stribeck", "static-kinetic"}
+        The friction law integrated.
+    oneway : bool
+        The back-reaction on the base was dropped (ignored for a fixed base).
+    """
+    if friction not in FRICTION_MODELS:
+        raise ValueError(f"friction = {friction!r} is invalid; allowed: {FRICTION_MODELS}")
+    parts = ["fixed-base"] if fixed else []
+    if noslide:
+        parts.append("no-slide")
+    else:
+        parts.append(friction)
+        if oneway and not fixed:
+            parts.append("one-way")
+    return "+".join(parts)
+
+
+def _exact_labels() -> tuple:
+    out = []
+    for fixed in (False, True):
+        for noslide in (True, False):
+            for friction in FRICTION_MODELS:
+                for oneway in (False, True):
+                    name = label(fixed, noslide, friction, oneway)
+                    if name not in out:
+                        out.append(name)
+    return tuple(out)
+
+
+_STABLE = ("no-slide", "fixed-base+no-slide", "coulomb", "coulomb+one-way", "stribeck",
+           "stribeck+one-way", "fixed-base+coulomb", "fixed-base+stribeck", "regularized", "reference")
+
+MODEL_LABELS = _STABLE + tuple(n for n in _exact_labels() + PEER_LABELS if n not in _STABLE)
+"""Every label :func:`isoslide.solve` can produce, in flag-code order (codes never change)."""

@@ -1,0 +1,57 @@
+"""Model labels: every label a solve produces has a flag code, and every listed label is produced."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import isoslide
+from isoslide import datasets
+from isoslide.models import MODEL_LABELS, PEER_LABELS, label
+
+# one scene per model path of the exact solver: (scene, solve keyword arguments)
+PATHS = [
+    (isoslide.Scene(pi2=5.0, pi3=1.0, pi4=0.1), {}),                                  # no-slide
+    (isoslide.Scene(pi2=5.0, pi3=0.0), {}),                                           # fixed-base+no-slide
+    (isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi8=0.1), {}),                         # coulomb
+    (isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi8=0.0), {}),                         # coulomb+one-way
+    (isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.7, pi6=1e3, pi8=0.1), {}),       # stribeck
+    (isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.7, pi6=1e3, pi8=0.0), {}),       # stribeck+one-way
+    (isoslide.Scene(pi2=0.2, pi3=0.0), {}),                                           # fixed-base+coulomb
+    (isoslide.Scene(pi2=0.2, pi3=0.0, pi5=0.7, pi6=1e3), {}),                         # fixed-base+stribeck
+    (isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.7, pi8=0.1), {"model": "static-kinetic"}),
+    (isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.7, pi8=0.0), {"model": "static-kinetic"}),
+    (isoslide.Scene(pi2=0.2, pi3=0.0, pi5=0.7), {"model": "static-kinetic"}),
+    (isoslide.Scene(pi2=0.3, pi3=0.0), {"method": "regularized", "stiffness": 1e4, "rtol": 1e-4}),
+    (isoslide.Scene(pi2=0.3, pi3=0.0), {"method": "reference"}),
+]
+
+
+@pytest.fixture(scope="module")
+def produced():
+    return [isoslide.solve(sc, **kw).model for sc, kw in PATHS]
+
+
+def test_every_listed_label_is_produced_by_some_solve(produced):
+    assert sorted(produced) == sorted(MODEL_LABELS)
+
+
+def test_labels_round_trip_through_a_dataset_flag_variable(produced, tmp_path):
+    codes, attrs = datasets.encode_models(np.array(produced))
+    ds = xr.Dataset({"model": (("scene",), codes, attrs)})
+    path = tmp_path / "m.nc"
+    datasets.write_netcdf(ds, path)
+    back = datasets.decode_models(datasets.open_dataset(path)["model"])
+    assert back.values.tolist() == produced
+
+
+def test_solve_many_labels_are_listed():
+    scenes = [sc for sc, kw in PATHS if not kw]
+    batch = isoslide.solve_many(scenes)
+    assert set(batch.model.tolist()) <= set(MODEL_LABELS)
+    assert "no-slide" in batch.model.tolist() and "fixed-base+no-slide" in batch.model.tolist()
+
+
+def test_label_rejects_an_unknown_friction_law():
+    with pytest.raises(ValueError, match="friction = 'viscous'"):
+        label(False, False, "viscous", False)
+    assert set(PEER_LABELS) <= set(MODEL_LABELS)
