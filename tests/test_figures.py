@@ -4,9 +4,12 @@ import matplotlib
 
 matplotlib.use("Agg")
 
+import copy  # noqa: E402
+
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
+import isoslide.config  # noqa: E402
 from isoslide import datasets, figures, sweep  # noqa: E402
 
 CONFIG = {
@@ -27,7 +30,7 @@ CONFIG = {
 @pytest.fixture(scope="module")
 def studies():
     out = {}
-    for name, spec in sweep.check_config(CONFIG).items():
+    for name, spec in sweep.check_config(isoslide.config.validate(copy.deepcopy(CONFIG))).items():
         grid = sweep.build_grid(spec)
         chunks = [sweep.solve_chunk(spec, k) for k in sweep.spec_chunks(spec)]
         out[name] = datasets.merge_chunks(chunks, grid)

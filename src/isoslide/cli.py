@@ -1,4 +1,4 @@
-"""Command line: one scene, in Pi-groups or in physical units.
+r"""Command line: one scene, in Pi-groups or in physical units.
 
 Examples
 --------
@@ -6,7 +6,7 @@ Examples
 
     isoslide solve --pi2 0.2 --pi3 1 --pi4 0.1
     isoslide solve --pi2 0.2 --pi3 1 --pi4 0.1 --pi5 0.7 --pi6 1000 --json
-    isoslide solve-physical --a-p 6 --T-p 1.2 --M-b 8e5 --T-b 2.4 --xi-b 0.1 \\
+    isoslide solve-physical --a-p 6 --T-p 1.2 --M-b 8e5 --T-b 2.4 --xi-b 0.1 \
         --m-ec 800 --mu-s 0.25 --mu-k 0.2 --beta 200 --gamma 0.05 --json
 """
 
@@ -17,6 +17,7 @@ import json
 import sys
 
 from . import __version__
+from .groups import INPUTS
 from .pulses import PULSE_NAMES
 from .scene import G_STANDARD, Scene
 from .solver import DEFAULT_RTOL, solve
@@ -34,13 +35,10 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--version", action="version", version=f"isoslide {__version__}")
     sub = ap.add_subparsers(dest="command", required=True)
     s = sub.add_parser("solve", help="one scene given by its Pi-groups")
-    s.add_argument("--pi2", type=float, required=True, help="mu_k g / a_p (> 0)")
-    s.add_argument("--pi3", type=float, required=True, help="T_b / T_p (0 = fixed base)")
-    s.add_argument("--pi4", type=float, default=0.0, help="xi_b, isolation damping ratio (default 0)")
-    s.add_argument("--pi5", type=float, default=1.0, help="mu_k / mu_s in (0, 1] (default 1)")
-    s.add_argument("--pi6", type=float, default=0.0, help="beta a_p T_p (default 0)")
-    s.add_argument("--pi7", type=float, default=0.0, help="gamma g T_p, viscous contact group (default 0)")
-    s.add_argument("--pi8", type=float, default=1e-5, help="m_EC / M_b (default 1e-5)")
+    for g in INPUTS:
+        default = "required" if g.default is None else f"default {g.default:g}"
+        s.add_argument(f"--{g.name}", type=float, required=g.default is None, default=g.default,
+                       help=f"{g.definition}: {g.meaning}; {g.range_text.replace('value', g.name)} ({default})")
     _common(s)
     q = sub.add_parser("solve-physical", help="one scene in SI units")
     for name, unit, default in [("a-p", "m/s^2", None), ("T-p", "s", None), ("M-b", "kg", None),
@@ -54,10 +52,11 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    """Run the command line with ``argv`` (default ``sys.argv[1:]``); return the exit code."""
     args = _parser().parse_args(argv)
     try:
         if args.command == "solve":
-            scene = Scene(args.pi2, args.pi3, args.pi4, args.pi5, args.pi6, args.pi7, args.pi8, args.pulse)
+            scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=args.pulse)
         else:
             scene = Scene.from_physical(args.a_p, args.T_p, args.M_b, args.T_b, args.xi_b, args.m_ec,
                                         args.mu_s, args.mu_k, args.beta, args.gamma, args.g, args.pulse)

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .scene import G_STANDARD
+from .groups import GROUPS
 
 STYLE = {
     "font.family": "DejaVu Sans",
@@ -52,18 +52,11 @@ CMAP = "viridis"
 WIDTH = 7.0
 """Figure width, inches (two columns)."""
 
-LABELS = {
-    "pi1": r"$\Pi_1 = u_{max}\,/\,(a_p T_p^2)$",
-    "pi2": r"$\Pi_2 = \mu_k g\,/\,a_p$",
-    "pi3": r"$\Pi_3 = T_b/T_p$",
-    "pi4": r"$\Pi_4 = \xi_b$",
-    "pi5": r"$\Pi_5 = \mu_k/\mu_s$",
-    "pi6": r"$\Pi_6 = \beta a_p T_p$",
-    "pi7": r"$\Pi_7 = \gamma g T_p$",
-    "pi8": r"$\Pi_8 = m_{EC}/M_b$",
-}
-SYMBOL = {"pi3": r"\Pi_3", "pi4": r"\Pi_4", "pi5": r"\Pi_5", "pi6": r"\Pi_6", "pi7": r"\Pi_7",
-          "pi8": r"\Pi_8"}
+LABELS = {name: g.label for name, g in GROUPS.items()}
+"""Axis label of every Pi-group (from the registry :mod:`isoslide.groups`)."""
+
+SYMBOL = {name: g.tex for name, g in GROUPS.items()}
+"""TeX symbol of every Pi-group."""
 
 
 def stribeck_mu(v, mu_s, mu_k, beta, gamma=0.0):
@@ -158,7 +151,7 @@ def master_curves(ax, ds, family: str, select=None, label_fmt=None, legend_loc="
     sub = ds.sel(select) if select else ds
     pi1 = sub["pi1"].transpose(family, "pi2")
     values = sub[family].values
-    for color, (k, val) in zip(_colors(len(values)), enumerate(values)):
+    for color, (k, val) in zip(_colors(len(values)), enumerate(values), strict=False):
         lab = label_fmt(k, val) if label_fmt else f"${_fmt(float(val))}$"
         ax.plot(sub["pi2"].values, pi1.values[k], color=color, label=lab)
     ax.set_xlabel(LABELS["pi2"])
@@ -246,7 +239,7 @@ def fig2(datasets=None, settings=None):
     fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 2.6))
     v = np.linspace(-0.3, 0.3, 4001)
     vl = np.logspace(-5, 0.5, 800)
-    for color, beta in zip(_colors(len(betas)), betas):
+    for color, beta in zip(_colors(len(betas)), betas, strict=False):
         a.plot(v, stribeck_mu(v, mu_s, mu_k, beta, gamma) * np.sign(v), color=color,
                label=rf"$\beta = {beta:g}$ s/m")
         b.semilogx(vl, stribeck_mu(vl, mu_s, mu_k, beta, gamma), color=color, label=rf"$\beta = {beta:g}$ s/m")
@@ -266,8 +259,8 @@ def fig2(datasets=None, settings=None):
     b.text(1.5e-5, mu_k, r" $\mu_k$", va="bottom", fontsize=7)
     b.legend(loc="upper right")
     a.legend(loc="upper left")
-    _text_box(a, rf"$\mu(v) = \mu_s\,\mathrm{{sech}}(\beta v) + \mu_k\,(1 - \mathrm{{sech}}(\beta v)) "
-                 rf"+ \gamma |v|$" + f"\n$\\mu_s = {mu_s:g}$, $\\mu_k = {mu_k:g}$, $\\gamma = {gamma:g}$ s/m",
+    _text_box(a, r"$\mu(v) = \mu_s\,\mathrm{sech}(\beta v) + \mu_k\,(1 - \mathrm{sech}(\beta v)) "
+                 r"+ \gamma |v|$" + f"\n$\\mu_s = {mu_s:g}$, $\\mu_k = {mu_k:g}$, $\\gamma = {gamma:g}$ s/m",
               loc="lower right")
     fig.tight_layout()
     caption = (f"Fig. 2. Stribeck friction model (paper Eq. 1 with n = 1) for mu_s = {mu_s:g}, "
@@ -282,7 +275,6 @@ def fig3(datasets, settings=None):
     """Fig. 3: rectangular pulse, ground velocity, and Newmark's solution against the solver."""
     import matplotlib.pyplot as plt
 
-    from .datasets import open_dataset
     from .pulses import get_pulse
 
     ds = _open(datasets, "fig3_newmark")
@@ -313,7 +305,7 @@ def fig3(datasets, settings=None):
     ax.legend(loc="upper right")
     exact = np.where(pi2 < 1.0, 0.5 * (1.0 / pi2 - 1.0), 0.0)
     err = float(np.max(np.abs(pi1 - exact) / np.maximum(exact, 1e-300) * (exact > 0)))
-    _text_box(ax, rf"$\Pi_1 = \frac{{1}}{{2}}\left(\frac{{1}}{{\Pi_2}} - 1\right)$, $\Pi_2 < 1$"
+    _text_box(ax, r"$\Pi_1 = \frac{1}{2}\left(\frac{1}{\Pi_2} - 1\right)$, $\Pi_2 < 1$"
                   + f"\nmax rel. difference {err:.1e}", loc="lower left")
     fig.tight_layout()
     caption = (f"Fig. 3. (a) Rectangular ground-acceleration pulse of amplitude a_p and duration T_p; "
@@ -366,7 +358,7 @@ def fig4(datasets=None, settings=None):
     if "mp_r2" in at:
         fit_text += rf"; M-P fit: $T_p$ = {float(at['mp_T_p']):.2f} s, $R^2$ = {float(at['mp_r2']):.2f}"
     note = (f"{name} ({at.get('event', '')}, {at.get('station', '')} {at.get('component', '')})"
-            + (f" stands in for the paper's Rinaldi RRS228 (1994 Northridge), not available offline."
+            + (" stands in for the paper's Rinaldi RRS228 (1994 Northridge), not available offline."
                if stand_in else ".") + "\n" + fit_text)
     fig.text(0.01, 0.01, note, fontsize=6.6, color="0.25", ha="left", va="bottom")
     fig.tight_layout(rect=(0, 0.12, 1, 1))
@@ -433,7 +425,7 @@ def records(datasets, settings=None):
     for k, name in enumerate(names):
         ax = axs[k]
         sub = ds.sel(record=name)
-        for c, pi3 in zip(colors, pi3s):
+        for c, pi3 in zip(colors, pi3s, strict=False):
             ax.plot(ds["pi2"].values, sub["pi1_record"].sel(pi3=pi3).values, color=c, ls="-",
                     label=rf"${_fmt(float(pi3))}$")
             ax.plot(ds["pi2"].values, sub["pi1_pulse"].sel(pi3=pi3).values, color=c, ls="--")
@@ -559,7 +551,7 @@ def _panels(ds, family, fig_note, width=WIDTH, label_fmt=None):
     pi3s = ds["pi3"].values
     fig, axs = plt.subplots(1, len(pi3s), figsize=(width, 2.8), squeeze=False)
     sub = ds
-    for k, (ax, pi3) in enumerate(zip(axs[0], pi3s)):
+    for k, (ax, pi3) in enumerate(zip(axs[0], pi3s, strict=False)):
         sub = master_curves(ax, ds, family, select={"pi3": float(pi3)}, label_fmt=label_fmt)
         ax.set_title(rf"({'abcdefgh'[k]}) $\Pi_3 = T_b/T_p = {float(pi3):g}$")
         if k:
