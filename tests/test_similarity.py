@@ -7,6 +7,7 @@ import pytest
 import xarray as xr
 
 import isoslide
+from isoslide import claims
 from isoslide import similarity as S
 
 G = isoslide.G_STANDARD
@@ -101,13 +102,23 @@ def test_buckingham_tables_flag_the_failing_group():
     assert str(t["group_definition"].sel(group="pi7", convention="paper").values) == "gamma a_p T_p"
 
 
-def test_conclusions_on_synthetic_curves():
+def test_claims_on_synthetic_curves_and_missing_studies_reported():
     d5 = _study([0.5, 0.7, 1.0], other=("pi3", [0.5, 1.0, 2.0]))
     spreads = {"pi5": S.curve_spread(d5, "pi5", 0.7, 1.0)}
-    out = S.conclusions({"fig6_pi5": d5}, spreads, {"spread_tolerance": 0.1})
-    keys = [c["key"] for c in out]
-    assert keys == ["static_friction", "pi5_similarity"]
-    assert out[1]["verdict"] == 1
-    assert out[0]["verdict"] == 2     # synthetic Pi5 < 1 curves are lower everywhere: only the reduction holds
-    for c in out:
+    out = {c["key"]: c for c in claims.evaluate({"fig6_pi5": d5}, spreads, 0.1)}
+    assert list(out) == [c.key for c in claims.CLAIMS]          # every claim reported, in order
+    assert out["pi5_similarity"]["verdict"] == claims.HOLDS
+    # synthetic Pi5 < 1 curves are lower everywhere: only the reduction holds
+    assert out["static_friction"]["verdict"] == claims.HOLDS_PARTLY
+    missing = out["isolation_amplifies"]
+    assert missing["verdict"] == claims.NOT_EVALUATED and "study fig5_pi3" in missing["finding"]
+    assert "similarity.complete.pi6" in out["pi6_complete_similarity"]["finding"]
+    for c in out.values():
         assert c["claim"] and c["finding"] and c["criterion"]
+
+
+def test_a_renamed_study_is_reported_not_dropped():
+    d5 = _study([0.5, 0.7, 1.0], other=("pi3", [0.5, 1.0, 2.0]))
+    out = claims.evaluate({"static_friction_study": d5}, {}, 0.1)
+    assert len(out) == len(claims.CLAIMS)
+    assert all(c["verdict"] == claims.NOT_EVALUATED for c in out)

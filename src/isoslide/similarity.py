@@ -12,7 +12,7 @@
     decades of beta, Pi8 up to 0.1): the spread between the curves, relative
     to the largest Pi1 of those curves (:func:`curve_spread`).
 (c) **Conclusions** of the paper restated with our numbers
-    (:func:`conclusions`).
+    (:mod:`isoslide.claims`).
 
 Everything is written to one dataset (:func:`similarity_dataset`) that the
 report notebook only reads.
@@ -20,30 +20,24 @@ report notebook only reads.
 
 from __future__ import annotations
 
-import json
 import math
 import zlib
 
 import numpy as np
 import xarray as xr
 
+from . import claims
+from .datasets import global_attrs, open_dataset, pi_attrs
+from .groups import INPUT_NAMES, INPUTS
 from .scene import G_STANDARD
 
 CONVENTIONS = ("isoslide", "paper")
 """Group definitions used to realise a point physically: isoslide's, and the paper's printed Eq. 5."""
 
-DEFINITIONS = {
-    "pi2": ("mu_k g / a_p", "mu_k g / a_p"),
-    "pi3": ("T_b / T_p", "T_b / T_p"),
-    "pi4": ("xi_b", "xi_b"),
-    "pi5": ("mu_k / mu_s", "mu_k / mu_s"),
-    "pi6": ("beta a_p T_p", "beta a_p T_p"),
-    "pi7": ("gamma g T_p", "gamma a_p T_p"),
-    "pi8": ("m_EC / M_b", "m_EC / M_b"),
-}
-"""Definition of each input group: (isoslide, paper as printed)."""
+DEFINITIONS = {g.name: (g.definition, g.printed) for g in INPUTS}
+"""Definition of each input group: (isoslide, paper as printed), from :mod:`isoslide.groups`."""
 
-GROUPS = tuple(DEFINITIONS)
+GROUPS = INPUT_NAMES
 VERDICT_FLAGS = dict(flag_values=np.array([0, 1, 2], dtype=np.int8),
                      flag_meanings="does_not_hold holds holds_partly")
 
@@ -240,7 +234,7 @@ def _study_seed(seed: int, study: str) -> int:
 
 
 def _point_pis(ds: xr.Dataset, index: tuple) -> dict:
-    sel = {d: i for d, i in zip(ds["pi1"].dims, index)}
+    sel = {d: i for d, i in zip(ds["pi1"].dims, index, strict=True)}
     pt = ds.isel(sel)
     return {g: float(pt[g]) for g in GROUPS}
 
@@ -263,7 +257,7 @@ def sample_points(ds: xr.Dataset, n: int, rng, max_tau_end: float = 40.0) -> lis
     order = rng.permutation(flat)
     curve = [np.unravel_index(f, pi1.shape)[:-1] for f in order]     # indices of the swept groups
     picked, seen = [], set()
-    for f, c in zip(order, curve):
+    for f, c in zip(order, curve, strict=True):
         if len(picked) < n and c not in seen:
             picked.append(f)
             seen.add(c)
@@ -293,16 +287,13 @@ def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
         Dimensions ``sample``, ``realisation``, ``convention``; ``pi1_grid`` (the
         study dataset's value), ``pi1_si`` (SI integration) and the realisations.
     """
-    from .datasets import global_attrs, pi_attrs
-
     study = ds.attrs.get("study", "study")
     pulse = ds.attrs.get("pulse", "ricker")
-    rng = np.random.default_rng(_study_seed(settings.get("seed", 0), study))
-    idx = sample_points(ds, int(settings.get("points", 3)), rng)
-    R = int(settings.get("realisations", 3))
+    rng = np.random.default_rng(_study_seed(settings["seed"], study))
+    idx = sample_points(ds, int(settings["points"]), rng)
+    R = int(settings["realisations"])
     ns = len(idx)
-    lo_hi = {k: tuple(float(x) for x in settings.get(k, d)) for k, d in
-             (("a_p_g", (0.1, 2.0)), ("T_p", (0.2, 5.0)), ("M_b", (1e4, 1e7)))}
+    lo_hi = {k: tuple(float(x) for x in settings[k]) for k in ("a_p_g", "T_p", "M_b")}
 
     def draw(k, size):
         lo, hi = lo_hi[k]
@@ -321,7 +312,7 @@ def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
         pt = _point_pis(ds, ix)
         for g in GROUPS:
             pis[g][i] = pt[g]
-        sel = dict(zip(ds["pi1"].dims, ix))
+        sel = dict(zip(ds["pi1"].dims, ix, strict=True))
         pi1_grid[i] = float(ds["pi1"].isel(sel))
         tau_end[i] = float(ds["tau_end"].isel(sel)) if "tau_end" in ds else math.nan
         for j in range(R):
@@ -405,221 +396,6 @@ def curve_spread(ds: xr.Dataset, group: str, lo: float, hi: float) -> xr.Dataset
     area_rel = (area.max(group) - area.min(group)) / area.max(group).where(area.max(group) > 0)
     return xr.Dataset({"spread": spread, "peak": peak, "relative": rel, "pi2_at": at,
                        "area_relative": area_rel, "n_curves": int(keep.sum())})
-
-
-def _ratio_mean(a, b, mask):
-    m = mask & (b > 0)
-    return float(np.mean(a[m] / b[m])) if m.any() else math.nan
-
-
-def _integral(pi1, pi2):
-    return float(np.trapezoid(pi1, pi2)) if hasattr(np, "trapezoid") else float(np.trapz(pi1, pi2))
-
-
-# ----------------------------------------------------------------------------------------------
-# (c) the paper's conclusions
-# ----------------------------------------------------------------------------------------------
-
-LOW_PI2 = 0.1
-"""'Low Pi2' (low friction or strong pulse) means Pi2 <= 0.1 in the conclusions."""
-
-MATERIAL = 0.02
-"""Relative changes of Pi1 below 2% count as 'no change' in the conclusions' verdicts."""
-
-
-def conclusions(ds: dict, spreads: dict, settings: dict) -> list:
-    """Each conclusion of the paper with our numbers and a verdict.
-
-    Parameters
-    ----------
-    ds : dict of str -> xarray.Dataset
-        Study datasets by name (missing studies are skipped).
-    spreads : dict of str -> xarray.Dataset
-        :func:`curve_spread` results by group.
-    settings : dict
-        ``similarity`` settings (``spread_tolerance``).
-
-    Returns
-    -------
-    list of dict
-        ``key``, ``claim`` (the paper), ``finding`` (ours), ``verdict`` (0 does not hold,
-        1 holds, 2 holds partly), ``criterion``.
-    """
-    out = []
-    tol = float(settings.get("spread_tolerance", 0.1))
-
-    if "fig5_pi3" in ds:
-        d = ds["fig5_pi3"]
-        pi2 = d["pi2"].values
-        low = pi2 <= LOW_PI2 + 1e-12
-        pi3s = d["pi3"].values
-        stiff = float(pi3s.min())
-        ref = d["pi1"].sel(pi3=stiff).values
-        amp = {float(p): _ratio_mean(d["pi1"].sel(pi3=p).values, ref, low) for p in pi3s if p != stiff}
-        peaks = {float(p): float(d["pi1"].sel(pi3=p).max()) for p in pi3s}
-        best_peak = max((p for p in peaks if p != stiff), key=lambda k: peaks[k])
-        above = [p for p in pi3s if p > 1.0]
-        sub = d["pi1"].sel(pi3=above).values[:, low] if len(above) > 1 else np.zeros((1, int(low.sum())))
-        frac = float(np.mean(np.all(np.diff(sub, axis=0) <= 1e-12, axis=0))) if sub.size else math.nan
-        cross = {}
-        for p in pi3s:
-            if p == stiff:
-                continue
-            cur = d["pi1"].sel(pi3=p).values
-            below = np.flatnonzero((cur < ref * (1 - MATERIAL)) & (ref > 0))
-            cross[float(p)] = f"{pi2[below[0]]:.2f}" if below.size else "never"
-        amplified = [p for p, r in amp.items() if r > 1 + MATERIAL]
-        finding = (f"Mean Pi1 ratio to the stiff system (Pi3 = {stiff:g}) over Pi2 <= {LOW_PI2:g}: "
-                   + ", ".join(f"Pi3 = {p:g}: {r:.2f}" for p, r in amp.items())
-                   + ". Peak of each curve: " + ", ".join(f"{p:g}: {v:.3f}" for p, v in peaks.items())
-                   + f" (largest at Pi3 = {best_peak:g}). For Pi3 > 1, Pi1 decreases with Pi3 at "
-                   f"{100 * frac:.0f}% of the Pi2 <= {LOW_PI2:g} points. Pi2 from which the isolated curve "
-                   f"falls below the stiff one: " + ", ".join(f"Pi3 = {p:g}: {c}" for p, c in cross.items()) + ".")
-        ok1 = len(amplified) > 0
-        ok2 = abs(best_peak - 1.0) <= 0.25
-        ok3 = frac >= 0.9
-        v = 1 if (ok1 and ok2 and ok3) else (2 if (ok1 or ok2 or ok3) else 0)
-        out.append(dict(key="isolation_amplifies",
-                        claim="Isolation amplifies peak sliding for low Pi2; the highest amplification is at "
-                              "resonance (Pi3 ~ 1); for Pi3 > 1, Pi1 decreases with Pi3 (decoupling).",
-                        finding=finding, verdict=v,
-                        criterion=f"holds if some Pi3 amplifies Pi1 by > {100 * MATERIAL:g}% on average over "
-                                  f"Pi2 <= {LOW_PI2:g}, the highest curve peaks at a Pi3 within 0.25 of 1, and "
-                                  f"Pi1 decreases with Pi3 > 1 at >= 90% of the Pi2 <= {LOW_PI2:g} points; "
-                                  f"partly if some of these hold"))
-
-    if "fig5_pi4" in ds:
-        d = ds["fig5_pi4"]
-        pi2 = d["pi2"].values
-        red = {}
-        for p3 in np.atleast_1d(d["pi3"].values) if "pi3" in d.dims else [float(d["pi3"])]:
-            cur = d["pi1"].sel(pi3=p3) if "pi3" in d.dims else d["pi1"]
-            i0 = _integral(cur.sel(pi4=0.0).values, pi2) if 0.0 in d["pi4"].values else math.nan
-            red[float(p3)] = {float(x): 1.0 - _integral(cur.sel(pi4=x).values, pi2) / i0
-                              for x in d["pi4"].values}
-        r_res = red.get(1.0, {}).get(0.1, math.nan)
-        others = {p: r.get(0.1, math.nan) for p, r in red.items() if p != 1.0}
-        res = red.get(1.0, {})
-        inc = {x: res[x] - res[xp] for xp, x in zip(sorted(res)[:-1], sorted(res)[1:])}
-        finding = (f"Reduction of the area under Pi1(Pi2) by xi_b = 0.1 relative to xi_b = 0: "
-                   f"{100 * r_res:.0f}% at resonance (Pi3 = 1)"
-                   + "".join(f", {100 * r:.0f}% at Pi3 = {p:g}" for p, r in others.items())
-                   + ". Extra reduction per damping step at Pi3 = 1: "
-                   + ", ".join(f"xi_b -> {x:g}: {100 * r:+.0f}%" for x, r in inc.items()) + ".")
-        ok_res = r_res >= 0.25
-        ok_marg = all(r <= 0.5 * r_res for r in others.values()) if others else True
-        beyond = [r for x, r in inc.items() if x > 0.15 + 1e-9]
-        upto = [r for x, r in inc.items() if x <= 0.15 + 1e-9]
-        ok_drop = bool(beyond and upto and max(beyond) < min(upto))
-        v = 1 if (ok_res and ok_marg and ok_drop) else (2 if ok_res else 0)
-        out.append(dict(key="damping_at_resonance",
-                        claim="About 10% isolation damping is very effective at resonance (Pi3 = 1) and has a "
-                              "marginal effect away from it; the efficiency drops for xi_b > 0.15.",
-                        finding=finding, verdict=v,
-                        criterion="holds if xi_b = 0.1 removes >= 25% of the area at Pi3 = 1, at most half as "
-                                  "much away from resonance, and every damping step beyond 0.15 gains less "
-                                  "than every step up to 0.15; partly if only the first holds"))
-
-    if "fig6_pi5" in ds:
-        d = ds["fig6_pi5"]
-        pi2 = d["pi2"].values
-        low = pi2 <= LOW_PI2 + 1e-12
-        parts, okl, okh = [], [], []
-        p5min = float(d["pi5"].min())
-        for p3 in d["pi3"].values:
-            a = d["pi1"].sel(pi3=p3, pi5=p5min).values
-            b = d["pi1"].sel(pi3=p3, pi5=1.0).values
-            nz = np.flatnonzero(b > 0)
-            high = np.zeros_like(low)
-            if nz.size:
-                high[nz[len(nz) // 2]: nz[-1] + 1] = True
-            rl, rh = _ratio_mean(a, b, low), _ratio_mean(a, b, high)
-            okl.append(rl > 1.0 + MATERIAL)
-            okh.append(rh < 1.0 - MATERIAL)
-            parts.append(f"Pi3 = {p3:g}: x{rl:.3f} at Pi2 <= {LOW_PI2:g}, x{rh:.3f} over the upper half "
-                         f"of the Coulomb sliding range")
-        finding = f"Pi1 at Pi5 = {p5min:g} over Pi1 at Pi5 = 1 (Coulomb): " + "; ".join(parts) + "."
-        n_ok = sum(a and b for a, b in zip(okl, okh))
-        v = 1 if n_ok == len(okl) else (2 if n_ok or any(okl) or any(okh) else 0)
-        out.append(dict(key="static_friction",
-                        claim="Static friction (Pi5 < 1) reduces peak sliding for large Pi2 and amplifies it "
-                              "for low Pi2, so neglecting it is unconservative for low friction.",
-                        finding=finding, verdict=v,
-                        criterion=f"holds if, for every Pi3, the mean ratio exceeds 1 by > {100 * MATERIAL:g}% "
-                                  f"for Pi2 <= {LOW_PI2:g} and is below 1 by > {100 * MATERIAL:g}% over the upper "
-                                  f"half of the sliding range; partly if for some"))
-
-    for group, key, claim in (
-        ("pi5", "pi5_similarity", "Peak sliding is similar over 0.7 <= Pi5 <= 1 (Pi1 almost independent of Pi5)."),
-        ("pi6", "pi6_complete_similarity", "Pi1 exhibits complete similarity in Pi6 over two decades of beta "
-                                           "(10 to 1000 s/m)."),
-        ("pi8", "pi8_negligible", "The dynamic interaction is negligible up to Pi8 = m_EC/M_b = 0.1."),
-    ):
-        if group not in spreads:
-            continue
-        s = spreads[group]
-        rel = np.atleast_1d(s["relative"].values).ravel()
-        worst = float(np.nanmax(rel)) if rel.size and np.isfinite(rel).any() else math.nan
-        where = ""
-        if s["relative"].ndim:
-            k = int(np.nanargmax(s["relative"].values.ravel()))
-            where = ", ".join(f"{dname} = {float(s[dname].values.ravel()[k] if s[dname].ndim else s[dname]):g}"
-                              for dname in s["relative"].dims)
-            where = f" (at {where})"
-        arel = np.atleast_1d(s["area_relative"].values).ravel()
-        finding = (f"Largest spread between the curves over {s.attrs.get('range_text', '')}: "
-                   f"{100 * worst:.1f}% of the peak Pi1{where}; per case "
-                   + ", ".join(f"{100 * float(r):.1f}%" for r in rel)
-                   + ". Spread of the areas under the curves: "
-                   + ", ".join(f"{100 * float(r):.1f}%" for r in arel) + ".")
-        v = 1 if worst <= tol else (2 if np.nanmin(rel) <= tol else 0)
-        out.append(dict(key=key, claim=claim, finding=finding, verdict=v,
-                        criterion=f"holds if the spread is <= {100 * tol:g}% of the peak Pi1 in every case; "
-                                  f"partly if in some"))
-
-    if "fig7_pi7" in ds:
-        d = ds["fig7_pi7"]
-        p = d["pi1"].transpose("pi7", "pi2").values
-        active = p.max(axis=0) > 0
-        mono = np.all(np.diff(p, axis=0) <= 1e-9 * np.maximum(p[:-1], 1e-300) + 1e-12, axis=0)
-        frac = float(np.mean(mono[active])) if active.any() else math.nan
-        i_lo = _integral(p[0], d["pi2"].values)
-        i_hi = _integral(p[-1], d["pi2"].values)
-        finding = (f"Pi1 is non-increasing in Pi7 at {100 * frac:.0f}% of the Pi2 points with sliding; the "
-                   f"area under the curve falls by {100 * (1 - i_hi / i_lo):.0f}% from Pi7 = 0 to "
-                   f"Pi7 = {float(d['pi7'].max()):g}.")
-        v = 1 if frac >= 0.95 else (2 if frac >= 0.5 else 0)
-        out.append(dict(key="viscous_contact", claim="The higher the contact damping (Pi7), the lower the "
-                                                     "sliding response.",
-                        finding=finding, verdict=v,
-                        criterion="holds if Pi1 is non-increasing in Pi7 at >= 95% of the sliding Pi2 points; "
-                                  "partly if at >= 50%"))
-
-    if "fig8_pi8" in ds and 1.0 in ds["fig8_pi8"]["pi8"].values:
-        d = ds["fig8_pi8"]
-        p3 = float(d["pi3"].values[np.argmin(np.abs(d["pi3"].values - 0.1))])
-        a = d["pi1"].sel(pi3=p3, pi8=1.0).values
-        b = d["pi1"].sel(pi3=p3, pi8=float(d["pi8"].min())).values
-        pi2 = d["pi2"].values
-        low = pi2 <= LOW_PI2 + 1e-12
-        nz = np.flatnonzero((a > 0) | (b > 0))
-        high = np.zeros_like(low)
-        if nz.size:
-            high[nz[len(nz) // 2]: nz[-1] + 1] = True
-        rl = _ratio_mean(a, b, low)
-        hi_a, hi_b = float(a[high].mean()) if high.any() else math.nan, float(b[high].mean()) if high.any() else math.nan
-        finding = (f"At Pi3 = {p3:g}, Pi8 = 1 against Pi8 = {float(d['pi8'].min()):g}: mean ratio {rl:.3f} "
-                   f"for Pi2 <= {LOW_PI2:g}; mean Pi1 over the upper half of the sliding range {hi_a:.3g} "
-                   f"against {hi_b:.3g}.")
-        dec, inc = rl < 1 - MATERIAL, hi_a > hi_b * (1 + MATERIAL)
-        v = 1 if (dec and inc) else (2 if (dec or inc) else 0)
-        out.append(dict(key="heavy_contents", claim="For Pi3 = 0.1 and contents as heavy as the isolated mass "
-                                                    "(Pi8 = 1), Pi1 decreases for low Pi2 (friction dissipation) "
-                                                    "and increases for large Pi2.",
-                        finding=finding, verdict=v,
-                        criterion=f"holds if both the decrease at low Pi2 and the increase at large Pi2 "
-                                  f"exceed {100 * MATERIAL:g}%; partly if one does"))
-    return out
 
 
 # ----------------------------------------------------------------------------------------------
@@ -721,14 +497,12 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
     settings : dict
         The ``similarity`` section of the configuration.
     """
-    from .datasets import global_attrs, open_dataset
-
     checks = [open_dataset(p) for p in check_paths]
     studies = {}
     for p in dataset_paths:
         d = open_dataset(p)
         studies[d.attrs.get("study", str(p))] = d
-    tol = float(settings.get("tolerance", 1e-4))
+    tol = float(settings["tolerance"])
     out = buckingham_tables(checks, tol)
 
     # raw samples, all studies, for the report's detail table
@@ -751,9 +525,9 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
 
     # (b) complete similarity
     spreads = {}
-    claims, cases, rel, spread, peak, at, ranges, arel = [], [], [], [], [], [], [], []
-    tol_s = float(settings.get("spread_tolerance", 0.1))
-    for group, c in (settings.get("complete") or {}).items():
+    groups, cases, rel, spread, peak, at, ranges, arel = [], [], [], [], [], [], [], []
+    tol_s = float(settings["spread_tolerance"])
+    for group, c in settings["complete"].items():
         d = studies.get(c["study"])
         if d is None or group not in d.dims:
             continue
@@ -770,7 +544,7 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
                 sel = {dname: st["case"].values[k][i] if isinstance(st["case"].values[k], tuple)
                        else st["case"].values[k] for i, dname in enumerate(s["relative"].dims)}
                 label = ", ".join(f"{dn} = {float(v):g}" for dn, v in sel.items())
-            claims.append(group)
+            groups.append(group)
             cases.append(label)
             pick = s.sel(sel) if sel else s
             rel.append(float(pick["relative"]))
@@ -784,7 +558,7 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
                          meanings="does_not_hold holds")
     out = out.merge(xr.Dataset(
         {
-            "complete_group": ("claim_case", np.array(claims, dtype=object), {"long_name": "Pi-group of the claim"}),
+            "complete_group": ("claim_case", np.array(groups, dtype=object), {"long_name": "Pi-group of the claim"}),
             "complete_case": ("claim_case", np.array(cases, dtype=object),
                               {"long_name": "values of the other swept groups"}),
             "complete_range": ("claim_case", np.array(ranges, dtype=object), {"long_name": "range tested"}),
@@ -804,8 +578,9 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
         }), join="outer")
 
     # (c) conclusions
-    concl = conclusions(studies, spreads, settings)
-    cv, cva = _verdict_var([c["verdict"] for c in concl], "verdict on the paper's conclusion")
+    concl = claims.evaluate(studies, spreads, tol_s)
+    cv, cva = _verdict_var([c["verdict"] for c in concl], "verdict on the paper's conclusion",
+                           meanings=claims.VERDICT_MEANINGS)
     out = out.merge(xr.Dataset(
         {
             "conclusion_key": ("conclusion", np.array([c["key"] for c in concl], dtype=object),
@@ -823,6 +598,6 @@ def similarity_dataset(check_paths, dataset_paths, settings: dict) -> xr.Dataset
               "conclusions",
         history=f"isoslide.similarity.similarity_dataset from {len(checks)} realisation file(s) and "
                 f"{len(studies)} study dataset(s)",
-        config=settings, low_pi2=f"'low Pi2' means Pi2 <= {LOW_PI2:g}",
+        config=settings, low_pi2=f"'low Pi2' means Pi2 <= {claims.LOW_PI2:g}",
         tolerance=f"{tol:g}", spread_tolerance=f"{tol_s:g}")
     return out
