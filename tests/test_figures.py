@@ -83,10 +83,9 @@ def test_stribeck_law_limits():
 def record_sets():
     from isoslide import record_study
 
-    settings = record_study.records_settings({
+    settings = record_study.records_settings(isoslide.config.load(None, {
         "records": {"names": ["Northridge_1994_PAC-175"], "pi2": {"start": 0.2, "stop": 0.8, "num": 2},
-                    "pi3": [0.5, 1.0]},
-        "defaults": {"pi5": 1.0, "pi6": 0.0, "pi7": 0.0, "pi8": 1e-5}, "solver": {}})
+                    "pi3": [0.5, 1.0]}}))
     part = record_study.record_dataset("Northridge_1994_PAC-175", settings)
     return {"record": record_study.fig4_dataset(settings),
             "records": record_study.records_dataset([part], settings)}

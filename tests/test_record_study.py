@@ -8,6 +8,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
+import isoslide.config
+
 from isoslide import record_study as S
 from isoslide import records as R
 from isoslide.pulses import SAMPLED
@@ -143,10 +145,10 @@ def test_compare_grid_real_record_smoke():
 def test_pipeline_datasets_cf_attrs_and_order(tmp_path):
     from isoslide import datasets
 
-    settings = S.records_settings({"records": {"names": ["Northridge_1994_VSP-360", "Northridge_1994_PAC-175"],
-                                               "pi2": {"start": 0.3, "stop": 0.6, "num": 2}, "pi3": [1.0]},
-                                   "defaults": {"pi8": 1e-5}})
-    assert settings["records"]["pi4"] == S.RECORDS_DEFAULTS["pi4"]
+    config = isoslide.config.load(None, {"records": {"names": ["Northridge_1994_VSP-360", "Northridge_1994_PAC-175"],
+                                                     "pi2": {"start": 0.3, "stop": 0.6, "num": 2}, "pi3": [1.0]}})
+    settings = S.records_settings(config)
+    assert settings["records"]["pi4"] == isoslide.config.defaults()["records"]["pi4"]
     parts = [S.record_dataset(n, settings) for n in ("Northridge_1994_PAC-175", "Northridge_1994_VSP-360")]
     ds = S.records_dataset(parts, settings)
     assert list(ds["record"].values) == ["Northridge_1994_VSP-360", "Northridge_1994_PAC-175"]   # config order

@@ -24,6 +24,7 @@ by pyslammer fit to 0.46-0.47 s).
 
 from __future__ import annotations
 
+import copy
 import math
 from pathlib import Path
 
@@ -32,9 +33,11 @@ import xarray as xr
 
 from . import records as _rec
 from .records import G, Record
+from .datasets import global_attrs
 from .scene import Scene
+from . import solver
 
-__all__ = ["FIG4_RECORD", "RECORDS_DEFAULTS", "STAND_IN_FOR", "compare_grid", "fig4_data", "fig4_dataset",
+__all__ = ["FIG4_RECORD", "STAND_IN_FOR", "compare_grid", "fig4_data", "fig4_dataset",
            "ratio_summary", "record_dataset", "records_dataset", "records_settings",
            "resolve_record", "summary_markdown"]
 
@@ -183,7 +186,7 @@ def compare_grid(names, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
         ``pga`` [g], ``pgv`` [m/s], ``duration`` [s].
     """
     if solve_many is None:
-        from .solver import solve_many
+        solve_many = solver.solve_many
     recs = [resolve_record(n) for n in names]
     pi2_values = np.asarray(pi2_values, dtype=float).ravel()
     pi3_values = np.asarray(pi3_values, dtype=float).ravel()
@@ -351,28 +354,12 @@ def summary_markdown(ds: xr.Dataset, tolerance: float = 0.25) -> str:
 # pipeline datasets (rules fig4_record, record_compare, records_dataset)
 # ----------------------------------------------------------------------------------------------
 
-RECORDS_DEFAULTS = {
-    "names": list(_rec.PULSE_LIKE_SAMPLES),
-    "fig4": FIG4_RECORD,
-    "pi2": {"start": 0.05, "stop": 1.5, "num": 15},
-    "pi3": [0.5, 1.0, 1.5, 2.0, 3.0],
-    "pi4": 0.1,
-    "tolerance": 0.25,
-}
-"""Defaults of the ``records`` configuration section (as in ``config/schema.yaml``)."""
+def records_settings(config: dict) -> dict:
+    """The sections of a complete configuration (:func:`isoslide.config.load`) the record study reads.
 
-
-def records_settings(config: dict | None) -> dict:
-    """The ``records`` section of a configuration with defaults, plus the groups it inherits.
-
-    ``config`` is a whole configuration (keys ``records``, ``defaults``, ``solver``); returns
-    ``{"records": ..., "defaults": ..., "solver": ...}`` with the records defaults filled in.
+    Returns ``{"records": ..., "defaults": ..., "solver": ...}`` (copies); the schema holds the defaults.
     """
-    config = dict(config or {})
-    rec = {**RECORDS_DEFAULTS, **(config.get("records") or {})}
-    rec["pi2"] = {**RECORDS_DEFAULTS["pi2"], **(rec.get("pi2") or {})}
-    return {"records": rec, "defaults": dict(config.get("defaults") or {}),
-            "solver": dict(config.get("solver") or {})}
+    return {k: copy.deepcopy(config[k]) for k in ("records", "defaults", "solver")}
 
 
 def _axes(settings: dict):
@@ -384,16 +371,13 @@ def _axes(settings: dict):
 
 
 def _groups(settings: dict) -> dict:
-    d = settings.get("defaults") or {}
-    return {"pi4": float(settings["records"]["pi4"]), "pi5": float(d.get("pi5", 1.0)),
-            "pi6": float(d.get("pi6", 0.0)), "pi7": float(d.get("pi7", 0.0)), "pi8": float(d.get("pi8", 1e-5))}
+    d = settings["defaults"]
+    return {"pi4": float(settings["records"]["pi4"]),
+            **{k: float(d[k]) for k in ("pi5", "pi6", "pi7", "pi8")}}
 
 
 def fig4_dataset(settings: dict) -> xr.Dataset:
-    """:func:`fig4_data` of the configured Fig. 4 record, with CF global attributes."""
-    from .datasets import global_attrs
-
-    settings = records_settings(settings) if "records" not in settings or "solver" not in settings else settings
+    """:func:`fig4_data` of the Fig. 4 record ``settings["records"]["fig4"]``, with CF global attributes."""
     ds = fig4_data(settings["records"]["fig4"])
     extra = dict(ds.attrs)
     title = extra.pop("title")
@@ -407,19 +391,21 @@ def fig4_dataset(settings: dict) -> xr.Dataset:
 
 
 def record_dataset(name: str, settings: dict) -> xr.Dataset:
-    """:func:`compare_grid` of one record over the configured grid (dimension ``record`` of length 1)."""
-    settings = records_settings(settings) if "records" not in settings or "solver" not in settings else settings
+    """:func:`compare_grid` of one record over the configured grid (dimension ``record`` of length 1).
+
+    ``settings`` is :func:`records_settings` of a complete configuration.
+    """
     pi2, pi3 = _axes(settings)
-    rtol = (settings.get("solver") or {}).get("rtol")
+    rtol = settings["solver"]["rtol"]
     return compare_grid([name], pi2, pi3, rtol=rtol, **_groups(settings))
 
 
 def records_dataset(parts, settings: dict) -> xr.Dataset:
-    """Concatenate per-record :func:`record_dataset` outputs (in the configured order) and add CF
-    global attributes, the ``tolerance`` and the summary of :func:`ratio_summary`."""
-    from .datasets import global_attrs
+    """Concatenate per-record :func:`record_dataset` outputs into the records dataset.
 
-    settings = records_settings(settings) if "records" not in settings or "solver" not in settings else settings
+    Records follow the configured order; CF global attributes, the ``tolerance`` and the
+    summary of :func:`ratio_summary` are added.
+    """
     parts = list(parts)
     by_name = {str(p["record"].values[0]): p for p in parts}
     order = [resolve_record(n).name for n in settings["records"]["names"]]
