@@ -27,6 +27,11 @@ CONFIG = {
 }
 
 
+def fig_settings(**override):
+    """The ``figures`` section of the default configuration, with overrides."""
+    return {**isoslide.config.defaults()["figures"], **override}
+
+
 @pytest.fixture(scope="module")
 def studies():
     out = {}
@@ -40,7 +45,7 @@ def studies():
 @pytest.mark.parametrize("name", [f"fig{n}" for n in range(1, 9)])
 def test_every_figure_renders_with_caption(tmp_path, studies, name):
     outs = [tmp_path / f"{name}.png", tmp_path / f"{name}.pdf", tmp_path / f"{name}.svg"]
-    caption = figures.draw(name, studies, outs, {"dpi": 60})
+    caption = figures.draw(name, studies, outs, fig_settings(dpi=60))
     assert caption.startswith(f"Fig. {name[3]}.")
     for p in outs:
         assert p.stat().st_size > 1000
@@ -53,18 +58,18 @@ def test_figures_are_deterministic(tmp_path, studies):
     (tmp_path / "b").mkdir()
     for name, ext in (("fig5", "pdf"), ("fig1", "png")):
         a, b = tmp_path / "a" / f"{name}.{ext}", tmp_path / "b" / f"{name}.{ext}"
-        figures.draw(name, studies, [a], {"dpi": 50})
-        figures.draw(name, studies, [b], {"dpi": 50})
+        figures.draw(name, studies, [a], fig_settings(dpi=50))
+        figures.draw(name, studies, [b], fig_settings(dpi=50))
         assert a.read_bytes() == b.read_bytes()
 
 
 def test_missing_dataset_and_bad_format_are_clear(tmp_path, studies):
     with pytest.raises(KeyError, match="fig6_pi5"):
-        figures.draw("fig6", {}, [tmp_path / "x.png"], {})
+        figures.draw("fig6", {}, [tmp_path / "x.png"], fig_settings())
     with pytest.raises(ValueError, match="unsupported figure format"):
-        figures.draw("fig2", {}, [tmp_path / "x.jpg"], {})
+        figures.draw("fig2", {}, [tmp_path / "x.jpg"], fig_settings())
     with pytest.raises(ValueError, match="figure = 'fig9'"):
-        figures.draw("fig9", {}, [tmp_path / "x.png"], {})
+        figures.draw("fig9", {}, [tmp_path / "x.png"], fig_settings())
 
 
 def test_stribeck_law_limits():
@@ -93,7 +98,7 @@ def record_sets():
 
 def test_fig4_draws_the_stand_in_record(tmp_path, record_sets):
     out = tmp_path / "fig4.png"
-    caption = figures.draw("fig4", {"record": record_sets["record"]}, [out], {"dpi": 60})
+    caption = figures.draw("fig4", {"record": record_sets["record"]}, [out], fig_settings(dpi=60))
     at = record_sets["record"].attrs
     assert caption.startswith("Fig. 4.") and "Kobe_1995_TAK-090" in caption
     assert "stands in" in caption and "RRS228" in caption
@@ -101,7 +106,7 @@ def test_fig4_draws_the_stand_in_record(tmp_path, record_sets):
     assert "Mavroeidis-Papageorgiou" in caption
     assert figures.read_caption(out) == caption
     # without the record dataset: the Ricker wavelet alone, saying so
-    assert "drawn alone" in figures.draw("fig4", {}, [tmp_path / "alone.png"], {"dpi": 60})
+    assert "drawn alone" in figures.draw("fig4", {}, [tmp_path / "alone.png"], fig_settings(dpi=60))
 
 
 def test_records_figure_states_the_numbers(tmp_path, record_sets):
@@ -109,7 +114,7 @@ def test_records_figure_states_the_numbers(tmp_path, record_sets):
 
     ds = record_sets["records"]
     outs = [tmp_path / "records.png", tmp_path / "records.pdf"]
-    caption = figures.draw("records", {"records": ds}, outs, {"dpi": 60})
+    caption = figures.draw("records", {"records": ds}, outs, fig_settings(dpi=60))
     a = ratio_summary(ds, ds.attrs["tolerance"]).sel(record="all")
     assert caption.startswith("Records.") and "Northridge_1994_PAC-175" in caption
     assert f"median {float(a['median_ratio']):.2f}" in caption
@@ -119,6 +124,6 @@ def test_records_figure_states_the_numbers(tmp_path, record_sets):
     (tmp_path / "a").mkdir()
     (tmp_path / "b").mkdir()
     a2, b2 = tmp_path / "a" / "records.pdf", tmp_path / "b" / "records.pdf"
-    figures.draw("records", {"records": ds}, [a2], {"dpi": 50})
-    figures.draw("records", {"records": ds}, [b2], {"dpi": 50})
+    figures.draw("records", {"records": ds}, [a2], fig_settings(dpi=50))
+    figures.draw("records", {"records": ds}, [b2], fig_settings(dpi=50))
     assert a2.read_bytes() == b2.read_bytes()

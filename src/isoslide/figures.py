@@ -15,12 +15,21 @@ caption as its ``Description`` text chunk (read by the gallery report).
 
 from __future__ import annotations
 
+import json
+import logging
 import math
+import os
+import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from .datasets import open_dataset
 from .groups import GROUPS
+from .pulses import get_pulse
+from .record_study import ratio_summary
+
+log = logging.getLogger(__name__)
 
 STYLE = {
     "font.family": "DejaVu Sans",
@@ -232,10 +241,9 @@ def fig2(datasets=None, settings=None):
     """Fig. 2: the Stribeck friction law for several beta."""
     import matplotlib.pyplot as plt
 
-    settings = settings or {}
-    betas = settings.get("fig2_beta", [10.0, 30.0, 100.0, 1000.0])
-    mu = settings.get("fig2_mu", {})
-    mu_s, mu_k, gamma = mu.get("mu_s", 0.5), mu.get("mu_k", 0.35), mu.get("gamma", 0.0)
+    betas = settings["fig2_beta"]
+    mu = settings["fig2_mu"]
+    mu_s, mu_k, gamma = mu["mu_s"], mu["mu_k"], mu["gamma"]
     fig, (a, b) = plt.subplots(1, 2, figsize=(WIDTH, 2.6))
     v = np.linspace(-0.3, 0.3, 4001)
     vl = np.logspace(-5, 0.5, 800)
@@ -275,7 +283,6 @@ def fig3(datasets, settings=None):
     """Fig. 3: rectangular pulse, ground velocity, and Newmark's solution against the solver."""
     import matplotlib.pyplot as plt
 
-    from .pulses import get_pulse
 
     ds = _open(datasets, "fig3_newmark")
     p = get_pulse(ds.attrs.get("pulse", "rectangular"))
@@ -377,7 +384,6 @@ def fig4(datasets=None, settings=None):
 def _fig4_ricker_only():
     import matplotlib.pyplot as plt
 
-    from .pulses import get_pulse
 
     p = get_pulse("ricker")
     t = np.linspace(-2.5, 2.5, 2001)
@@ -409,7 +415,6 @@ def records(datasets, settings=None):
     """
     import matplotlib.pyplot as plt
 
-    from .record_study import ratio_summary
 
     ds = _open(datasets, "records")
     tol = float(ds.attrs.get("tolerance", 0.25))
@@ -628,7 +633,6 @@ FIGURES["records"] = records
 
 
 def _open(datasets, name):
-    from .datasets import open_dataset
 
     if name not in datasets:
         raise KeyError(f"figure needs dataset {name!r}; given: {sorted(datasets)}")
@@ -647,8 +651,6 @@ def _scalar(ds, name) -> str:
 def _ref(ds) -> str:
     cfg = ds.attrs.get("isoslide_config")
     if cfg:
-        import json
-
         return f"{json.loads(cfg).get('a_p_T_p'):g}"
     return "?"
 
@@ -658,7 +660,7 @@ def _ref_text(ds) -> str:
             rf"$(a_pT_p)_{{ref}}$ = {_ref(ds)} m/s ($a_p$ = 1 g, $T_p$ = 1 s)")
 
 
-def draw(name: str, datasets: dict, outputs, settings: dict | None = None):
+def draw(name: str, datasets: dict, outputs, settings: dict):
     """Draw figure ``name`` (``"fig1"`` ... ``"fig8"``) from ``datasets`` into each path of ``outputs``.
 
     Parameters
@@ -669,8 +671,8 @@ def draw(name: str, datasets: dict, outputs, settings: dict | None = None):
         Study datasets by study name; ``"record"`` (Fig. 4) and ``"records"`` for the record figures.
     outputs : sequence of path
         Files to write; the format follows the extension (png, pdf, svg).
-    settings : dict, optional
-        The ``figures`` section of the configuration.
+    settings : dict
+        The ``figures`` section of a complete configuration (:func:`isoslide.config.load`).
 
     Returns
     -------
@@ -682,23 +684,19 @@ def draw(name: str, datasets: dict, outputs, settings: dict | None = None):
 
     if name not in FIGURES:
         raise ValueError(f"figure = {name!r} is invalid; allowed: {sorted(FIGURES)}")
-    settings = settings or {}
     with matplotlib.rc_context(STYLE):
         fig, caption = FIGURES[name](datasets, settings)
         try:
             for out in outputs:
-                _save(fig, Path(out), caption, dpi=settings.get("dpi", 200))
+                _save(fig, Path(out), caption, dpi=settings["dpi"])
         finally:
             plt.close(fig)
-    print(caption)
+    log.info("%s", caption)
     return caption
 
 
 def _save(fig, path: Path, caption: str, dpi: int = 200):
     """Save deterministically and atomically; the caption goes into the file's metadata."""
-    import os
-    import tempfile
-
     ext = path.suffix.lstrip(".").lower()
     title = f"isoslide {path.stem}"
     meta = {

@@ -325,7 +325,7 @@ def study_grid(name: str, config: dict) -> Grid:
     try:
         study = config["studies"][name]
     except KeyError:
-        raise ConfigError(f"studies.{name}: no such study; known: {sorted(config.get('studies', {}))}") from None
+        raise ConfigError(f"studies.{name}: no such study; known: {sorted(config['studies'])}") from None
     return build_grid(normalise_study(name, study, config))
 
 
