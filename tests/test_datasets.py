@@ -131,6 +131,6 @@ def test_logging_to_captures_output_and_tracebacks(tmp_path):
     with pytest.raises(ZeroDivisionError):
         with datasets.logging_to(log):
             print("hello")
-            1 / 0
+            raise ZeroDivisionError("division by zero")
     text = log.read_text()
     assert "hello" in text and "ZeroDivisionError" in text and "isoslide" in text

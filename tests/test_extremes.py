@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from isoslide import Scene, solve
@@ -63,9 +63,11 @@ def scenes(draw, pulses=pulse_s):
     return sc
 
 
+SLIDING_PULSES = st.sampled_from(["ricker", "antisymmetric_ricker", "makris_b", "mavroeidis_papageorgiou"])
+
+
 @st.composite
-def sliding_scenes(draw, pulses=st.sampled_from(["ricker", "antisymmetric_ricker", "makris_b",
-                                                 "mavroeidis_papageorgiou"])):
+def sliding_scenes(draw, pulses=SLIDING_PULSES):
     """Scenes that slide: Pi2/Pi5 a fraction of the stuck demand."""
     sc = draw(scenes(pulses))
     frac = draw(st.floats(0.02, 0.9))
@@ -198,7 +200,7 @@ def energy_residual(sc, max_step=5e-4, horizon=3.0):
     """
     s = solve(sc, history=True, max_step=max_step, horizon=horizon)
     h = s.history
-    t, x, xd, u, ud = h.tau, h.x, h.xd, h.u, h.ud
+    t, x, xd, _u, ud = h.tau, h.x, h.xd, h.u, h.ud
     p_right = sc.pulse.accel(t[:-1])
     p_left = sc.pulse.accel(np.nextafter(t[1:], -np.inf))
     if sc.fixed_base:

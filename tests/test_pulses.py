@@ -52,7 +52,7 @@ def pieces(pulse):
     """Smooth pieces [a, b) of the support, delimited by tau_start, breakpoints and tau_end."""
     edges = sorted({pulse.tau_start, pulse.tau_end}
                    | {float(b) for b in pulse.breakpoints if pulse.tau_start < b < pulse.tau_end})
-    return list(zip(edges[:-1], edges[1:]))
+    return list(zip(edges[:-1], edges[1:], strict=False))
 
 
 def integrate(f, a, b, pulse):
@@ -140,7 +140,7 @@ def test_velocity_is_integral_of_accel(case):
     tau = np.linspace(pulse.tau_start - 0.2, pulse.tau_end + 0.3, 41)
     pa = pulse.param_array
     steps = [integrate(lambda t: P.accel_at(pulse.code, pa, t), a, b, pulse)
-             for a, b in zip(tau[:-1], tau[1:])]
+             for a, b in zip(tau[:-1], tau[1:], strict=False)]
     expected = np.concatenate([[0.0], np.cumsum(steps)])
     np.testing.assert_allclose(pulse.velocity(tau), expected, rtol=0, atol=1e-12)
 
@@ -150,7 +150,7 @@ def test_displacement_is_integral_of_velocity(case):
     pulse = make(case)
     tau = np.linspace(pulse.tau_start - 0.2, pulse.tau_end + 0.3, 41)
     steps = [integrate(lambda t: float(pulse.velocity(t)), a, b, pulse)
-             for a, b in zip(tau[:-1], tau[1:])]
+             for a, b in zip(tau[:-1], tau[1:], strict=False)]
     expected = np.concatenate([[0.0], np.cumsum(steps)])
     np.testing.assert_allclose(pulse.displacement(tau), expected, rtol=0, atol=1e-12)
 
@@ -163,7 +163,7 @@ def test_jerk_is_derivative_of_accel(case):
     pa = pulse.param_array
     for a, b in pieces(pulse):
         edges = np.linspace(a, b, 21)
-        for lo, hi in zip(edges[:-1], edges[1:]):
+        for lo, hi in zip(edges[:-1], edges[1:], strict=False):
             hi_in = np.nextafter(hi, -np.inf) if hi == b else hi
             dp = P.accel_at(pulse.code, pa, hi_in) - P.accel_at(pulse.code, pa, lo)
             ij, _ = quad(lambda t: P.jerk_at(pulse.code, pa, t), lo, hi_in, epsabs=1e-14, epsrel=1e-13)
@@ -171,7 +171,7 @@ def test_jerk_is_derivative_of_accel(case):
         h = 1e-3
         c = np.array([-1, 9, -45, 0, 45, -9, 1]) / (60 * h)
         for x in np.linspace(a, b, 9)[1:-1]:
-            fd = sum(ci * P.accel_at(pulse.code, pa, x + k * h) for ci, k in zip(c, range(-3, 4)))
+            fd = sum(ci * P.accel_at(pulse.code, pa, x + k * h) for ci, k in zip(c, range(-3, 4), strict=False))
             assert P.jerk_at(pulse.code, pa, x) == pytest.approx(fd, abs=1e-8)
 
 
@@ -294,10 +294,10 @@ def test_sampled_random_record_exact_integration():
     tau = np.concatenate([tau, pulse.breakpoint_array])
     tau.sort()
     v_q = np.concatenate([[0.0], np.cumsum([integrate(lambda t: P.accel_at(P.SAMPLED, pa, t), a, b, pulse)
-                                            for a, b in zip(tau[:-1], tau[1:])])])
+                                            for a, b in zip(tau[:-1], tau[1:], strict=False)])])
     np.testing.assert_allclose(pulse.velocity(tau), v_q, atol=1e-12)
     d_q = np.concatenate([[0.0], np.cumsum([integrate(lambda t: float(pulse.velocity(t)), a, b, pulse)
-                                            for a, b in zip(tau[:-1], tau[1:])])])
+                                            for a, b in zip(tau[:-1], tau[1:], strict=False)])])
     np.testing.assert_allclose(pulse.displacement(tau), d_q, atol=1e-12)
     # accel at the knots is the sample itself; numpy and numba agree between them
     knots = np.array(pulse.breakpoints)

@@ -1,6 +1,5 @@
 """Similarity checks: the independent SI-units solver, spreads, tables and conclusions."""
 
-import math
 
 import numpy as np
 import pytest

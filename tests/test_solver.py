@@ -224,7 +224,7 @@ def test_one_way_reduction_used_only_when_bound_holds():
 def test_pi6_to_infinity_gives_static_kinetic_switch(pis):
     sharp = solve(Scene(**pis), model="static-kinetic").pi1
     errs = [rel(solve(Scene(**pis, pi6=pi6)).pi1, sharp) for pi6 in (1e3, 1e4, 1e5, 1e6)]
-    assert all(b < a for a, b in zip(errs, errs[1:]))
+    assert all(b < a for a, b in zip(errs, errs[1:], strict=False))
     assert errs[-1] < 1e-3
 
 
@@ -264,7 +264,7 @@ def test_batch_no_slide_shortcut_matches_single_solves():
     batch = solve_many(scenes)
     single = [solve(s) for s in scenes]
     demand = peak_stuck_demand(scenes[0])
-    for b_pi1, b_model, s, p in zip(batch.pi1, batch.model, single, pi2):
+    for b_pi1, b_model, s, p in zip(batch.pi1, batch.model, single, pi2, strict=False):
         assert b_pi1 == pytest.approx(s.pi1, rel=1e-12, abs=0)
         assert (b_model == "no-slide") == (p > demand)
         if p > demand:

@@ -92,7 +92,7 @@ def test_auto_stop_is_past_the_last_nonzero_response():
 
 
 def test_shipped_configs_are_valid_and_cover_the_paper():
-    main, test = isoslide.config.load(), load("test.yaml")
+    main, _test = isoslide.config.load(), load("test.yaml")
     specs = sweep.check_config(main)
     assert set(load("test.yaml")["studies"]) == set(specs)   # the tiny config shrinks every study
     for name, spec in specs.items():

@@ -416,8 +416,10 @@ def _kinematics(pulse: Pulse, t):
 
 
 def _sampled_kinematics(pa: np.ndarray, t: np.ndarray):
-    """Velocity and displacement of a piecewise-linear record, integrated exactly
-    (quadratic and cubic on each segment), for ``t`` inside the record."""
+    """Velocity and displacement of a piecewise-linear record for ``t`` inside the record.
+
+    Integrated exactly: quadratic and cubic on each segment.
+    """
     tau0, dtau, a = pa[0], pa[1], pa[2:]
     knots = tau0 + dtau * np.arange(a.size)
     slope = np.diff(a) / dtau
