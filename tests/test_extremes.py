@@ -51,7 +51,7 @@ def many_marginal_slips(sc: Scene) -> bool:
     """Very stiff, (nearly) undamped base: thousands of slips during the pulse.
 
     Near the threshold many of them are marginal and the default tolerance misses some
-    (finding 4, test_marginal_slips_on_a_stiff_undamped_base); excluded from the rtol sweeps.
+    (test_marginal_slips_on_a_stiff_undamped_base); excluded from the rtol sweeps.
     """
     return 0.0 < sc.pi3 < 0.02 and sc.pi4 < 0.05
 
@@ -315,10 +315,10 @@ def test_error_target_with_thousands_of_transitions():
 
 
 MARGINAL = Scene(pi2=1.0000007860939033, pi3=1e-3, pi4=0.0, pi8=0.0, pulse="makris_b")
-"""Finding 4: ~2000 slips, most of them marginal (Pi2 0.8 ppm above the floor's plateau)."""
+"""~2000 slips, most of them marginal (Pi2 0.8 ppm above the floor's plateau)."""
 
 
-@pytest.mark.xfail(strict=True, reason="finding 4: rtol=1e-6 finds 1966 of the 1994 transitions of MARGINAL "
+@pytest.mark.xfail(strict=True, reason="rtol=1e-6 finds 1966 of the 1994 transitions of MARGINAL "
                                        "(very stiff undamped base, Makris B pulse, Pi2 just above the "
                                        "demand) and Pi1 is off by 5e-5 (rtol=1e-8: 6e-6)")
 def test_marginal_slips_on_a_stiff_undamped_base():
@@ -329,11 +329,11 @@ def test_marginal_slips_on_a_stiff_undamped_base():
 
 
 UNDAMPED = Scene(pi2=0.06128900902154921, pi3=1.0, pi4=0.0, pi8=0.0)
-"""Finding 3: undamped base followed 200 periods (405 transitions)."""
+"""Undamped base followed 200 periods (405 transitions)."""
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="finding 3: at rtol <= 1e-11 the compiled solver gives 0.42576758646 "
+@pytest.mark.xfail(strict=True, reason="at rtol <= 1e-11 the compiled solver gives 0.42576758646 "
                                        "for UNDAMPED, 4e-9 (relative) below the SciPy reference "
                                        "(0.4257675881..., rtol 1e-10 .. 1e-13) and below its own rtol=1e-9, "
                                        "1e-10 and max_step-capped answers")

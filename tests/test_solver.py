@@ -1,4 +1,4 @@
-"""Verification of the exact solver (issue: solver core).
+"""Verification of the exact solver.
 
 Every expected value here is either a closed form, an invariance of the
 physics, or the public reference values of an independent solver (copied
