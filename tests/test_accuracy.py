@@ -1,9 +1,10 @@
-"""isoslide.accuracy (the speed-vs-accuracy measurement), isoslide.bench and the report notebook."""
+"""isoslide.accuracy (the speed-vs-accuracy measurement), isoslide.bench, the report notebook and the rules."""
 
 from __future__ import annotations
 
 import io
 import math
+import re
 import shutil
 import subprocess
 import sys
@@ -14,7 +15,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from isoslide import Scene, accuracy, bench
+from isoslide import Scene, accuracy, bench, groups
 from isoslide.datasets import open_dataset, write_netcdf
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -27,7 +28,7 @@ TINY = {"accuracy": {"per_study": 1, "hard": False, "repeats": 1, "exact_rtols":
 
 @pytest.fixture(scope="module")
 def tiny_parts():
-    return {p: accuracy.measure_part(p, TINY, log=lambda *a: None) for p in accuracy.PARTS}
+    return {p: accuracy.measure_part(p, TINY) for p in accuracy.PARTS}
 
 
 @pytest.fixture(scope="module")
@@ -70,9 +71,9 @@ def test_scene_set_is_deterministic_and_covers_studies_and_hard_classes():
 
 
 def test_scene_set_from_a_pipeline_config():
-    import yaml
+    from isoslide.config import load
 
-    cfg = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    cfg = load(ROOT / "config" / "config.yaml")
     s = accuracy.scene_set(cfg, {"per_study": 2, "hard": False})
     assert len(s) == 2 * len(cfg["studies"])
     assert {e.study for e in s} == set(cfg["studies"])
@@ -175,6 +176,14 @@ def test_reductions_are_exact_where_they_claim(tiny):
         assert np.all(tiny["red_work"].values[k][ok] <= tiny["red_work_full"].values[k][ok]), red
 
 
+def test_domain_lies_inside_the_valid_range_of_every_input_group():
+    assert list(accuracy.DOMAIN) == list(groups.INPUT_NAMES) == list(accuracy.PI_INPUTS)
+    for name, (lo, hi, meaning) in accuracy.DOMAIN.items():
+        g = groups.group(name)
+        assert g.check(lo) == lo and g.check(hi) == hi, name
+        assert lo < hi and meaning
+
+
 def test_domain_map(tiny):
     assert [str(g) for g in tiny["group"].values] == list(accuracy.PI_INPUTS)
     v = tiny["map_value"].values
@@ -187,9 +196,8 @@ def test_domain_map(tiny):
 
 
 def test_deterministic_part_reproduces(tiny_parts, tiny):
-    again = accuracy.combine({p: accuracy.measure_part(p, TINY, log=lambda *a: None)
-                              for p in ("exact", "reductions")} | {p: tiny_parts[p] for p in ("regularized", "map")},
-                             TINY)
+    again = accuracy.combine({p: accuracy.measure_part(p, TINY) for p in ("exact", "reductions")}
+                             | {p: tiny_parts[p] for p in ("regularized", "map")}, TINY)
     a, b = accuracy.deterministic_part(tiny), accuracy.deterministic_part(again)
     for ds in (a, b):
         ds.attrs.pop("source", None)
@@ -233,10 +241,42 @@ def test_notebook_has_a_parameters_cell():
     assert nb.metadata["kernelspec"]["name"] == "python3"
 
 
-def test_rule_file_names_its_outputs():
-    text = (ROOT / "workflow" / "rules" / "accuracy.smk").read_text()
-    for s in ("results/datasets/accuracy.nc", "reports/accuracy.html", "rule accuracy:", "logs/"):
-        assert s in text
+def _dry_run_jobs(out: str) -> list[dict]:
+    """Rule, wildcards, inputs, outputs and log of every job a ``snakemake -n`` run prints."""
+    jobs = []
+    for block in re.split(r"\n(?=\[.*\d{4}\]\n)", out):
+        m = re.search(r"^(?:local)?rule (\w+):", block, re.M)
+        if m:
+            job = {"rule": m.group(1)}
+            for key in ("input", "output", "log", "wildcards"):
+                f = re.search(rf"^\s+{key}: (.*)$", block, re.M)
+                job[key] = [x.strip() for x in f.group(1).split(",")] if f else []
+            jobs.append(job)
+    return jobs
+
+
+def test_accuracy_target_plans_parts_dataset_and_report(tmp_path):
+    """``snakemake accuracy`` plans one logged job per measurement part, the combined dataset
+    from exactly those parts, and the report."""
+    shutil.copy2(ROOT / "Snakefile", tmp_path / "Snakefile")
+    for d in ("config", "workflow", "profiles"):
+        shutil.copytree(ROOT / d, tmp_path / d, ignore=shutil.ignore_patterns("__pycache__"))
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "accuracy", "-n", "--configfile", "config/test.yaml"],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    jobs = _dry_run_jobs(proc.stdout + proc.stderr)
+    by_rule = {}
+    for job in jobs:
+        by_rule.setdefault(job["rule"], []).append(job)
+    parts = by_rule["accuracy_part"]
+    assert sorted(j["wildcards"][0] for j in parts) == sorted(f"part={p}" for p in accuracy.PARTS)
+    part_files = sorted(o for j in parts for o in j["output"])
+    assert part_files == sorted(f"results/accuracy/{p}.nc" for p in accuracy.PARTS)
+    [combine] = by_rule["accuracy_dataset"]
+    assert combine["output"] == ["results/datasets/accuracy.nc"] and sorted(combine["input"]) == part_files
+    [report] = by_rule["report_accuracy"]
+    assert "reports/accuracy.html" in report["output"]
+    assert all(j["log"] and j["log"][0].startswith("logs/") for j in parts + [combine, report])
 
 
 # ----------------------------------------------------------------------------------------------
@@ -271,7 +311,7 @@ def test_opensees_peer_converges_like_the_regularised_method():
 
     sc = Scene(pi2=0.2, pi3=1.0, pi4=0.1)
     exact = solve(sc, horizon=10.0).pi1
-    errs = [abs(accuracy.solve_opensees(sc, k, tau_max=sc.pulse.tau_end + 10.0)[0] - exact) / exact
+    errs = [abs(accuracy.solve_opensees(sc, k, tau_max=sc.pulse.tau_end + 10.0).pi1 - exact) / exact
             for k in (1e4, 1e6)]
     assert errs[1] < errs[0] < 0.1 and errs[1] < 1e-2
     with pytest.raises(ValueError, match="Coulomb"):

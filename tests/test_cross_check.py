@@ -1,6 +1,6 @@
 """isoslide against independent integrations of the same physics.
 
-* ``isoslide.reference.solve_reference``: plain SciPy DOP853 with events,
+* ``isoslide.peers.solve_reference``: plain SciPy DOP853 with events,
   written separately (rtol 1e-12); agreement on random scenes over every pulse
   shape, base, damping, friction law and mass ratio.
 * For very sharp Stribeck transitions (Pi6 >= 3e4) the reference drifts by up
@@ -14,7 +14,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 import isoslide
-from isoslide.reference import solve_reference
+from isoslide.peers import solve_reference
 
 PULSES = ["ricker", "antisymmetric_ricker", "makris_a", "makris_b", "makris_cn",
           "mavroeidis_papageorgiou", "rectangular"]
@@ -64,7 +64,7 @@ def test_sharp_stribeck_against_direct_phase_integration():
         s = -np.sign(p(t))
         ev = lambda t, y: y[1]  # noqa: E731
         ev.terminal, ev.direction = True, -s
-        r = solve_ivp(lambda t, y: [y[1], -p(t) - s * phi(y[1])], (t + 1e-12, 3.0), [u, 0.0],
+        r = solve_ivp(lambda t, y, s=s: [y[1], -p(t) - s * phi(y[1])], (t + 1e-12, 3.0), [u, 0.0],
                       method="DOP853", rtol=1e-13, atol=1e-16, events=ev, max_step=1e-4,
                       first_step=1e-10)
         t, u = float(r.t_events[0][0]), float(r.y_events[0][0][0])

@@ -338,7 +338,7 @@ UNDAMPED = Scene(pi2=0.06128900902154921, pi3=1.0, pi4=0.0, pi8=0.0)
                                        "(0.4257675881..., rtol 1e-10 .. 1e-13) and below its own rtol=1e-9, "
                                        "1e-10 and max_step-capped answers")
 def test_tightest_tolerance_agrees_with_reference_undamped():
-    from isoslide.reference import solve_reference
+    from isoslide.peers import solve_reference
 
     ref = solve_reference(UNDAMPED, rtol=1e-12, atol=1e-16, tau_max=UNDAMPED.pulse.tau_end + 200.0).pi1
     assert solve(UNDAMPED, rtol=1e-12).pi1 == pytest.approx(ref, rel=1e-10)
@@ -360,7 +360,7 @@ def test_no_slide_threshold_is_sharp():
 @given(sliding_scenes(st.sampled_from(["ricker", "makris_b"])).filter(lambda s: s.rate_independent
                                                                       and s.pi3 >= 0.05))
 def test_agrees_with_reference_coulomb(sc):
-    from isoslide.reference import solve_reference
+    from isoslide.peers import solve_reference
 
     H = 20.0
     a = solve(sc, rtol=1e-10, horizon=H).pi1
@@ -402,11 +402,11 @@ def test_sharp_stribeck_exact_matches_brute_force():
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="isoslide.reference (SciPy events on a DOP853 step over the sharp "
+@pytest.mark.xfail(strict=True, reason="isoslide.peers.reference (SciPy events on a DOP853 step over the sharp "
                                        "Stribeck transition) ends the 2nd slip 8.5e-6 T_p late: Pi1 off "
                                        "by 9e-5; the compiled solver agrees with a brute-force solve")
 def test_reference_agrees_on_sharp_stribeck():
-    from isoslide.reference import solve_reference
+    from isoslide.peers import solve_reference
 
     a = solve(SHARP, rtol=1e-12).pi1
     b = solve_reference(SHARP, rtol=1e-12).pi1
@@ -414,11 +414,11 @@ def test_reference_agrees_on_sharp_stribeck():
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="isoslide.reference misses a breakaway whose demand exceeds the "
+@pytest.mark.xfail(strict=True, reason="isoslide.peers.reference misses a breakaway whose demand exceeds the "
                                        "static level only briefly (sign-change event detection between "
                                        "steps): Pi1 = 0 instead of 2e-9 just below the no-slide threshold")
 def test_reference_finds_slips_just_below_threshold():
-    from isoslide.reference import solve_reference
+    from isoslide.peers import solve_reference
 
     A = peak_stuck_demand(Scene(pi2=1.0, pi3=1.0, pi4=0.1), rtol=1e-12)
     sc = Scene(pi2=A * (1 - 1e-4), pi3=1.0, pi4=0.1)

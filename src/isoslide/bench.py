@@ -5,9 +5,9 @@ the same).  On the representative scene set of :mod:`isoslide.accuracy` (a fixed
 of every paper study plus the hard cases) it times, scene after scene and interleaved:
 
 * ``isoslide.solve(scene)`` at its default accuracy (compiled event-driven DOP853);
-* the plain SciPy event-driven solve (:func:`isoslide.reference.solve_reference`, ``solve_ivp``
+* the plain SciPy event-driven solve (:func:`isoslide.peers.solve_reference`, ``solve_ivp``
   DOP853 with events) at the same nominal tolerance;
-* the paper-style regularised solve (:func:`isoslide.regularized.solve_regularized`, stiff
+* the paper-style regularised solve (:func:`isoslide.peers.solve_regularized`, stiff
   elastic-plastic spring, SciPy Radau) on an evenly spread subset (it takes seconds per scene).
 
 Errors are relative to the converged answer (isoslide at ``rtol = 1e-12``, every reduction
@@ -55,7 +55,7 @@ def run(per_study: int = 6, hard: bool = True, repeats: int = 15, peer_repeats: 
     """Measure; return a dict of per-scene records and summaries (see :func:`report`)."""
     settings = accuracy.settings_from({"per_study": per_study, "hard": hard, "horizon": horizon})
     entries = accuracy.scene_set(None, settings)
-    accuracy._warm_up()
+    accuracy.warm_up()
     ref = accuracy.Setting(f"scipy event-driven rtol={reference_rtol:g}", "reference", reference_rtol)
     reg = accuracy.Setting(f"regularized K={stiffness:.0e}", "regularized", regularized_rtol, stiffness)
     reg_idx = set(entries.subset(regularized_scenes))
@@ -147,8 +147,8 @@ def report(res: dict, summ: dict, file=sys.stdout) -> None:
       f"Python {platform.python_version()}, {platform.machine()}, one process, one thread")
     p(f"timing: isoslide median of {res['repeats']} runs per scene, SciPy reference median of "
       f"{res['peer_repeats']} (interleaved, same scene); regularized once per scene on a subset")
-    p(f"errors: relative to isoslide at rtol=1e-12 with every reduction off; 'max*' over scenes "
-      f"with Pi1 >= 1e-6 (below, relative error is not meaningful)")
+    p("errors: relative to isoslide at rtol=1e-12 with every reduction off; 'max*' over scenes "
+      "with Pi1 >= 1e-6 (below, relative error is not meaningful)")
     p("")
     hdr = f"{'method':40s} {'scenes':>6s} {'median ms':>10s} {'x isoslide':>10s} {'med err':>9s} {'max err':>9s} {'max* err':>9s}"
     p(hdr)
@@ -183,6 +183,7 @@ def report(res: dict, summ: dict, file=sys.stdout) -> None:
 
 
 def main(argv=None) -> int:
+    """Command line: measure, then print the report (or JSON); returns the exit status."""
     ap = argparse.ArgumentParser(prog="python -m isoslide.bench", description=__doc__.split("\n\n")[0])
     ap.add_argument("--per-study", type=int, default=6, help="scenes drawn from each paper study (6)")
     ap.add_argument("--no-hard", action="store_true", help="leave out the hard scene classes")

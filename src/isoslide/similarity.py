@@ -29,6 +29,7 @@ import xarray as xr
 from . import claims
 from .datasets import global_attrs, open_dataset, pi_attrs
 from .groups import INPUT_NAMES, INPUTS
+from .peers.si import simulate_si
 from .scene import G_STANDARD
 
 CONVENTIONS = ("isoslide", "paper")
@@ -71,158 +72,6 @@ def physical_parameters(pis: dict, a_p: float, T_p: float, M_b: float, conventio
     gamma = pis["pi7"] / ((g if convention == "isoslide" else a_p) * T_p)
     return dict(a_p=a_p, T_p=T_p, M_b=M_b, T_b=pis["pi3"] * T_p, xi_b=pis["pi4"], m_ec=pis["pi8"] * M_b,
                 mu_s=mu_k / pis["pi5"], mu_k=mu_k, beta=pis["pi6"] / (a_p * T_p), gamma=gamma, g=g)
-
-
-def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float = 1e-12) -> dict:
-    """Stick-slip response of a block on an isolated floor, integrated in SI units.
-
-    A deliberately plain implementation (SciPy ``solve_ivp``, DOP853, with
-    event location) of the physical equations, independent of
-    :mod:`isoslide.kernel`, used to test the similarity groups:
-
-    * base (relative to the ground), block stuck:
-      ``(M_b + m) (x'' + a_g) = -c x' - k x``;
-    * sliding in direction ``s``: friction acceleration of the block
-      ``phi = -s mu(|u'|) g``, ``M_b (x'' + a_g) = -c x' - k x - m phi``,
-      ``a_g + x'' + u'' = phi``;
-    * the block sticks when ``u' = 0`` and the floor acceleration ``A``
-      satisfies ``|A| <= mu_s g``; it breaks loose when ``|A| > mu_s g``,
-      sliding in direction ``-sign(A)``.
-
-    ``T_b = 0`` is a fixed base (floor = ground).
-
-    Parameters
-    ----------
-    p : dict
-        As returned by :func:`physical_parameters`.
-    pulse : str or Pulse
-        Ground-acceleration shape, ``a_g(t) = a_p p(t / T_p)``.
-    t_end : float, optional
-        End time, s (default: pulse end + 20 isolation or pulse periods).
-    rtol : float
-        Relative tolerance of the integrator.
-
-    Returns
-    -------
-    dict
-        ``u_max`` (m), ``u_res`` (m), ``n_events``, ``t_end`` (s).
-    """
-    from scipy.integrate import solve_ivp
-
-    from .pulses import accel_at, get_pulse
-
-    pul = get_pulse(pulse)
-    a_p, T_p, g = p["a_p"], p["T_p"], p["g"]
-    M, m = p["M_b"], p["m_ec"]
-    mu_s, mu_k, beta, gamma = p["mu_s"], p["mu_k"], p["beta"], p["gamma"]
-    fixed = p["T_b"] == 0.0
-    k = 0.0 if fixed else M * (2.0 * math.pi / p["T_b"]) ** 2
-    c = 0.0 if fixed else 2.0 * p["xi_b"] * math.sqrt(k * M)
-    code, params = pul.code, pul.param_array
-    L = a_p * T_p * T_p
-
-    def ag(t):
-        return a_p * accel_at(code, params, t / T_p)
-
-    def floor_stuck(t, y):
-        """Absolute floor acceleration with the block stuck."""
-        return ag(t) if fixed else (-c * y[1] - k * y[0]) / (M + m)
-
-    def mu(v):
-        bv = min(abs(beta * v), 700.0)
-        sech = 1.0 / math.cosh(bv)
-        return mu_s * sech + mu_k * (1.0 - sech) + gamma * abs(v)
-
-    def rhs_stick(t, y):
-        if fixed:
-            return (0.0, 0.0, 0.0, 0.0)
-        xdd = floor_stuck(t, y) - ag(t)
-        return (y[1], xdd, 0.0, 0.0)
-
-    def make_slip(s):
-        def rhs(t, y):
-            phi = -s * mu(y[3]) * g
-            xdd = 0.0 if fixed else (-c * y[1] - k * y[0] - m * phi) / M - ag(t)
-            return (y[1], xdd, y[3], phi - ag(t) - xdd)
-        return rhs
-
-    def decide(t, y):
-        A = floor_stuck(t, y)
-        if abs(A) <= mu_s * g:
-            return 0
-        return -1 if A > 0 else 1
-
-    period = T_p if fixed else max(p["T_b"], 1e-300)
-    t0 = pul.tau_start * T_p
-    t_pulse_end = pul.tau_end * T_p
-    if t_end is None:
-        t_end = t_pulse_end + 20.0 * max(period, T_p)
-    bounds = sorted({float(b) * T_p for b in pul.breakpoint_array if pul.tau_start < b} | {t_end})
-    bounds = [b for b in bounds if t0 < b <= t_end] or [t_end]
-    h_pulse = min(T_p, period) / 12.0
-    h_free = h_pulse
-    # sliding under a sharp Stribeck drop is sensitive to the first instants of slip: resolve them
-    stribeck = beta > 0.0 and mu_s != mu_k
-    h_slip = min(T_p, period) / 200.0
-
-    atol = np.array([1e-12 * L, 1e-12 * a_p * T_p, 1e-12 * L, 1e-12 * a_p * T_p])
-    t, y = t0, np.zeros(4)
-    phase = decide(t, y)
-    u_max, n_events = 0.0, 0
-    bi = 0
-    guard = 0
-    while t < t_end - 1e-12 * T_p:
-        guard += 1
-        if guard > 100000:
-            raise RuntimeError("simulate_si: too many phases (chattering?)")
-        while bi < len(bounds) and bounds[bi] <= t + 1e-14 * T_p:
-            bi += 1
-        t_next = bounds[bi] if bi < len(bounds) else t_end
-        h = h_pulse if t < t_pulse_end else h_free
-        if phase != 0 and stribeck:
-            h = min(h, h_slip)
-        if phase == 0:
-            if fixed:
-                fun = rhs_stick
-            else:
-                fun = rhs_stick
-            up = lambda tt, yy: floor_stuck(tt, yy) - mu_s * g  # noqa: E731
-            dn = lambda tt, yy: floor_stuck(tt, yy) + mu_s * g  # noqa: E731
-            up.terminal, up.direction = True, 1.0
-            dn.terminal, dn.direction = True, -1.0
-            events = [up, dn]
-        else:
-            fun = make_slip(phase)
-            stop = lambda tt, yy: yy[3]  # noqa: E731
-            stop.terminal, stop.direction = True, -float(phase)
-            events = [stop]
-        if fixed and phase == 0 and pul.code != 0:
-            # piecewise-constant ground acceleration of a fixed base: nothing moves while stuck
-            t = t_next
-            phase = decide(t, y)
-            continue
-        sol = solve_ivp(fun, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=events,
-                        max_step=h)
-        if sol.status == -1:
-            raise RuntimeError(f"simulate_si: integration failed: {sol.message}")
-        hit = [i for i, te in enumerate(sol.t_events) if len(te)]
-        if hit:
-            i = hit[0]
-            t, y = float(sol.t_events[i][0]), np.array(sol.y_events[i][0], dtype=float)
-            n_events += 1
-            if phase != 0:
-                y[3] = 0.0
-                u_max = max(u_max, abs(y[2]))
-                phase = decide(t, y)
-            else:
-                phase = -1 if floor_stuck(t, y) > 0 else 1
-        else:
-            t, y = float(sol.t[-1]), sol.y[:, -1].copy()
-            u_max = max(u_max, float(np.max(np.abs(sol.y[2]))))
-            if phase == 0 or y[3] == 0.0:
-                phase = decide(t, y)
-    u_max = max(u_max, abs(y[2]))
-    return {"u_max": u_max, "u_res": float(y[2]), "n_events": n_events, "t_end": t}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -325,8 +174,7 @@ def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
                     continue
                 recomputed[i, c] = 1
                 t_end = (tau_end[i] + 1.0) * T_p[i, j] if math.isfinite(tau_end[i]) else None
-                out = simulate_si(phys, pulse, t_end=t_end)
-                pi1_si[i, j, c] = out["u_max"] / (a_p[i, j] * T_p[i, j] ** 2)
+                pi1_si[i, j, c] = simulate_si(phys, pulse, t_end=t_end).pi1
         print(f"{study} sample {i}: {pt} pi1 grid {pi1_grid[i]:.6g}, SI {pi1_si[i].ravel().tolist()}",
               flush=True)
 

@@ -53,7 +53,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import kernel
+from .history import History
 from .models import label as model_label
+from .peers import SCENE_SOLVERS, PeerResult
 from .scene import Scene
 
 DEFAULT_RTOL = 1e-6
@@ -66,30 +68,6 @@ MANY_EVENTS = 50
 """Above this many transitions the local tolerance is tightened in proportion (one refinement pass)."""
 DEFAULT_HORIZON = 200.0
 """Follow-up after the pulse, in isolation periods (pulse periods for a fixed base)."""
-
-
-@dataclass(frozen=True)
-class History:
-    """Time history of a solve (dimensionless unless a scale is given).
-
-    Attributes
-    ----------
-    tau : ndarray
-        Time ``t / T_p``.
-    x, xd : ndarray
-        Base displacement relative to the ground (``a_p T_p^2``) and velocity (``a_p T_p``).
-    u, ud : ndarray
-        Sliding displacement relative to the floor (``a_p T_p^2``) and velocity (``a_p T_p``).
-    phase : ndarray
-        0 while stuck, +1 / -1 while sliding in the positive / negative direction.
-    """
-
-    tau: np.ndarray
-    x: np.ndarray
-    xd: np.ndarray
-    u: np.ndarray
-    ud: np.ndarray
-    phase: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -279,8 +257,9 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
         ``"exact"``: the compiled event-driven solver (this module);
         ``"regularized"``: the paper's method, signum replaced by a stiff
         elastic-plastic spring (option ``stiffness``), see
-        :mod:`isoslide.regularized`; ``"reference"``: plain SciPy
-        event-driven solver, see :mod:`isoslide.reference`.
+        :mod:`isoslide.peers.regularized`; ``"reference"``: plain SciPy
+        event-driven solver, see :mod:`isoslide.peers.reference`.  Further
+        keyword ``options`` go to the peer.
     horizon : float
         How long to follow a scene that does not settle, after the pulse, in
         isolation periods (pulse periods for a fixed base).
@@ -301,14 +280,11 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be an isoslide.Scene, got {type(scene).__name__}")
-    if method == "regularized":
-        from .regularized import solve_regularized
-        return _from_peer(scene, solve_regularized(scene, history=history, **options), "regularized")
-    if method == "reference":
-        from .reference import solve_reference
-        return _from_peer(scene, solve_reference(scene, history=history, **options), "reference")
     if method != "exact":
-        raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', 'regularized', 'reference'")
+        if method not in SCENE_SOLVERS:
+            raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', "
+                             + ", ".join(repr(m) for m in SCENE_SOLVERS))
+        return _from_peer(scene, SCENE_SOLVERS[method](scene, history=history, **options))
     if options:
         raise TypeError(f"unexpected options for method='exact': {sorted(options)}")
     if model not in MODEL_OPTIONS:
@@ -375,18 +351,19 @@ def _solution(scene, ints, floats, label, hist=None) -> Solution:
                     n_events=int(ints[kernel.R_EVENTS]), history=hist)
 
 
-def _from_peer(scene, res, label) -> Solution:
-    """Wrap a peer solver's result (dict-like or dataclass) as a Solution."""
-    get = (lambda k, d=None: res.get(k, d)) if isinstance(res, dict) else (lambda k, d=None: getattr(res, k, d))
-    pi1 = float(get("pi1"))
+def _from_peer(scene: Scene, res: PeerResult) -> Solution:
+    """A peer's result as a :class:`Solution` (``model`` is the peer's name).
+
+    ``n_steps`` holds the peer's time steps, or its right-hand-side evaluations
+    where it does not count steps.
+    """
     L = scene.scale.length if scene.scale is not None else 1.0
     Tp = scene.scale.T_p if scene.scale is not None else 1.0
-    resid = float(get("pi1_residual", math.nan))
-    tpk = float(get("tau_peak", math.nan))
-    return Solution(pi1=pi1, u_max=pi1 * L, pi1_residual=resid, u_residual=resid * L, tau_peak=tpk,
-                    t_peak=tpk * Tp, settled=bool(get("settled", True)), model=label,
-                    tau_end=float(get("tau_final", math.nan)), n_steps=int(get("nsteps", get("nfev", -1))),
-                    n_events=int(get("n_events", -1) or -1), history=get("history"))
+    return Solution(pi1=res.pi1, u_max=res.pi1 * L, pi1_residual=res.pi1_residual,
+                    u_residual=res.pi1_residual * L, tau_peak=res.tau_peak, t_peak=res.tau_peak * Tp,
+                    settled=res.settled, model=res.method, tau_end=res.tau_end,
+                    n_steps=res.n_steps if res.n_steps >= 0 else res.nfev, n_events=res.n_events,
+                    history=res.history)
 
 
 def peak_stuck_demand(scene: Scene, rtol: float | None = None, horizon: float = DEFAULT_HORIZON) -> float:

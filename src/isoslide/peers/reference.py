@@ -57,7 +57,7 @@ Pi2/Pi5`` the block can never slip again.  This bound is conservative when
 the future free response instead (closed form: for an under-damped oscillator
 successive extrema of ``a_req`` shrink by ``exp(-sigma pi / w_d)``, so the
 supremum is reached within the first half damped period; an over-damped one
-has at most one extremum).  The energy bound is reported as well.  The
+has at most one extremum); :func:`energy_bound` gives the bound.  The
 supremum test is sharp: the run stops at the first moment no further slip is
 possible, which only changes where the run stops, never ``Pi1``.  A fixed base
 is settled as soon as it sticks after the pulse.  A run that has not settled
@@ -70,86 +70,19 @@ the oscillation would have decayed by ``e**-50``; for ``Pi4 = 0`` simply
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .pulses import accel_at
-from .scene import Scene, to_metres
+from ..history import History
+from ..pulses import accel_at
+from ..scene import Scene
+from .result import PeerResult
 
-__all__ = ["ReferenceResult", "History", "solve_reference", "friction_level", "stuck_supremum"]
+__all__ = ["solve_reference", "friction_level", "stuck_supremum", "energy_bound"]
 
 STICK = 0
 SLIP = 1
-
-
-@dataclass(frozen=True)
-class History:
-    """Time history of a response (all dimensionless).
-
-    Attributes
-    ----------
-    tau : ndarray
-        Time ``t / T_p``.
-    x, xdot : ndarray
-        Base displacement relative to the ground (units ``a_p T_p**2``) and its
-        velocity (units ``a_p T_p``); zero for a fixed base.
-    u, udot : ndarray
-        Block displacement relative to the floor (units ``a_p T_p**2``) and its
-        velocity (units ``a_p T_p``).
-    sliding : ndarray of bool
-        True where the block slides (for the regularized model: plastic flow).
-    """
-
-    tau: np.ndarray
-    x: np.ndarray
-    xdot: np.ndarray
-    u: np.ndarray
-    udot: np.ndarray
-    sliding: np.ndarray
-
-
-@dataclass(frozen=True)
-class ReferenceResult:
-    """Result of :func:`solve_reference`.
-
-    Attributes
-    ----------
-    pi1 : float
-        ``u_max / (a_p T_p**2)``, peak absolute sliding displacement.
-    pi1_residual : float
-        Final signed sliding displacement (units ``a_p T_p**2``).
-    tau_peak : float
-        Time of the peak, units of ``T_p`` (``tau_start`` if it never slides).
-    settled : bool
-        True when the run ended because no further sliding is possible.
-    n_events : int
-        Number of stick/slip transitions (breakaways, stops and reversals).
-    tau_final : float
-        Time at which the run stopped, units of ``T_p``.
-    energy_bound : float
-        Conservative bound ``a_E`` on the future floor acceleration at the
-        stop (units of ``a_p``; 0 for a fixed base, nan if not settled).
-    nfev : int
-        Right-hand-side evaluations over all phases (cost measure).
-    history : History or None
-        Step-by-step history when requested.
-    """
-
-    pi1: float
-    pi1_residual: float
-    tau_peak: float
-    settled: bool
-    n_events: int
-    tau_final: float
-    energy_bound: float
-    nfev: int
-    history: History | None = None
-
-    def metres(self, scene: Scene) -> float:
-        """``u_max`` in metres for a scene built with :meth:`Scene.from_physical`."""
-        return to_metres(self.pi1, scene)
 
 
 def _sech(a: float) -> float:
@@ -247,6 +180,34 @@ def stuck_supremum(x: float, xdot: float, omega: float, zeta: float, m1: float):
     return best, t_best
 
 
+def energy_bound(x: float, xdot: float, omega: float, zeta: float, m1: float) -> float:
+    """Conservative bound ``a_E`` on the future floor demand of the free, stuck isolated system.
+
+    ``a_E = sqrt(2 E (4 zeta**2 omega**2 / m1 + omega**2)) / m1`` with the energy
+    ``E = m1 x'**2 / 2 + omega**2 x**2 / 2`` (see the module docstring).
+
+    Parameters
+    ----------
+    x, xdot : float
+        Base displacement (units ``a_p T_p**2``) and velocity (``a_p T_p``).
+    omega : float
+        ``2 pi / Pi3`` (rad per ``T_p``).
+    zeta : float
+        Isolation damping ratio ``Pi4``.
+    m1 : float
+        ``1 + Pi8``.
+
+    Returns
+    -------
+    float
+        The bound, units of ``a_p``.
+    """
+    c = 2.0 * zeta * omega
+    k = omega * omega
+    E = 0.5 * m1 * xdot ** 2 + 0.5 * k * x ** 2
+    return math.sqrt(2.0 * E * (c * c / m1 + k)) / m1
+
+
 def _default_horizon(scene: Scene) -> float:
     tau_end = scene.pulse.tau_end
     base = 50.0 * max(1.0, scene.pi3)
@@ -260,7 +221,7 @@ def _default_horizon(scene: Scene) -> float:
 
 def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
                     atol: float = 1e-15, tau_max: float | None = None,
-                    max_events: int = 100_000) -> ReferenceResult:
+                    max_events: int = 100_000) -> PeerResult:
     """Solve one scene with the event-driven DOP853 reference integrator.
 
     Parameters
@@ -271,7 +232,7 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
     rtol : float
         Relative tolerance passed to ``solve_ivp`` (DOP853).
     history : bool
-        Also return the step-by-step :class:`History`.
+        Also return the step-by-step :class:`~isoslide.history.History`.
     atol : float
         Absolute tolerance (lengths in ``a_p T_p**2``, velocities in ``a_p T_p``).
     tau_max : float or None
@@ -281,7 +242,8 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
 
     Returns
     -------
-    ReferenceResult
+    PeerResult
+        ``method = "reference"``, ``integrator = "DOP853"``; cost in ``nfev``.
     """
     pulse = scene.pulse
     code = int(pulse.code)
@@ -322,13 +284,12 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
     n_events = 0
     nfev = 0
     settled = False
-    e_bound = math.nan
     hist = [] if history else None
     zero_len = 0
 
-    def record(sol, mode_):
+    def record(sol, phase):
         if hist is not None:
-            hist.append((sol.t, sol.y.copy(), np.full(sol.t.shape, mode_ == SLIP)))
+            hist.append((sol.t, sol.y.copy(), np.full(sol.t.shape, phase, dtype=np.int8)))
 
     while True:
         if n_events > max_events:
@@ -342,13 +303,11 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
                 continue
             if tau >= tau_end:
                 if fixed:
-                    settled, e_bound = True, 0.0
+                    settled = True
                     break
                 sup, t_sup = stuck_supremum(y[0], y[1], om, z, m1)
                 if sup <= lim:
                     settled = True
-                    E = 0.5 * m1 * y[1] ** 2 + 0.5 * k * y[0] ** 2
-                    e_bound = math.sqrt(2.0 * E * (c * c / m1 + k)) / m1
                     break
         if tau >= horizon:
             break
@@ -363,7 +322,7 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
         t0 = tau
         hmax = hmax_pulse if t0 < tau_end else hmax_free
 
-        def p_of(t):
+        def p_of(t, t0=t0, t_clip=t_clip):
             return accel_at(code, params, min(max(t, t0), t_clip))
 
         if mode == STICK:
@@ -391,7 +350,7 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
         else:
             ss = s
 
-            def rhs(t, yy):
+            def rhs(t, yy, ss=ss):
                 ph = phi(yy[3])
                 p = p_of(t)
                 if fixed:
@@ -399,7 +358,7 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
                 xdd = -p - c * yy[1] - k * yy[0] + pi8 * ss * ph
                 return np.array([yy[1], xdd, yy[3], -ss * ph - p - xdd])
 
-            def ev_stop(t, yy):
+            def ev_stop(t, yy, ss=ss):
                 return ss * yy[3]
             ev_stop.terminal = True
             ev_stop.direction = -1.0
@@ -410,9 +369,9 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
         nfev += sol.nfev
         if sol.status < 0:
             raise RuntimeError(f"solve_ivp failed: {sol.message}")
-        record(sol, mode)
+        record(sol, 0 if mode == STICK else int(s))
         if sol.status == 1:  # an event
-            hits = [(te[0], ye[0]) for te, ye in zip(sol.t_events, sol.y_events) if len(te)]
+            hits = [(te[0], ye[0]) for te, ye in zip(sol.t_events, sol.y_events, strict=True) if len(te)]
             te, ye = min(hits, key=lambda h: h[0])
             zero_len = zero_len + 1 if te <= t0 else 0
             if zero_len > 4:
@@ -445,8 +404,8 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
     if hist is not None:
         tt = np.concatenate([a for a, _, _ in hist]) if hist else np.array([tau])
         yy = np.concatenate([b for _, b, _ in hist], axis=1) if hist else y[:, None]
-        sl = np.concatenate([m for _, _, m in hist]) if hist else np.array([False])
-        h = History(tt, yy[0], yy[1], yy[2], yy[3], sl)
-    return ReferenceResult(pi1=float(peak), pi1_residual=float(y[2]), tau_peak=float(tau_peak),
-                           settled=settled, n_events=n_events, tau_final=float(tau),
-                           energy_bound=float(e_bound), nfev=int(nfev), history=h)
+        ph = np.concatenate([m for _, _, m in hist]) if hist else np.zeros(1, dtype=np.int8)
+        h = History(tau=tt, x=yy[0], xd=yy[1], u=yy[2], ud=yy[3], phase=ph)
+    return PeerResult(method="reference", pi1=float(peak), pi1_residual=float(y[2]),
+                      tau_peak=float(tau_peak), settled=settled, n_events=n_events, tau_end=float(tau),
+                      nfev=int(nfev), integrator="DOP853", history=h)

@@ -7,11 +7,11 @@ same with scipy: no events, no stick/slip logic, one ODE system integrated by a
 stiff solver (``Radau`` by default, ``BDF`` selectable; see
 :func:`solve_regularized` for why not ``LSODA``).  It is an
 *approximation* of the exact stick-slip model solved by
-:mod:`isoslide.reference`; it converges to it as the stiffness grows, and is
+:mod:`isoslide.peers.reference`; it converges to it as the stiffness grows, and is
 kept to measure that error and its cost.
 
-Model (dimensionless, as in :mod:`isoslide.reference`)
-------------------------------------------------------
+Model (dimensionless, as in :mod:`isoslide.peers.reference`)
+------------------------------------------------------------
 The friction force on the block is ``-rho m_EC a_p`` with ``rho`` the force of
 an elastic-perfectly-plastic spring between block and floor:
 
@@ -68,77 +68,31 @@ reference at ``rtol = 1e-12`` (i.e. ~20-100x slower for an answer ~1e-3 off);
 at ``K = 1e7`` 4-14 s.  The cost is mostly spent following the spring's
 ringing while the pulse still acts (the rectangular pulse, whose stop comes
 after the pulse, needs only ~50 steps).  Reproduce with a loop over
-:func:`solve_regularized` and :func:`isoslide.reference.solve_reference`
+:func:`solve_regularized` and :func:`isoslide.peers.solve_reference`
 (see ``tests/test_regularized.py``).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import minimize_scalar
 
-from .pulses import accel_at
-from .reference import History, _default_horizon, _sech
-from .scene import Scene, to_metres
+from ..history import History, phase_of
+from ..pulses import accel_at
+from ..scene import Scene
+from .reference import _default_horizon, _sech
+from .result import PeerResult
 
-__all__ = ["RegularizedResult", "solve_regularized"]
-
-
-@dataclass(frozen=True)
-class RegularizedResult:
-    """Result of :func:`solve_regularized`.
-
-    Attributes
-    ----------
-    pi1 : float
-        Peak ``|u| / (a_p T_p**2)``.
-    pi1_residual : float
-        Final signed ``u`` (units ``a_p T_p**2``).
-    tau_peak : float
-        Time of the peak (units ``T_p``).
-    settled : bool
-        True when the stopping criterion was met before the horizon.
-    n_events : int
-        Number of elastic -> plastic switches seen between accepted steps
-        (an estimate of the number of slip phases; no events are located).
-    tau_final : float
-        Time at which the run stopped (units ``T_p``).
-    stiffness : float
-        ``K = k_r T_p**2 / m_EC`` used.
-    method : str
-        scipy integrator used.
-    nfev, njev, nsteps : int
-        Right-hand-side and Jacobian evaluations, accepted steps (cost).
-    history : History or None
-        Step-point history when requested (``sliding`` = plastic flow).
-    """
-
-    pi1: float
-    pi1_residual: float
-    tau_peak: float
-    settled: bool
-    n_events: int
-    tau_final: float
-    stiffness: float
-    method: str
-    nfev: int
-    njev: int
-    nsteps: int
-    history: History | None = None
-
-    def metres(self, scene: Scene) -> float:
-        """``u_max`` in metres for a scene built with :meth:`Scene.from_physical`."""
-        return to_metres(self.pi1, scene)
+__all__ = ["solve_regularized"]
 
 
 def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
                       history: bool = False, method: str = "Radau",
                       atol: float | None = None, tau_max: float | None = None,
-                      use_jac: bool = True) -> RegularizedResult:
+                      use_jac: bool = True) -> PeerResult:
     """Solve one scene with the paper's stiff-spring (bilinear) regularization.
 
     Parameters
@@ -152,7 +106,8 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
         (~1e-3 at ``K = 1e6``) dominates: ``rtol`` 1e-6 and 1e-8 give the same
         ``Pi1`` to ~1e-8 relative, the former at about half the cost.
     history : bool
-        Also return the step-point :class:`~isoslide.reference.History`.
+        Also return the step-point :class:`~isoslide.history.History`
+        (``phase``: plastic flow, in the direction of ``u'``).
     method : {"Radau", "BDF"}
         scipy ``solve_ivp`` method (both given the analytic Jacobian).  Radau
         IIA (implicit Runge-Kutta, order 5, L-stable) is the default and the
@@ -163,14 +118,17 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
     atol : float or None
         Absolute tolerance; default ``1e-3 * rtol`` on every component.
     tau_max : float or None
-        Horizon (units ``T_p``); default as :func:`isoslide.reference.solve_reference`.
+        Horizon (units ``T_p``); default as :func:`isoslide.peers.solve_reference`.
     use_jac : bool
         Pass the analytic (piecewise) Jacobian to the integrator (default);
         False uses scipy's finite differences (about 2x the cost).
 
     Returns
     -------
-    RegularizedResult
+    PeerResult
+        ``method = "regularized"``, ``stiffness = K``, ``integrator = method``; ``n_events``
+        counts elastic -> plastic switches between accepted steps (an estimate of the
+        number of slip phases; no events are located); cost in ``nfev``, ``njev``, ``n_steps``.
     """
     if method not in ("Radau", "BDF"):
         raise ValueError(f"method = {method!r} is invalid; allowed: 'Radau' or 'BDF' "
@@ -282,7 +240,7 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
     nfev = njev = nsteps = 0
     settled = False
     ts, ys = [], []
-    for t0, t1 in zip(edges[:-1], edges[1:]):
+    for t0, t1 in zip(edges[:-1], edges[1:], strict=True):
         if t1 <= t0:
             continue
         ev = [settle] if t1 > tau_end else None
@@ -322,7 +280,7 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
                     a, b = max(lo, sol.t[0]), min(hi, sol.t[-1])
                     if b > a:
                         f = sol.sol
-                        res = minimize_scalar(lambda t: -abs(f(t)[2]), bounds=(a, b),
+                        res = minimize_scalar(lambda t, f=f: -abs(f(t)[2]), bounds=(a, b),
                                               method="bounded", options={"xatol": 1e-12})
                         if -res.fun > peak:
                             peak, tau_peak = float(-res.fun), float(res.x)
@@ -333,8 +291,9 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
     Yv = np.array([phi(abs(v)) for v in yy[3]])
     plastic = (np.abs(yy[4]) >= Yv * (1.0 - 1e-9)) & (yy[4] * yy[3] > 0.0)
     n_events = int(np.count_nonzero(plastic[1:] & ~plastic[:-1]))
-    h = History(tt, yy[0], yy[1], yy[2], yy[3], plastic) if history else None
-    return RegularizedResult(pi1=peak, pi1_residual=float(yy[2, -1]), tau_peak=tau_peak,
-                             settled=settled, n_events=n_events, tau_final=tau_final,
-                             stiffness=K, method=method, nfev=int(nfev), njev=int(njev),
-                             nsteps=int(nsteps), history=h)
+    h = None
+    if history:
+        h = History(tau=tt, x=yy[0], xd=yy[1], u=yy[2], ud=yy[3], phase=phase_of(plastic, yy[3]))
+    return PeerResult(method="regularized", pi1=peak, pi1_residual=float(yy[2, -1]), tau_peak=tau_peak,
+                      settled=settled, n_events=n_events, tau_end=tau_final, nfev=int(nfev), njev=int(njev),
+                      n_steps=int(nsteps), stiffness=K, integrator=method, history=h)

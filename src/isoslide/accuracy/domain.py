@@ -1,0 +1,109 @@
+"""The domain map: where the problem is stiff or slow, and what the solver does there."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from ..groups import INPUT_NAMES
+from ..scene import Scene
+from ..solver import solve
+from .timing import warm_up
+from .trade import rel_error
+
+DOMAIN = {
+    "pi2": (1e-4, 100.0, "1e-4 (nearly frictionless) to far past the no-slide threshold"),
+    "pi3": (0.0, 100.0, "0 (fixed base), 1e-3 (very stiff base) to 100 (very long isolation period)"),
+    "pi4": (0.0, 10.0, "0 (undamped: never settles) to over-damped (>= 1)"),
+    "pi5": (0.05, 1.0, "0.05 (static friction 20 x kinetic) to 1 (Coulomb)"),
+    "pi6": (0.0, 1e7, "0 (Coulomb with mu_s) to 1e7 (practically a jump from mu_s to mu_k)"),
+    "pi7": (0.0, 100.0, "0 to 100 (friction dominated by the viscous term)"),
+    "pi8": (0.0, 10.0, "0 (one-way coupling) to 10 (contents ten times the isolated mass)"),
+}
+"""The domain over which isoslide is tested (``tests/test_extremes.py``) and mapped
+(:func:`domain_map`): (low, high, meaning).  The valid range of each group in
+:data:`isoslide.groups.GROUPS` is the (wider) domain a Scene accepts."""
+
+MAP_BASE = {"pi2": 0.1, "pi3": 1.0, "pi4": 0.1, "pi5": 0.7, "pi6": 1000.0, "pi7": 0.0, "pi8": 1e-3}
+"""Base scene of the 1-D sweeps of :func:`domain_map` (Stribeck friction, resonance)."""
+
+
+def map_values(group: str, npts: int = 9) -> np.ndarray:
+    """Values of ``group`` swept by :func:`domain_map` across :data:`DOMAIN` (zero included)."""
+    lo, hi, _ = DOMAIN[group]
+    if group == "pi5":
+        return np.linspace(lo, hi, npts)
+    if group == "pi4":
+        return np.concatenate([[0.0], np.logspace(-3, 1, npts - 1)])
+    if group == "pi3":
+        return np.concatenate([[0.0], np.logspace(-3, 2, npts - 1)])
+    if lo == 0.0:
+        return np.concatenate([[0.0], np.logspace(-3 if group != "pi6" else -1, math.log10(hi), npts - 1)])
+    return np.logspace(math.log10(lo), math.log10(hi), npts)
+
+
+def domain_map(settings: dict, base: dict | None = None) -> xr.Dataset:
+    """1-D sweeps of every input group across its domain from :data:`MAP_BASE`.
+
+    For each point: Pi1 (default and converged), integrator steps, transitions, model label,
+    settled flag, end time, and the wall-clock cost (median of ``map_repeats``).
+    """
+    base = dict(MAP_BASE if base is None else base)
+    npts = settings["map_points"]
+    H = settings["horizon"]
+    rtol = settings["default_rtol"]
+    groups = list(INPUT_NAMES)
+    shape = (len(groups), npts)
+    vals = np.full(shape, np.nan)
+    out = {k: np.full(shape, np.nan) for k in ("pi1", "pi1_conv", "cost", "tau_end")}
+    steps = np.full(shape, -1, np.int64)
+    events = np.full(shape, -1, np.int64)
+    settled = np.full(shape, -1, np.int8)
+    models = np.full(shape, "", dtype=object)
+    warm_up()
+    for g, name in enumerate(groups):
+        for k, v in enumerate(map_values(name, npts)):
+            kw = dict(base)
+            kw[name] = float(v)
+            if kw["pi3"] == 0.0:
+                kw["pi4"] = 0.0
+            sc = Scene(**kw)
+            vals[g, k] = v
+            ts = []
+            for _ in range(settings["map_repeats"]):
+                t0 = time.perf_counter()
+                s = solve(sc, rtol=rtol, horizon=H)
+                ts.append(time.perf_counter() - t0)
+            out["pi1"][g, k], out["cost"][g, k], out["tau_end"][g, k] = s.pi1, np.median(ts), s.tau_end
+            out["pi1_conv"][g, k] = solve(sc, rtol=settings["converged_rtol"], horizon=H, model="full").pi1
+            steps[g, k], events[g, k], settled[g, k], models[g, k] = s.n_steps, s.n_events, s.settled, s.model
+    dims = ("group", "point")
+    ds = xr.Dataset(
+        {
+            "map_value": (dims, vals, {"long_name": "value of the swept group (others at the base scene)",
+                                       "units": "1"}),
+            "map_pi1": (dims, out["pi1"], {"long_name": "Pi1 at the default rtol", "units": "1"}),
+            "map_pi1_converged": (dims, out["pi1_conv"], {"long_name": "converged Pi1", "units": "1"}),
+            "map_rel_error": (dims, rel_error(out["pi1"], out["pi1_conv"]),
+                              {"long_name": "relative error of the default setting", "units": "1"}),
+            "map_steps": (dims, steps, {"long_name": "integrator steps", "units": "1"}),
+            "map_events": (dims, events, {"long_name": "stick/slip transitions", "units": "1"}),
+            "map_settled": (dims, settled, {"long_name": "settled before the horizon (1) or not (0)",
+                                            "units": "1"}),
+            "map_model": (dims, models.astype(str), {"long_name": "model the solver ran", "units": "1"}),
+            "map_tau_end": (dims, out["tau_end"], {"long_name": "end time of the integration / T_p",
+                                                   "units": "1"}),
+            "map_cost_seconds": (dims, out["cost"], {"long_name": "wall-clock time per scene (median)",
+                                                     "units": "s", "nondeterministic": "true"}),
+        },
+        coords={"group": ("group", np.array(groups, dtype=str), {"long_name": "swept input group",
+                                                                 "units": "1"}),
+                "point": ("point", np.arange(npts, dtype=np.int32), {"long_name": "point of the sweep",
+                                                                     "units": "1"})},
+    )
+    for k, v in base.items():
+        ds.attrs[f"map_base_{k}"] = float(v)
+    return ds

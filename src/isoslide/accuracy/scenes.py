@@ -1,0 +1,201 @@
+"""The representative scene set: study subsamples and the hard cases."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..groups import INPUT_NAMES, group
+from ..scene import Scene
+from ..solver import peak_stuck_demand
+from ..sweep import build_grid, check_config
+from .settings import PAPER_CONFIG, settings_from
+
+
+@dataclass(frozen=True)
+class Entry:
+    """A scene of a scene set with its class and a readable label."""
+
+    scene: Scene
+    cls: str
+    label: str
+    study: str = ""
+
+
+@dataclass(frozen=True)
+class SceneSet:
+    """An ordered list of :class:`Entry` (deterministic for a given configuration)."""
+
+    entries: tuple = field(default_factory=tuple)
+
+    def __len__(self):
+        return len(self.entries)
+
+    def __iter__(self):
+        return iter(self.entries)
+
+    def __getitem__(self, i):
+        return self.entries[i]
+
+    @property
+    def scenes(self) -> list:
+        """The scenes, in order."""
+        return [e.scene for e in self.entries]
+
+    def subset(self, n: int, avoid=("undamped", "long-period", "low-friction")) -> list[int]:
+        """``n`` indices spread evenly over the set, spread over the classes.
+
+        Classes in ``avoid`` (long runs) are used only when nothing else is left.
+        """
+        n = min(n, len(self))
+        if n <= 0:
+            return []
+        by_class: dict = {}
+        for i, e in enumerate(self.entries):
+            by_class.setdefault(e.cls, []).append(i)
+        order = [c for c in by_class if c not in avoid] + [c for c in by_class if c in avoid]
+        picked: list[int] = []
+        rank = 0
+        while len(picked) < n:
+            added = False
+            for c in order:
+                idx = by_class[c]
+                if rank < len(idx):
+                    # spread within the class: 0, last, middle, ...
+                    j = _spread_order(len(idx))[rank]
+                    picked.append(idx[j])
+                    added = True
+                    if len(picked) == n:
+                        break
+            if not added:
+                break
+            rank += 1
+        return sorted(picked)
+
+
+def _spread_order(n: int) -> list[int]:
+    order, seen = [], set()
+    for k in range(1, 64):
+        for j in np.linspace(0, n - 1, min(n, 2 ** k - 1) if n > 1 else 1).round().astype(int):
+            if int(j) not in seen:
+                seen.add(int(j))
+                order.append(int(j))
+        if len(order) == n:
+            break
+    return order
+
+
+def _label(sc: Scene) -> str:
+    """Every input group and the pulse of ``sc``, as text."""
+    parts = [f"{k}={getattr(sc, k):.4g}" for k in INPUT_NAMES]
+    return " ".join(parts) + f" {sc.pulse.name}"
+
+
+def study_entries(config: dict | None = None, per_study: int = 4, seed: int = 20240611) -> list[Entry]:
+    """``per_study`` scenes drawn (fixed seed, without replacement) from every study's grid.
+
+    Parameters
+    ----------
+    config : dict or None
+        A pipeline configuration (``studies`` and the keys they inherit); ``None`` uses the
+        paper's studies (:data:`PAPER_CONFIG`).
+    """
+    cfg = PAPER_CONFIG if not config or not config.get("studies") else config
+    specs = check_config(cfg)
+    out = []
+    for name in sorted(specs):
+        grid = build_grid(specs[name])
+        rng = np.random.default_rng([seed, _stable_hash(name)])
+        k = min(per_study, grid.size)
+        idx = np.sort(rng.choice(grid.size, size=k, replace=False))
+        for i, sc in zip(idx, grid.scenes(idx), strict=True):
+            out.append(Entry(sc, "study", f"{name}[{int(i)}]", name))
+    return out
+
+
+def _stable_hash(text: str) -> int:
+    h = 0
+    for ch in text.encode():
+        h = (h * 131 + ch) % (2**31 - 1)
+    return h
+
+
+def hard_scenes() -> list[Entry]:
+    """The hard cases, by class (deterministic; thresholds computed by the solver)."""
+    E = []
+
+    def add(cls, **kw):
+        sc = Scene(**kw)
+        E.append(Entry(sc, cls, f"{cls}: {_label(sc)}"))
+
+    # just below / just above the no-slide threshold: Pi2/Pi5 against the stuck demand A
+    for pi3, pi4 in ((1.0, 0.1), (2.0, 0.05)):
+        A = peak_stuck_demand(Scene(pi2=1.0, pi3=pi3, pi4=pi4), rtol=1e-12)
+        for f in (1e-2, 1e-4, 1e-6):
+            add("near-threshold", pi2=A * (1.0 - f), pi3=pi3, pi4=pi4)
+        add("above-threshold", pi2=A * (1.0 + 1e-6), pi3=pi3, pi4=pi4)
+    add("near-threshold", pi2=1.0 - 1e-4, pi3=0.0, pi4=0.0)              # fixed base, Ricker peak 1
+    add("above-threshold", pi2=1.0 + 1e-9, pi3=0.0, pi4=0.0)
+    A = peak_stuck_demand(Scene(pi2=1.0, pi3=1.0, pi4=0.1), rtol=1e-12)
+    add("near-threshold", pi2=0.5 * A * (1.0 - 1e-3), pi3=1.0, pi4=0.1, pi5=0.5, pi6=1000.0)
+    # resonance with light damping
+    for pi4, pi2 in ((0.02, 0.02), (0.02, 0.1), (0.05, 0.05)):
+        add("resonance", pi2=pi2, pi3=1.0, pi4=pi4)
+    # xi_b -> 0 and over-damped
+    add("undamped", pi2=0.05, pi3=1.0, pi4=0.0)
+    add("undamped", pi2=0.1, pi3=2.0, pi4=0.0)
+    add("undamped", pi2=0.05, pi3=1.0, pi4=1e-3)
+    add("overdamped", pi2=0.05, pi3=1.0, pi4=1.0)
+    add("overdamped", pi2=0.02, pi3=2.0, pi4=5.0)
+    # very sharp Stribeck transitions
+    for pi6 in (1e4, 1e5, 1e6):
+        add("sharp-stribeck", pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.5, pi6=pi6)
+    add("sharp-stribeck", pi2=0.03, pi3=1.0, pi4=0.1, pi5=0.05, pi6=1e4)
+    add("sharp-stribeck", pi2=0.2, pi3=0.0, pi4=0.0, pi5=0.5, pi6=1e5)
+    # heavy contents
+    for pi8 in (0.3, 1.0, 10.0):
+        add("heavy", pi2=0.1, pi3=1.0, pi4=0.1, pi8=pi8)
+    add("heavy", pi2=0.1, pi3=1.0, pi4=0.1, pi5=0.7, pi6=1000.0, pi8=1.0)
+    # long isolation periods
+    for pi3, pi2 in ((5.0, 0.02), (20.0, 0.01), (100.0, 0.005)):
+        add("long-period", pi2=pi2, pi3=pi3, pi4=0.1)
+    # strong viscous contact
+    for pi7 in (10.0, 100.0):
+        add("viscous", pi2=0.05, pi3=1.0, pi4=0.1, pi7=pi7)
+    # nearly frictionless contents
+    add("low-friction", pi2=1e-3, pi3=1.0, pi4=0.1)
+    add("low-friction", pi2=1e-4, pi3=0.0, pi4=0.0)
+    # very stiff bases
+    add("stiff-base", pi2=0.2, pi3=1e-3, pi4=0.1)
+    add("stiff-base", pi2=0.2, pi3=1e-2, pi4=0.0)
+    # other pulses
+    add("pulses", pi2=0.3, pi3=0.0, pi4=0.0, pulse="rectangular")
+    add("pulses", pi2=0.1, pi3=1.0, pi4=0.1, pulse="antisymmetric_ricker")
+    add("pulses", pi2=0.1, pi3=1.5, pi4=0.1, pulse="makris_cn")
+    add("pulses", pi2=0.1, pi3=1.0, pi4=0.1, pi5=0.7, pi6=300.0, pulse="mavroeidis_papageorgiou")
+    return E
+
+
+def scene_set(config: dict | None = None, settings: dict | None = None) -> SceneSet:
+    """The representative scene set: study subsamples plus (if ``settings["hard"]``) the hard ones."""
+    s = settings_from(settings if settings is not None else config)
+    entries = study_entries(config, s["per_study"], s["seed"])
+    if s["hard"]:
+        entries += hard_scenes()
+    return SceneSet(tuple(entries))
+
+
+def scene_coords(entries) -> dict:
+    """Coordinates along ``scene`` of a dataset over ``entries``: number, input groups, pulse, class, label."""
+    coords = {"scene": ("scene", np.arange(len(entries), dtype=np.int32),
+                        {"long_name": "scene number in the accuracy scene set", "units": "1"})}
+    for k in INPUT_NAMES:
+        coords[k] = ("scene", np.array([getattr(e.scene, k) for e in entries], dtype=float), group(k).attrs())
+    coords["pulse"] = ("scene", np.array([e.scene.pulse.name for e in entries], dtype=str),
+                       {"long_name": "ground-acceleration pulse shape", "units": "1"})
+    coords["scene_class"] = ("scene", np.array([e.cls for e in entries], dtype=str),
+                             {"long_name": "scene class: study subsample or hard case", "units": "1"})
+    coords["scene_label"] = ("scene", np.array([e.label for e in entries], dtype=str),
+                             {"long_name": "scene description", "units": "1"})
+    return coords

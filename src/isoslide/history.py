@@ -1,0 +1,50 @@
+"""The time history of a response, shared by the solver and its peers."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["History", "phase_of"]
+
+
+@dataclass(frozen=True)
+class History:
+    """Time history of a solve (dimensionless unless a scale is given).
+
+    Attributes
+    ----------
+    tau : ndarray
+        Time ``t / T_p``.
+    x, xd : ndarray
+        Base displacement relative to the ground (``a_p T_p^2``) and velocity (``a_p T_p``).
+    u, ud : ndarray
+        Sliding displacement relative to the floor (``a_p T_p^2``) and velocity (``a_p T_p``).
+    phase : ndarray of int8
+        0 while stuck, +1 / -1 while sliding in the positive / negative direction.
+    """
+
+    tau: np.ndarray
+    x: np.ndarray
+    xd: np.ndarray
+    u: np.ndarray
+    ud: np.ndarray
+    phase: np.ndarray
+
+
+def phase_of(sliding, ud) -> np.ndarray:
+    """The ``phase`` array: the sign of the sliding velocity ``ud`` where ``sliding``, else 0.
+
+    Parameters
+    ----------
+    sliding : array_like of bool
+        True where the block slides.
+    ud : array_like of float
+        Sliding velocity (any unit).
+
+    Returns
+    -------
+    ndarray of int8
+    """
+    return np.where(np.asarray(sliding, dtype=bool), np.sign(ud), 0.0).astype(np.int8)

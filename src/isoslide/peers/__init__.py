@@ -1,0 +1,27 @@
+"""Independent peer solvers of the same physics, for cross-checks and the speed-accuracy study.
+
+Each module is one solver, written independently of the compiled kernel, and each
+returns a :class:`PeerResult` whose history is an :class:`isoslide.history.History`:
+
+:func:`solve_reference` (:mod:`.reference`)
+    Plain SciPy event-driven solver (DOP853 with events); ``solve(scene, method="reference")``.
+:func:`solve_regularized` (:mod:`.regularized`)
+    The paper's method: the signum replaced by a stiff elastic-plastic spring, SciPy
+    Radau; ``solve(scene, method="regularized", stiffness=...)``.
+:func:`simulate_si` (:mod:`.si`)
+    The physical equations in SI units, for the similarity check.
+:func:`solve_opensees` (:mod:`.opensees`)
+    The bilinear spring in OpenSees (optional; :func:`opensees_available`).
+"""
+
+from .opensees import opensees_available, solve_opensees
+from .reference import solve_reference
+from .regularized import solve_regularized
+from .result import PeerResult
+from .si import simulate_si
+
+SCENE_SOLVERS = {"reference": solve_reference, "regularized": solve_regularized}
+"""The peers :func:`isoslide.solve` runs for ``method=...`` (they take a :class:`isoslide.Scene`)."""
+
+__all__ = ["PeerResult", "SCENE_SOLVERS", "opensees_available", "simulate_si", "solve_opensees",
+           "solve_reference", "solve_regularized"]

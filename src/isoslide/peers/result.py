@@ -1,0 +1,69 @@
+"""The result every peer solver returns."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..history import History
+from ..scene import Scene, to_metres
+
+__all__ = ["PeerResult"]
+
+
+@dataclass(frozen=True)
+class PeerResult:
+    """Result of a peer solver (dimensionless, like :class:`isoslide.Solution`).
+
+    Attributes
+    ----------
+    method : str
+        Which peer ran: ``"reference"``, ``"regularized"``, ``"si"`` or ``"opensees"``.
+    pi1 : float
+        ``u_max / (a_p T_p^2)``: peak ``|u|`` over the response.
+    pi1_residual : float
+        Final signed sliding displacement (units ``a_p T_p^2``; nan if not recorded).
+    tau_peak : float
+        Time of the peak, units of ``T_p`` (nan if not recorded).
+    settled : bool
+        True when the run stopped because no further sliding is possible; False
+        when it ran to its end time (a peer without a settlement test always does).
+    n_events : int
+        Stick/slip transitions (breakaways, stops, reversals); the regularized
+        peer counts elastic-to-plastic switches between steps; -1 if not counted.
+    tau_end : float
+        Time at which the run stopped, units of ``T_p``.
+    nfev, njev, n_steps : int
+        Right-hand-side evaluations, Jacobian evaluations and time steps
+        (accepted steps; fixed steps for OpenSees); -1 where not counted.
+    stiffness : float
+        Regularising stiffness ``K = k_r T_p^2 / m_EC`` (regularized, opensees), else nan.
+    integrator : str
+        Time integrator used (``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"Newmark"``).
+    history : History or None
+        Time history when requested, with the solver's fields
+        (``tau, x, xd, u, ud, phase``, dimensionless).
+    """
+
+    method: str
+    pi1: float
+    pi1_residual: float = math.nan
+    tau_peak: float = math.nan
+    settled: bool = False
+    n_events: int = -1
+    tau_end: float = math.nan
+    nfev: int = -1
+    njev: int = -1
+    n_steps: int = -1
+    stiffness: float = math.nan
+    integrator: str = ""
+    history: History | None = field(default=None, repr=False)
+
+    @property
+    def work(self) -> int:
+        """Cost counter: right-hand-side evaluations where counted, else time steps."""
+        return self.nfev if self.nfev >= 0 else self.n_steps
+
+    def metres(self, scene: Scene) -> float:
+        """``u_max`` in metres for a scene built with :meth:`isoslide.Scene.from_physical`."""
+        return to_metres(self.pi1, scene)
