@@ -124,20 +124,25 @@ def code_hash(include=None, exclude=()) -> str:
     Parameters
     ----------
     include : iterable of str, optional
-        Module names (``"solver"``, ``"figures"``, ...); default: every module of the package.
+        Module or subpackage names (``"solver"``, ``"peers"``, ...); a subpackage stands for
+        all its modules; default: every module of the package.
     exclude : iterable of str
-        Module names to leave out.
+        Module or subpackage names to leave out.
     """
     import hashlib
 
     pkg = Path(__file__).resolve().parent
-    files = sorted(pkg.glob("*.py"))
+
+    def top(f):
+        return f.relative_to(pkg).parts[0].removesuffix(".py")
+
+    files = sorted(pkg.rglob("*.py"))
     if include is not None:
-        files = [f for f in files if f.stem in set(include)]
-    files = [f for f in files if f.stem not in set(exclude)]
+        files = [f for f in files if top(f) in set(include)]
+    files = [f for f in files if top(f) not in set(exclude)]
     h = hashlib.sha256()
     for f in files:
-        h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+        h.update(f.relative_to(pkg).as_posix().encode() + b"\0" + f.read_bytes() + b"\0")
     return h.hexdigest()[:16]
 
 
