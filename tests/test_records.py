@@ -9,8 +9,10 @@ import numpy as np
 import pytest
 
 from isoslide import Scene
+from isoslide import pulses
 from isoslide import records as R
 from isoslide.pulses import get_pulse
+from isoslide.records import fitting, reading
 
 DATA = Path(__file__).parent / "data" / "records"
 EXPECTED = np.loadtxt(DATA / "expected_values.txt")  # g, 23 samples
@@ -100,13 +102,13 @@ def test_at2_empty_file(tmp_path):
     ("1.0D-02 -.5", [0.01, -0.5]),
 ])
 def test_tokens_quirks(text, expected):
-    assert R._tokens(text, "f", 1) == pytest.approx(expected, rel=1e-12)
+    assert reading._tokens(text, "f", 1) == pytest.approx(expected, rel=1e-12)
 
 
 @pytest.mark.parametrize("text", ["0.1230.456", "0.1234-102", "1.0E+001.5E-01", "1.2E-0x", "nan", "1..2"])
 def test_tokens_reject_ambiguous_or_bad(text):
     with pytest.raises(R.RecordFormatError, match="f, line 9"):
-        R._tokens(text, "f", 9)
+        reading._tokens(text, "f", 9)
 
 
 # ----------------------------------------------------------------------------- CSV
@@ -273,7 +275,7 @@ def test_fit_bad_input():
 
 def _mp_record(gamma, nu, A=0.9, T=1.1, t0=7.0, dt=0.005, dur=20.0, noise=0.0, seed=3):
     t = np.arange(0.0, dur, dt)
-    a = R._mp_accel(t, A, t0, T, gamma, nu) / R.G  # g
+    a = pulses.mp_accel(t, A, t0, T, gamma, nu) / R.G  # g
     rng = np.random.default_rng(seed)
     return a + noise * np.max(np.abs(a)) * rng.standard_normal(t.size), dt
 
@@ -319,6 +321,81 @@ def test_ricker_fit_as_pulse_and_kinematics():
     v = np.concatenate([[0.0], np.cumsum(0.5 * (f.accel(t)[1:] + f.accel(t)[:-1]) * dt)])
     np.testing.assert_allclose(f.velocity(t), v, atol=1e-3 * np.max(np.abs(v)))  # trapezoid error
     assert f.length_scale == pytest.approx(f.a_p * f.T_p**2)
+
+
+# ----------------------------------------------------------------------------- shapes of isoslide.pulses
+
+
+def test_ricker_fit_is_evaluated_with_the_pulses_module_shape(monkeypatch):
+    """The Ricker fit and its PulseFit evaluate isoslide.pulses.ricker_accel / ricker_velocity."""
+    calls = []
+
+    def spy(*args):
+        calls.append(args)
+        return pulses.ricker_accel(*args)
+
+    monkeypatch.setattr(fitting, "ricker_accel", spy)
+    a, dt = _synthetic_ricker(noise=0.0)
+    f = R.fit_pulse(a, dt)
+    assert calls, "fit_pulse did not evaluate isoslide.pulses.ricker_accel"
+    t = np.arange(a.size) * dt
+    A = f.polarity * f.a_p
+    np.testing.assert_array_equal(f.accel(t), pulses.ricker_accel(t, A, f.t_peak, f.T_p))
+    np.testing.assert_array_equal(f.velocity(t), pulses.ricker_velocity(t, A, f.t_peak, f.T_p))
+    # the same pulse as the dimensionless Ricker of the scenes, inside its support
+    tau = (t - f.t_peak) / f.T_p
+    inside = np.abs(tau) < pulses.RICKER_HALF_WIDTH
+    P = f.as_pulse()
+    np.testing.assert_allclose(f.accel(t)[inside], A * P.accel(tau[inside]), rtol=1e-13, atol=1e-13 * f.a_p)
+    np.testing.assert_allclose(f.velocity(t)[inside], A * f.T_p * P.velocity(tau[inside]),
+                               rtol=1e-12, atol=1e-13 * f.a_p * f.T_p)
+
+
+def test_mp_fit_is_evaluated_with_the_pulses_module_shape(monkeypatch):
+    """The M-P fit and its PulseFit evaluate isoslide.pulses.mp_accel and mp_accel_jacobian."""
+    used = set()
+
+    def spy(name):
+        def wrapped(*args):
+            used.add(name)
+            return getattr(pulses, name)(*args)
+        return wrapped
+
+    for name in ("mp_accel", "mp_accel_jacobian"):
+        monkeypatch.setattr(fitting, name, spy(name))
+    a, dt = _mp_record(2.4, 1.0, noise=0.0)
+    f = R.fit_pulse(a, dt, shape="mp")
+    assert used == {"mp_accel", "mp_accel_jacobian"}
+    p = f.shape_params
+    t = np.arange(a.size) * dt
+    args = (p["A"], p["t0"], f.T_p, p["gamma"], p["nu"])
+    np.testing.assert_array_equal(f.accel(t), pulses.mp_accel(t, *args))
+    np.testing.assert_array_equal(f.velocity(t), pulses.mp_velocity(t, *args))
+
+
+@pytest.mark.parametrize("gamma, nu", [(1.5, 0.0), (2.4, 1.0), (3.7, -2.5)])
+def test_mp_record_time_shape_is_the_scene_pulse_at_physical_scales(gamma, nu):
+    """mp_accel / mp_velocity at (A, t0, T) equal the normalised scene pulse scaled by
+    a_p = pi A N / T and a_p T; the Jacobian matches central differences."""
+    A, t0, T = 0.7, 3.0, 1.3
+    P = pulses.mavroeidis_papageorgiou(gamma=gamma, nu=nu)
+    a_p = math.pi * A / T / P.params[2]
+    t = t0 + T * np.linspace(P.tau_start, P.tau_end, 2001)[:-1]
+    tau = (t - t0) / T
+    np.testing.assert_allclose(pulses.mp_accel(t, A, t0, T, gamma, nu), a_p * P.accel(tau),
+                               rtol=1e-12, atol=1e-12 * a_p)
+    np.testing.assert_allclose(pulses.mp_velocity(t, A, t0, T, gamma, nu), a_p * T * P.velocity(tau),
+                               rtol=1e-10, atol=1e-12 * A)
+    x = np.array([A, t0, T, gamma, nu])
+    J = pulses.mp_accel_jacobian(t, *x)
+    for k in range(5):
+        h = 1e-6 * max(1.0, abs(x[k]))
+        up, dn = x.copy(), x.copy()
+        up[k] += h
+        dn[k] -= h
+        fd = (pulses.mp_accel(t, *up) - pulses.mp_accel(t, *dn)) / (2 * h)
+        interior = np.abs(tau) < 0.5 * gamma - 1e-3  # the support moves with t0, T and gamma
+        np.testing.assert_allclose(J[interior, k], fd[interior], rtol=1e-5, atol=1e-6 * np.max(np.abs(fd)))
 
 
 # ----------------------------------------------------------------------------- record as pulse

@@ -722,3 +722,154 @@ def get_pulse(pulse, **shape_params) -> Pulse:
                                  f"allowed: {allowed if allowed else 'none'}")
         return factory(**shape_params)
     raise ValueError(f"pulse = {pulse!r} is invalid; allowed: one of {PULSE_NAMES} or a Pulse")
+
+
+# ---------------------------------------------------------------------------
+# shapes in record time, with free scales (fitting pulses to records)
+# ---------------------------------------------------------------------------
+
+def ricker_accel(t, A, t_peak, T):
+    """Ricker wavelet acceleration at record times ``t``, not truncated.
+
+    ``a(t) = A (1 - 2 pi^2 x^2) exp(-pi^2 x^2)`` with ``x = (t - t_peak) / T``:
+    the shape of :func:`ricker` at physical scales, over the whole real line
+    (no truncation at ``|x| = 2``), for least-squares fits to records.
+
+    Parameters
+    ----------
+    t : array_like
+        Times, s.
+    A : float
+        Signed peak acceleration ``a(t_peak)``, in any acceleration unit
+        (the result has the same unit).
+    t_peak : float
+        Time of the peak, s.
+    T : float
+        Period ``T_p`` of peak Fourier amplitude, s (> 0).
+
+    Returns
+    -------
+    ndarray
+        Acceleration, in the unit of ``A``.
+    """
+    x = (np.asarray(t, dtype=float) - t_peak) / T
+    s = _PI2 * x * x
+    return A * ((1.0 - 2.0 * s) * np.exp(-s))
+
+
+def ricker_velocity(t, A, t_peak, T):
+    """Ground velocity of :func:`ricker_accel`, from rest at ``t = -inf``.
+
+    ``v(t) = A T x exp(-pi^2 x^2)`` with ``x = (t - t_peak) / T``.
+
+    Parameters
+    ----------
+    t : array_like
+        Times, s.
+    A : float
+        Signed peak acceleration, e.g. m/s^2.
+    t_peak : float
+        Time of the acceleration peak, s.
+    T : float
+        Period ``T_p``, s (> 0).
+
+    Returns
+    -------
+    ndarray
+        Velocity, in the unit of ``A`` times s (m/s for ``A`` in m/s^2).
+    """
+    x = (np.asarray(t, dtype=float) - t_peak) / T
+    return A * T * x * np.exp(-_PI2 * x * x)
+
+
+def mp_accel(t, A, t0, T, gamma, nu):
+    """Mavroeidis-Papageorgiou (2003) acceleration at record times ``t``, unnormalised.
+
+    The exact derivative of the velocity :func:`mp_velocity`,
+    ``a = -(A pi / (gamma T)) [sin(2 pi x/gamma) cos(2 pi x + nu) + gamma (1 + cos(2 pi x/gamma)) sin(2 pi x + nu)]``
+    for ``|x| <= gamma/2``, ``x = (t - t0) / T``, and 0 outside: the shape of
+    :func:`mavroeidis_papageorgiou` at physical scales, with free ``gamma``
+    and ``nu`` (its peak is ``pi A N / T``, ``N`` as there).
+
+    Parameters
+    ----------
+    t : array_like
+        Times, s.
+    A : float
+        Velocity amplitude, e.g. m/s.
+    t0 : float
+        Centre of the envelope, s.
+    T : float
+        Period ``T_p = 1/f_p`` of the modulated harmonic, s (> 0).
+    gamma : float
+        Oscillatory character (> 1; the support is ``gamma T`` long).
+    nu : float
+        Phase of the harmonic, rad.
+
+    Returns
+    -------
+    ndarray
+        Acceleration, in the unit of ``A`` per s (m/s^2 for ``A`` in m/s).
+    """
+    x = (np.asarray(t, dtype=float) - t0) / T
+    inside = np.abs(x) <= 0.5 * gamma
+    ph = 2 * _PI * x + nu
+    env = 2 * _PI * x / gamma
+    a = -(A * _PI / (gamma * T)) * (np.sin(env) * np.cos(ph) + gamma * (1 + np.cos(env)) * np.sin(ph))
+    return np.where(inside, a, 0.0)
+
+
+def mp_accel_jacobian(t, A, t0, T, gamma, nu):
+    """Jacobian of :func:`mp_accel` with respect to ``(A, t0, T, gamma, nu)``.
+
+    Parameters
+    ----------
+    t : array_like
+        Times, s (1-D).
+    A, t0, T, gamma, nu : float
+        As in :func:`mp_accel`.
+
+    Returns
+    -------
+    ndarray, shape (len(t), 5)
+        Columns ``da/dA`` (1/s), ``da/dt0``, ``da/dT`` (unit of ``A`` per
+        s^2), ``da/dgamma`` and ``da/dnu`` (unit of ``A`` per s); zero
+        outside the support.
+    """
+    x = (np.asarray(t, dtype=float) - t0) / T
+    inside = np.abs(x) <= 0.5 * gamma
+    e = 2 * _PI * x / gamma
+    ph = 2 * _PI * x + nu
+    S, C, s, c = np.sin(e), np.cos(e), np.sin(ph), np.cos(ph)
+    F = S * c + gamma * (1 + C) * s
+    Fx = (2 * _PI / gamma) * C * c - 4 * _PI * S * s + 2 * _PI * gamma * (1 + C) * c
+    Fg = -(2 * _PI * x / gamma**2) * C * c + (1 + C) * s + (2 * _PI * x / gamma) * S * s
+    Fn = -S * s + gamma * (1 + C) * c
+    K = -_PI / (gamma * T)
+    J = np.stack([K * F, -A * K * Fx / T, -(A * K / T) * (F + x * Fx), A * K * (Fg - F / gamma),
+                  A * K * Fn], axis=-1)
+    return np.where(inside[:, None], J, 0.0)
+
+
+def mp_velocity(t, A, t0, T, gamma, nu):
+    """Mavroeidis-Papageorgiou (2003) ground velocity at record times ``t``.
+
+    ``v = (A/2) [1 + cos(2 pi x / gamma)] cos(2 pi x + nu)`` for
+    ``|x| <= gamma/2``, ``x = (t - t0) / T``, and 0 outside.
+
+    Parameters
+    ----------
+    t : array_like
+        Times, s.
+    A, t0, T, gamma, nu : float
+        As in :func:`mp_accel`.
+
+    Returns
+    -------
+    ndarray
+        Velocity, in the unit of ``A`` (m/s).
+    """
+    x = (np.asarray(t, dtype=float) - t0) / T
+    inside = np.abs(x) <= 0.5 * gamma
+    v = 0.5 * A * (1 + np.cos(2 * _PI * x / gamma)) * np.cos(2 * _PI * x + nu)
+    return np.where(inside, v, 0.0)

@@ -32,7 +32,7 @@ import numpy as np
 import xarray as xr
 
 from . import records as _rec
-from .records import G, Record
+from .records import G, Record, canonical_shape
 from .datasets import global_attrs
 from .scene import Scene
 from . import solver
@@ -112,7 +112,7 @@ def fig4_data(record_name=FIG4_RECORD, shapes=("ricker", "mavroeidis_papageorgio
         value, prefixed ``ricker_`` / ``mp_``.
     """
     rec = resolve_record(record_name)
-    shapes = ["ricker"] + [s for s in (_rec._canonical_shape(x) for x in shapes) if s != "ricker"]
+    shapes = ["ricker"] + [s for s in (canonical_shape(x) for x in shapes) if s != "ricker"]
     t = rec.time
     rick = rec.fit("ricker")
     ds = xr.Dataset(coords={
@@ -195,7 +195,7 @@ def compare_grid(names, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
     names_out = [r.name for r in recs]
     if len(set(names_out)) != len(names_out):
         raise ValueError(f"record names must be unique, got {names_out}")
-    shape = _rec._canonical_shape(shape)
+    shape = canonical_shape(shape)
     nr, n2, n3 = len(recs), pi2_values.size, pi3_values.size
     pi1_rec = np.full((nr, n2, n3), np.nan)
     pi1_pul = np.full((nr, n2, n3), np.nan)

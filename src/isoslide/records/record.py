@@ -1,0 +1,197 @@
+"""The :class:`Record` type: a uniformly sampled horizontal ground-acceleration history."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..pulses import Pulse, sampled
+from .fitting import PulseFit, canonical_shape, fit_pulse
+from .units import G
+
+__all__ = ["Record"]
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """A uniformly sampled horizontal ground-acceleration record.
+
+    Parameters
+    ----------
+    name : str
+        Short identifier, e.g. ``"Kobe_1995_TAK-090"``.
+    accel : array_like
+        Ground acceleration, **in units of g** (9.80665 m/s^2).  Stored as a
+        read-only float64 array.
+    dt : float
+        Sampling interval, s (> 0).
+    event, station, component : str
+        Descriptive metadata (free text; ``component`` is usually an azimuth).
+    source : str
+        Where the data came from (file path or package).
+    licence : str
+        Licence or terms under which the data are distributed, if known.
+    t_start : float
+        Time of the first sample, s.
+
+    Notes
+    -----
+    Records compare by identity.  :meth:`fit` results are cached per shape.
+    """
+
+    name: str
+    accel: np.ndarray
+    dt: float
+    event: str = ""
+    station: str = ""
+    component: str = ""
+    source: str = ""
+    licence: str = ""
+    t_start: float = 0.0
+    _fits: dict = field(default_factory=dict, init=False, repr=False)
+
+    def __post_init__(self):
+        a = np.array(self.accel, dtype=np.float64)
+        if a.ndim != 1 or a.size < 2:
+            raise ValueError(f"Record {self.name!r}: accel must be a 1-D array of at least 2 samples, "
+                             f"got shape {a.shape}")
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"Record {self.name!r}: accel contains NaN or inf")
+        dt = float(self.dt)
+        if not (math.isfinite(dt) and dt > 0):
+            raise ValueError(f"Record {self.name!r}: dt = {self.dt!r} is invalid; allowed range: 0 < dt < inf (s)")
+        a.setflags(write=False)
+        object.__setattr__(self, "accel", a)
+        object.__setattr__(self, "dt", dt)
+        object.__setattr__(self, "t_start", float(self.t_start))
+
+    # ---- basic properties
+    @property
+    def npts(self) -> int:
+        """Number of samples."""
+        return int(self.accel.size)
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times, s."""
+        return self.t_start + self.dt * np.arange(self.npts)
+
+    @property
+    def duration(self) -> float:
+        """``(npts - 1) dt``, s."""
+        return self.dt * (self.npts - 1)
+
+    @property
+    def pga(self) -> float:
+        """Peak ground acceleration ``max |accel|``, g."""
+        return float(np.max(np.abs(self.accel)))
+
+    @property
+    def accel_si(self) -> np.ndarray:
+        """Ground acceleration in m/s^2."""
+        return self.accel * G
+
+    def velocity(self) -> np.ndarray:
+        """Ground velocity, m/s, by trapezoidal integration from rest at ``t_start``.
+
+        No baseline correction is applied (the records are taken as processed).
+        """
+        a = self.accel_si
+        return np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * self.dt)])
+
+    @property
+    def pgv(self) -> float:
+        """Peak ground velocity ``max |velocity()|``, m/s."""
+        return float(np.max(np.abs(self.velocity())))
+
+    def __repr__(self):
+        return (f"Record(name={self.name!r}, npts={self.npts}, dt={self.dt:g} s, "
+                f"pga={self.pga:.3f} g, event={self.event!r}, station={self.station!r}, "
+                f"component={self.component!r})")
+
+    # ---- pulse
+    def fit(self, shape: str = "ricker", **options) -> PulseFit:
+        """Fit an analytical pulse to the record's dominant acceleration pulse (cached).
+
+        Parameters
+        ----------
+        shape : {"ricker", "mavroeidis_papageorgiou"}
+            Pulse shape (``"mp"`` is an alias of the latter).
+        **options
+            Passed to :func:`~isoslide.records.fit_pulse` (``T_range``,
+            ``t_range``, ...).
+
+        Returns
+        -------
+        PulseFit
+        """
+        shape = canonical_shape(shape)
+        key = (shape, tuple(sorted((k, _hashable(v)) for k, v in options.items())))
+        if key not in self._fits:
+            self._fits[key] = fit_pulse(self.accel, self.dt, shape=shape, t_start=self.t_start, **options)
+        return self._fits[key]
+
+    def as_pulse(self, a_p=None, T_p=None, t_ref=None, *, shape: str = "ricker", polarity=None,
+                 window=None) -> Pulse:
+        """The record as a dimensionless sampled :class:`~isoslide.pulses.Pulse`.
+
+        ``p(tau) = a_g(t) / (polarity * a_p)`` with ``tau = (t - t_ref) / T_p``,
+        linear between samples and zero outside the record.  With the defaults
+        the scales are those of the record's fitted pulse (:meth:`fit`), so the
+        record and :meth:`PulseFit.as_pulse` are aligned in ``tau`` (for the
+        Ricker ``tau = 0`` at the fitted peak, where the fitted pulse is ``+1``).
+
+        Parameters
+        ----------
+        a_p : float, optional
+            Acceleration scale, m/s^2 (> 0).  Default: fitted ``a_p``.
+        T_p : float, optional
+            Time scale, s (> 0).  Default: fitted ``T_p``.
+        t_ref : float, optional
+            Record time that becomes ``tau = 0``, s.  Default: the fit's
+            :attr:`PulseFit.t_ref` (the peak for the Ricker, the envelope
+            centre for Mavroeidis-Papageorgiou).
+        shape : str
+            Which fit supplies missing values.
+        polarity : {+1, -1}, optional
+            Sign applied so the dominant pulse is positive.  Default: the fit's.
+        window : (float, float), optional
+            Keep only the samples with ``window[0] <= t <= window[1]`` (s).
+
+        Returns
+        -------
+        Pulse
+        """
+        if a_p is None or T_p is None or t_ref is None or polarity is None:
+            fit = self.fit(shape)
+            a_p = fit.a_p if a_p is None else a_p
+            T_p = fit.T_p if T_p is None else T_p
+            t_ref = fit.t_ref if t_ref is None else t_ref
+            polarity = fit.polarity if polarity is None else polarity
+        a_p, T_p, t_ref = float(a_p), float(T_p), float(t_ref)
+        if not (math.isfinite(a_p) and a_p > 0):
+            raise ValueError(f"a_p = {a_p!r} is invalid; allowed range: 0 < a_p < inf (m/s^2)")
+        if not (math.isfinite(T_p) and T_p > 0):
+            raise ValueError(f"T_p = {T_p!r} is invalid; allowed range: 0 < T_p < inf (s)")
+        if polarity not in (1, -1):
+            raise ValueError(f"polarity = {polarity!r} is invalid; allowed: +1 or -1")
+        i0, i1 = 0, self.npts
+        if window is not None:
+            t = self.time
+            keep = np.nonzero((t >= window[0]) & (t <= window[1]))[0]
+            if keep.size < 2:
+                raise ValueError(f"window = {window!r} keeps fewer than 2 samples of record {self.name!r} "
+                                 f"(t from {t[0]:g} to {t[-1]:g} s)")
+            i0, i1 = int(keep[0]), int(keep[-1]) + 1
+        p = self.accel[i0:i1] * (G / (polarity * a_p))
+        tau0 = (self.t_start + i0 * self.dt - t_ref) / T_p
+        return sampled(p, self.dt / T_p, tau0, name=self.name)
+
+
+def _hashable(v):
+    """A hashable stand-in for a fit option (lists and arrays become tuples)."""
+    if isinstance(v, (list, np.ndarray)):
+        return tuple(np.asarray(v).ravel().tolist())
+    return v
