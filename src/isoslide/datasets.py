@@ -21,10 +21,8 @@ output under the final name.
 from __future__ import annotations
 
 import contextlib
-import functools
 import json
 import os
-import subprocess
 import tempfile
 from pathlib import Path
 
@@ -33,6 +31,7 @@ import xarray as xr
 
 from .groups import RESULT, group
 from .models import MODEL_LABELS
+from .provenance import code_hash, git_commit, source_text  # noqa: F401 - re-exported
 
 CONVENTIONS = "CF-1.10"
 
@@ -97,60 +96,6 @@ def decode_models(da: xr.DataArray) -> xr.DataArray:
 # ----------------------------------------------------------------------------------------------
 # provenance
 # ----------------------------------------------------------------------------------------------
-
-@functools.lru_cache(maxsize=1)
-def git_commit() -> str:
-    """Git commit of the isoslide source tree, ``"+dirty"`` if the package differs from it.
-
-    ``"unknown"`` when the package is not in a git checkout (e.g. a wheel).
-    """
-    pkg = Path(__file__).resolve().parent
-    try:
-        sha = subprocess.run(["git", "-C", str(pkg), "rev-parse", "HEAD"], capture_output=True,
-                             text=True, timeout=10, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "-C", str(pkg), "diff", "--quiet", "HEAD", "--", "."],
-                               capture_output=True, timeout=10).returncode != 0
-    except (OSError, subprocess.SubprocessError):
-        return "unknown"
-    return sha + ("+dirty" if dirty else "")
-
-
-def code_hash(include=None, exclude=()) -> str:
-    """SHA-256 (first 16 hex digits) of the source of isoslide's modules.
-
-    The workflow passes it as a rule parameter, so that editing the package code a rule depends
-    on reruns that rule's jobs (Snakemake's own ``code`` trigger only sees the rule's script).
-
-    Parameters
-    ----------
-    include : iterable of str, optional
-        Module or subpackage names (``"solver"``, ``"peers"``, ...); a subpackage stands for
-        all its modules; default: every module of the package.
-    exclude : iterable of str
-        Module or subpackage names to leave out.
-    """
-    import hashlib
-
-    pkg = Path(__file__).resolve().parent
-
-    def top(f):
-        return f.relative_to(pkg).parts[0].removesuffix(".py")
-
-    files = sorted(pkg.rglob("*.py"))
-    if include is not None:
-        files = [f for f in files if top(f) in set(include)]
-    files = [f for f in files if top(f) not in set(exclude)]
-    h = hashlib.sha256()
-    for f in files:
-        h.update(f.relative_to(pkg).as_posix().encode() + b"\0" + f.read_bytes() + b"\0")
-    return h.hexdigest()[:16]
-
-
-def source_text() -> str:
-    """``source`` attribute: package version and git commit."""
-    from . import __version__
-    return f"isoslide {__version__} (git {git_commit()}), exact event-driven stick-slip solver"
-
 
 def pi_attrs(name: str) -> dict:
     """``long_name``/``units``/``comment`` of an input or output Pi-group (from the registry)."""
