@@ -346,6 +346,7 @@ def fit_pulse(accel, dt, shape: str = "ricker", *, units: str = "g", t_start: fl
 
 
 def _goodness(a, t, model, w_lo, w_hi, **kw) -> PulseFit:
+    """The :class:`PulseFit` of ``model`` (m/s^2 at times ``t``) with R^2 and NRMSE over ``[w_lo, w_hi]``."""
     m = model(t)
     res = a - m
     inw = (t >= w_lo) & (t <= w_hi)
