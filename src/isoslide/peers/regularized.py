@@ -265,11 +265,11 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
             break
     tt = np.concatenate(ts)
     yy = np.concatenate(ys, axis=1)
-    tau_final = float(tt[-1])
+    tau_stop = float(tt[-1])
 
     # ---- peak of |u|: refine the largest step-point maxima on the dense output
     au = np.abs(yy[2])
-    peak, tau_peak = float(au[-1]), tau_final
+    peak, tau_peak = float(au[-1]), tau_stop
     i_best = int(np.argmax(au))
     if au[i_best] > 0.0:
         cand = np.argsort(au)[::-1][:8]
@@ -295,5 +295,5 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
     if history:
         h = History(tau=tt, x=yy[0], xd=yy[1], u=yy[2], ud=yy[3], phase=phase_of(plastic, yy[3]))
     return PeerResult(method="regularized", pi1=peak, pi1_residual=float(yy[2, -1]), tau_peak=tau_peak,
-                      settled=settled, n_events=n_events, tau_end=tau_final, nfev=int(nfev), njev=int(njev),
+                      settled=settled, n_events=n_events, tau_end=tau_stop, nfev=int(nfev), njev=int(njev),
                       n_steps=int(nsteps), stiffness=K, integrator=method, history=h)
