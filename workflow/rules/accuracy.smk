@@ -1,30 +1,21 @@
-# Speed versus accuracy (isoslide.accuracy): results/datasets/accuracy.nc and reports/accuracy.html.
+# Speed versus accuracy (isoslide.accuracy): results/datasets/accuracy.nc; reports/accuracy.html is
+# the `report` rule's.
 #
 #   snakemake --cores 2 accuracy
 #
-# Self-contained: the settings come from the config's `accuracy:` section when it has one, else
-# from isoslide.accuracy.DEFAULTS; the scene set is drawn from the config's studies.  Four
-# independent measurement jobs (one per part, so two cores run them side by side) are combined
-# into the dataset; the report notebook only reads it.  Every output is written to a temporary
-# name and moved into place.
+# Self-contained: the settings come from the config's `accuracy:` section (completed by the
+# schema); the scene set is drawn from the config's studies.  Independent measurement jobs (one
+# per part, so two cores run them side by side) are combined into the dataset; the report
+# notebook only reads it.
 
 import isoslide.accuracy as _accuracy
-import isoslide.sweep as _sweep
-
-try:  # hash of the package code the measurement runs, so that editing it reruns the jobs
-    from isoslide.datasets import code_hash as _code_hash
-
-    ACCURACY_CODE = _code_hash(include=("accuracy", "solver", "kernel", "pulses", "scene", "reference",
-                                        "regularized", "sweep", "datasets"))
-except ImportError:  # pragma: no cover - older package without code_hash
-    ACCURACY_CODE = ""
 
 ACCURACY_PARTS = list(_accuracy.PARTS)
 # what the measurement depends on: the accuracy settings and the studies with the keys they inherit
-ACCURACY_CONFIG = _sweep.jsonable(
+ACCURACY_CONFIG = sweep.jsonable(
     {
         "accuracy": _accuracy.settings_from(config.get("accuracy", {})),
-        **{k: config[k] for k in ("studies", "defaults", "pi2", "reference", "chunk_size") if k in config},
+        **{k: config[k] for k in ("studies", "defaults", "pi2", "reference", "chunk_size", "solver") if k in config},
     }
 )
 
@@ -34,15 +25,21 @@ rule accuracy_part:
         "results/accuracy/{part}.nc",
     params:
         config=ACCURACY_CONFIG,
-        code=ACCURACY_CODE,
+        code=CODE["accuracy"],
     wildcard_constraints:
         part="|".join(ACCURACY_PARTS),
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/accuracy/{part}.log",
+    benchmark:
+        "results/benchmarks/accuracy_part/{part}.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
-        "../scripts/accuracy_dataset.py"
+        "../scripts/accuracy_part.py"
 
 
 rule accuracy_dataset:
@@ -52,39 +49,26 @@ rule accuracy_dataset:
         "results/datasets/accuracy.nc",
     params:
         config=ACCURACY_CONFIG,
-        code=ACCURACY_CODE,
-    conda:
-        "../envs/isoslide.yaml"
+        code=CODE["accuracy"],
     log:
         "logs/accuracy/combine.log",
-    script:
-        "../scripts/accuracy_dataset.py"
-
-
-rule report_accuracy:
-    input:
-        notebook="workflow/notebooks/accuracy.ipynb",
-        data="results/datasets/accuracy.nc",
-    output:
-        notebook="reports/accuracy.ipynb",
-        html="reports/accuracy.html",
+    benchmark:
+        "results/benchmarks/accuracy_dataset/accuracy.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
     conda:
         "../envs/isoslide.yaml"
-    log:
-        "logs/report/accuracy.log",
-    shell:
-        """
-        mkdir -p reports
-        papermill {input.notebook} reports/.accuracy.tmp.ipynb -k python3 \
-            -p accuracy_path {input.data} --no-progress-bar > {log} 2>&1
-        mv -f reports/.accuracy.tmp.ipynb {output.notebook}
-        jupyter nbconvert --to html --no-input --embed-images --output-dir reports \
-            --output .accuracy.tmp {output.notebook} >> {log} 2>&1
-        mv -f reports/.accuracy.tmp.html {output.html}
-        """
+    script:
+        "../scripts/accuracy_dataset.py"
 
 
 rule accuracy:
     input:
         "results/datasets/accuracy.nc",
         "reports/accuracy.html",
+    threads: 1
+    resources:
+        mem_mb=100,
+        runtime=1,

@@ -1,12 +1,15 @@
-# Helpers shared by the rules: the checked study specifications and the file lists.
-# Everything here is computed from the config; nothing runs the solver.
+# Helpers shared by the rules: the checked study specifications, the file lists, the code each
+# family of rules runs and the table of reports.  Everything here is computed from the config;
+# nothing runs the solver.
 
+import os
+import shlex
 import sys
 
 from snakemake.exceptions import WorkflowError
 
 import isoslide.sweep as sweep
-from isoslide.datasets import code_hash
+from isoslide.provenance import code_hash
 
 # Semantic checks beyond the JSON schema (Pi ranges, pulse names, key consistency); a bad value
 # stops the workflow here, before any job runs, with its key path in the message.
@@ -23,15 +26,30 @@ FIGURE_FILES = expand("reports/figures/{fig}.{ext}", fig=FIGURES, ext=FORMATS)
 SIMILARITY_SETTINGS = sweep.jsonable(config["similarity"])
 FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 
-# Hashes of the package code behind each step, passed as parameters so that editing isoslide reruns the
-# jobs that depend on the edited modules (Snakemake's `code` trigger only sees the script itself).
-# The solver's modules: those the package loads on import, plus the peer solvers of `method:`.
-_LOADED = {m.split(".")[1] for m in sys.modules if m.startswith("isoslide.")}
-SOLVER_CODE = code_hash(include=_LOADED | {"regularized", "reference"}, exclude=("figures", "similarity"))
-SIMILARITY_CODE = code_hash(include=("similarity", "pulses", "scene", "datasets"))
-FIGURE_CODE = code_hash(include=("figures", "pulses", "scene", "datasets", "record_study"))
-RECORDS_CODE = code_hash(include=_LOADED | {"records", "record_study", "pulses", "datasets"},
-                         exclude=("figures", "similarity", "accuracy"))
+# The isoslide modules behind each family of rules: every module the family's scripts (or report
+# notebooks) import, directly or through other isoslide modules ("peers" and "records" stand for
+# every file of those subpackages).  Their hash is a rule parameter, so editing one of them reruns
+# exactly the jobs that run it (Snakemake's `code` trigger only sees the script itself).  A name
+# that no longer exists stops the workflow; tests/test_workflow.py checks that every list is the
+# import closure of its scripts.
+CODE_MODULES = {
+    # solve_chunk, merge_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
+    "solve": ["config", "datasets", "dop853", "groups", "history", "kernel", "models", "peers",
+              "provenance", "pulses", "scene", "solver", "sweep", "validation"],
+    # similarity_study, similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
+    "similarity": ["claims", "datasets", "groups", "history", "models", "peers", "provenance", "pulses",
+                   "scene", "similarity", "validation"],
+    # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
+    "records": ["datasets", "dop853", "groups", "history", "kernel", "models", "peers", "provenance",
+                "pulses", "record_study", "records", "scene", "solver", "validation"],
+    # figure, figure_records (isoslide.figures)
+    "figures": ["datasets", "dop853", "figures", "groups", "history", "kernel", "models", "peers",
+                "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
+    # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
+    "accuracy": ["accuracy", "config", "datasets", "dop853", "groups", "history", "kernel", "models",
+                 "peers", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
+}
+CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
 
 # Real records against their fitted pulses (workflow/rules/records.smk).
 RECORDS_SETTINGS = sweep.jsonable(
@@ -47,6 +65,32 @@ for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
             f"Invalid configuration: similarity.complete.{_name}.study = {_c['study']!r} "
             f"is not a study; known: {STUDIES}"
         )
+
+# HTML reports, made by the one `report` rule of workflow/rules/reports.smk from
+# workflow/notebooks/<report>.ipynb (papermill, then nbconvert).  Per report:
+#   data        input files handed to the notebook, each as the parameter of the same name;
+#   parameters  further notebook parameters (values);
+#   needs       further input files the notebook reads (e.g. the figures of a directory);
+#   code        the CODE_MODULES family of the isoslide modules the notebook imports (if any).
+REPORTS = {
+    "similarity": {
+        "data": {"similarity_path": "results/datasets/similarity.nc"},
+    },
+    "figures": {
+        "parameters": {"figure_dir": "reports/figures"},
+        "needs": expand("reports/figures/{fig}.png", fig=FIGURES + ["records"]),
+    },
+    "records": {
+        "data": {"records_path": "results/datasets/records.nc"},
+        "parameters": {"figure_dir": "reports/figures"},
+        "needs": ["reports/figures/records.png", "reports/figures/fig4.png"],
+        "code": "records",
+    },
+    "accuracy": {
+        "data": {"accuracy_path": "results/datasets/accuracy.nc"},
+        "code": "accuracy",
+    },
+}
 
 
 def chunk_files(wildcards):
@@ -70,3 +114,21 @@ def figure_datasets(wildcards):
     if number == 4:  # the real record that stands in for the paper's Rinaldi record
         out["record"] = "results/datasets/fig4_record.nc"
     return out
+
+
+def report_input(wildcards):
+    """Notebook, data files and further files of one report (see REPORTS)."""
+    entry = REPORTS[wildcards.report]
+    return {
+        "notebook": f"workflow/notebooks/{wildcards.report}.ipynb",
+        **entry.get("data", {}),
+        "needs": entry.get("needs", []),
+    }
+
+
+def report_parameters(wildcards, input):
+    """`papermill -p NAME VALUE` options of one report: its data files, then its parameters."""
+    entry = REPORTS[wildcards.report]
+    values = {name: input[name] for name in entry.get("data", {})}
+    values.update(entry.get("parameters", {}))
+    return " ".join(f"-p {name} {shlex.quote(str(value))}" for name, value in values.items())

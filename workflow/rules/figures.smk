@@ -7,11 +7,17 @@ rule figure:
     output:
         expand("reports/figures/{{fig}}.{ext}", ext=FORMATS),
     params:
-        code=FIGURE_CODE,
+        code=CODE["figures"],
         settings=FIGURE_SETTINGS,
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/figure/{fig}.log",
+    benchmark:
+        "results/benchmarks/figure/{fig}.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
         "../scripts/figure.py"

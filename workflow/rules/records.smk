@@ -1,35 +1,46 @@
 # Real records against their fitted pulses (isoslide.record_study): Fig. 4 from a real record, and
 # peak sliding under each record and under its fitted pulse over a Pi2 x Pi3 grid (one job per
-# record, then one dataset), its figure and reports/records.html.
+# record, then one dataset) and its figure; reports/records.html is the `report` rule's.
 
 
 rule fig4_record:
     output:
         "results/datasets/fig4_record.nc",
     params:
-        code=RECORDS_CODE,
+        code=CODE["records"],
         settings=FIG4_SETTINGS,
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/records/fig4_record.log",
+    benchmark:
+        "results/benchmarks/fig4_record/fig4_record.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
-        "../scripts/records.py"
+        "../scripts/fig4_record.py"
 
 
 rule record_compare:
     output:
         "results/records/{record}.nc",
     params:
-        code=RECORDS_CODE,
+        code=CODE["records"],
         settings=RECORDS_SETTINGS,
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/records/{record}.log",
+    benchmark:
+        "results/benchmarks/record_compare/{record}.tsv"
     threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
-        "../scripts/records.py"
+        "../scripts/record_compare.py"
 
 
 rule records_dataset:
@@ -38,14 +49,20 @@ rule records_dataset:
     output:
         "results/datasets/records.nc",
     params:
-        code=RECORDS_CODE,
+        code=CODE["records"],
         settings=RECORDS_SETTINGS,
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/records/records.log",
+    benchmark:
+        "results/benchmarks/records_dataset/records.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
-        "../scripts/records.py"
+        "../scripts/records_dataset.py"
 
 
 rule figure_records:
@@ -54,35 +71,17 @@ rule figure_records:
     output:
         expand("reports/figures/records.{ext}", ext=FORMATS),
     params:
-        code=FIGURE_CODE,
+        code=CODE["figures"],
         settings=FIGURE_SETTINGS,
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/figure/records.log",
-    script:
-        "../scripts/figure.py"
-
-
-rule report_records:
-    input:
-        notebook="workflow/notebooks/records.ipynb",
-        data="results/datasets/records.nc",
-        figure="reports/figures/records.png",
-        fig4="reports/figures/fig4.png",
-    output:
-        notebook="reports/records.ipynb",
-        html="reports/records.html",
+    benchmark:
+        "results/benchmarks/figure_records/records.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
     conda:
         "../envs/isoslide.yaml"
-    log:
-        "logs/report/records.log",
-    shell:
-        """
-        papermill {input.notebook} reports/.records.tmp.ipynb -k python3 \
-            -p records_path {input.data} -p figure_dir reports/figures --no-progress-bar > {log} 2>&1
-        mv -f reports/.records.tmp.ipynb {output.notebook}
-        jupyter nbconvert --to html --no-input --embed-images --output-dir reports \
-            --output .records.tmp {output.notebook} >> {log} 2>&1
-        mv -f reports/.records.tmp.html {output.html}
-        """
+    script:
+        "../scripts/figure_records.py"

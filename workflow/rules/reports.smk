@@ -1,47 +1,36 @@
-# HTML reports: papermill runs a notebook (kernel python3, parameters injected after its
-# `parameters` cell), then nbconvert renders it.  Both write to a temporary name first and the
-# result is moved into place, so an interrupted job never leaves a partial report.
+# HTML reports, one rule for all of them: papermill runs workflow/notebooks/<report>.ipynb (kernel
+# python3, parameters from REPORTS in common.smk injected after its `parameters` cell), nbconvert
+# renders the executed notebook without code cells and with its images embedded.  Both run under
+# the interpreter that runs Snakemake, so no activated environment is needed.  The executed
+# notebook is kept as a log (logs/report/<report>.ipynb), next to the commands' output.
 
 
-rule report_similarity:
+rule report:
     input:
-        notebook="workflow/notebooks/similarity.ipynb",
-        data="results/datasets/similarity.nc",
+        unpack(report_input),
     output:
-        notebook="reports/similarity.ipynb",
-        html="reports/similarity.html",
+        html="reports/{report}.html",
+    params:
+        parameters=report_parameters,
+        code=lambda wildcards: CODE.get(REPORTS[wildcards.report].get("code"), ""),
+        html_dir=lambda wildcards, output: os.path.dirname(output.html),
+        python=sys.executable,  # the interpreter running Snakemake: papermill, nbconvert, the kernel
+    log:
+        notebook="logs/report/{report}.ipynb",
+        log="logs/report/{report}.log",
+    benchmark:
+        "results/benchmarks/report/{report}.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
     conda:
         "../envs/isoslide.yaml"
-    log:
-        "logs/report/similarity.log",
     shell:
         """
-        papermill {input.notebook} reports/.similarity.tmp.ipynb -k python3 \
-            -p similarity_path {input.data} --no-progress-bar > {log} 2>&1
-        mv -f reports/.similarity.tmp.ipynb {output.notebook}
-        jupyter nbconvert --to html --no-input --output-dir reports \
-            --output .similarity.tmp {output.notebook} >> {log} 2>&1
-        mv -f reports/.similarity.tmp.html {output.html}
-        """
-
-
-rule report_figures:
-    input:
-        notebook="workflow/notebooks/figures.ipynb",
-        figures=expand("reports/figures/{fig}.png", fig=FIGURES + ["records"]),
-    output:
-        notebook="reports/figures.ipynb",
-        html="reports/figures.html",
-    conda:
-        "../envs/isoslide.yaml"
-    log:
-        "logs/report/figures.log",
-    shell:
-        """
-        papermill {input.notebook} reports/.figures.tmp.ipynb -k python3 \
-            -p figure_dir reports/figures --no-progress-bar > {log} 2>&1
-        mv -f reports/.figures.tmp.ipynb {output.notebook}
-        jupyter nbconvert --to html --no-input --output-dir reports \
-            --output .figures.tmp {output.notebook} >> {log} 2>&1
-        mv -f reports/.figures.tmp.html {output.html}
+        export MPLBACKEND=Agg
+        {params.python:q} -m papermill {input.notebook:q} {log.notebook:q} -k python3 \
+            {params.parameters} --no-progress-bar > {log.log:q} 2>&1
+        {params.python:q} -m nbconvert --to html --no-input --embed-images \
+            --output-dir {params.html_dir:q} --output {wildcards.report} {log.notebook:q} >> {log.log:q} 2>&1
         """

@@ -8,13 +8,19 @@ rule similarity_study:
     output:
         "results/similarity/{study}.nc",
     params:
-        code=SIMILARITY_CODE,
+        code=CODE["similarity"],
         settings=SIMILARITY_SETTINGS,
         spec=lambda wildcards: SPECS[wildcards.study],
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/similarity_study/{study}.log",
+    benchmark:
+        "results/benchmarks/similarity_study/{study}.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
         "../scripts/similarity_study.py"
 
@@ -26,11 +32,17 @@ rule similarity:
     output:
         "results/datasets/similarity.nc",
     params:
-        code=SIMILARITY_CODE,
+        code=CODE["similarity"],
         settings=SIMILARITY_SETTINGS,
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/similarity/similarity.log",
+    benchmark:
+        "results/benchmarks/similarity/similarity.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
         "../scripts/similarity.py"

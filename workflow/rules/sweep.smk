@@ -6,14 +6,19 @@ rule solve_chunk:
     output:
         "results/chunks/{study}/{chunk}.nc",
     params:
-        code=SOLVER_CODE,
+        code=CODE["solve"],
         # the study's full specification: editing one study reruns only its chunks
         spec=lambda wildcards: SPECS[wildcards.study],
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/solve_chunk/{study}/{chunk}.log",
+    benchmark:
+        "results/benchmarks/solve_chunk/{study}/{chunk}.tsv"
     threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
         "../scripts/solve_chunk.py"
 
@@ -24,11 +29,17 @@ rule merge_study:
     output:
         "results/datasets/{study}.nc",
     params:
-        code=SOLVER_CODE,
+        code=CODE["solve"],
         spec=lambda wildcards: SPECS[wildcards.study],
-    conda:
-        "../envs/isoslide.yaml"
     log:
         "logs/merge_study/{study}.log",
+    benchmark:
+        "results/benchmarks/merge_study/{study}.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    conda:
+        "../envs/isoslide.yaml"
     script:
         "../scripts/merge_study.py"

@@ -1,25 +1,14 @@
-"""Rules accuracy_part (one measurement part) and accuracy_dataset (combine the parts).
+"""Rule accuracy_dataset: the measured parts combined into results/datasets/accuracy.nc (isoslide.accuracy)."""
 
-The science is in isoslide.accuracy; this script only wires files together.
-"""
+from pathlib import Path
 
-from isoslide import accuracy
-from isoslide.datasets import logging_to, open_dataset, write_netcdf
+from isoslide.accuracy import combine, trade_table
+from isoslide.datasets import open_dataset, write_netcdf
+from isoslide.provenance import log_to
 
-smk = snakemake  # noqa: F821 - injected by Snakemake
-
-with logging_to(smk.log[0]):
-    cfg = smk.params.config
-    if smk.rule == "accuracy_part":
-        part = smk.wildcards.part
-        print(f"measuring part {part!r} with settings {cfg['accuracy']}", flush=True)
-        ds = accuracy.measure_part(part, cfg)
-    else:
-        parts = {}
-        for path in smk.input:
-            name = path.rsplit("/", 1)[-1].removesuffix(".nc")
-            parts[name] = open_dataset(path)
-        ds = accuracy.combine(parts, cfg)
-        for row in accuracy.trade_table(ds):
-            print(row, flush=True)
-    write_netcdf(ds, smk.output[0])
+with log_to(snakemake.log[0]) as log:
+    parts = {Path(path).stem: open_dataset(path) for path in snakemake.input}
+    ds = combine(parts, snakemake.params.config)
+    for row in trade_table(ds):
+        log.info("%s", row)
+    write_netcdf(ds, snakemake.output[0])

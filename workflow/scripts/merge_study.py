@@ -1,8 +1,9 @@
 """Rule merge_study: chunks -> results/datasets/{study}.nc (isoslide.sweep.merge_chunk_files)."""
 
-from isoslide.datasets import logging_to, write_netcdf
+from isoslide.datasets import write_netcdf
+from isoslide.provenance import log_to
 from isoslide.sweep import merge_chunk_files
 
-with logging_to(snakemake.log[0]):  # noqa: F821 - injected by Snakemake
-    ds = merge_chunk_files(snakemake.input, snakemake.params.spec)
-    write_netcdf(ds, snakemake.output[0])
+with log_to(snakemake.log[0]) as log:
+    log.info("merging %d chunk files of study %s", len(snakemake.input), snakemake.wildcards.study)
+    write_netcdf(merge_chunk_files(snakemake.input, snakemake.params.spec), snakemake.output[0])

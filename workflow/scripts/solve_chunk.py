@@ -1,7 +1,10 @@
 """Rule solve_chunk: solve chunk {chunk} of study {study} (isoslide.sweep.solve_chunk)."""
 
-from isoslide.datasets import logging_to, write_netcdf
+from isoslide.datasets import write_netcdf
+from isoslide.provenance import log_to
 from isoslide.sweep import solve_chunk
 
-with logging_to(snakemake.log[0]):  # noqa: F821 - injected by Snakemake
-    write_netcdf(solve_chunk(snakemake.params.spec, int(snakemake.wildcards.chunk)), snakemake.output[0])
+with log_to(snakemake.log[0]) as log:
+    chunk = int(snakemake.wildcards.chunk)
+    log.info("study %s, chunk %d", snakemake.wildcards.study, chunk)
+    write_netcdf(solve_chunk(snakemake.params.spec, chunk), snakemake.output[0])

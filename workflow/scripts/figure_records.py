@@ -1,0 +1,11 @@
+"""Rule figure_records: the record-versus-pulse figure from records.nc (isoslide.figures.draw)."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+from isoslide.figures import draw  # noqa: E402
+from isoslide.provenance import log_to  # noqa: E402
+
+with log_to(snakemake.log[0]):
+    draw("records", dict(snakemake.input.items()), snakemake.output, snakemake.params.settings)
