@@ -76,12 +76,12 @@ from .dataset import (NONDETERMINISTIC_SUFFIX, PARTS, accuracy_dataset, combine,
 from .domain import DOMAIN, MAP_BASE, domain_map, map_values
 from .reductions import NOSLIDE_COLUMN, REDUCTION_TEXT, REDUCTIONS, measure_reductions
 from .scenes import Entry, SceneSet, hard_scenes, scene_coords, scene_set, study_entries
-from .settings import DEFAULTS, PAPER_CONFIG, PAPER_STUDIES, Setting, method_settings, settings_from
+from .settings import PAPER_CONFIG, PAPER_STUDIES, Setting, method_settings, settings_from
 from .timing import STATUS, STATUS_ATTRS, SceneTimeout, run_setting, tau_max, time_limit, warm_up
 from .trade import converged, measure_trade, rel_error, summarize_trade
 
 __all__ = [
-    "DEFAULTS", "DOMAIN", "Entry", "MAP_BASE", "NONDETERMINISTIC_SUFFIX", "NOSLIDE_COLUMN", "PAPER_CONFIG",
+    "DOMAIN", "Entry", "MAP_BASE", "NONDETERMINISTIC_SUFFIX", "NOSLIDE_COLUMN", "PAPER_CONFIG",
     "PAPER_STUDIES", "PARTS", "PI_INPUTS", "REDUCTIONS", "REDUCTION_TEXT", "STATUS", "STATUS_ATTRS",
     "SceneSet", "SceneTimeout", "Setting", "accuracy_dataset", "combine", "converged", "deterministic_part",
     "domain_map", "hard_scenes", "map_values", "measure_part", "measure_reductions", "measure_trade",

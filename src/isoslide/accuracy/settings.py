@@ -8,32 +8,6 @@ from dataclasses import dataclass
 from .. import config as _config
 from ..peers import opensees_available
 
-DEFAULTS = {
-    "seed": 20240611,
-    "per_study": 6,
-    "hard": True,
-    "horizon": 50.0,
-    "repeats": 5,
-    "exact_rtols": [1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10],
-    "default_rtol": 1e-6,
-    "converged_rtol": 1e-12,
-    "reference_rtols": [1e-6, 1e-9],
-    "reference_scenes": 16,
-    "regularized_stiffness": [1e4, 1e5, 1e6],
-    "regularized_rtol": 1e-6,
-    "regularized_method": "Radau",
-    "regularized_scenes": 6,
-    "peer_repeats": 1,
-    "peer_timeout": 8.0,
-    "opensees": "auto",
-    "opensees_scenes": 10,
-    "reduction_repeats": 5,
-    "map_points": 9,
-    "map_repeats": 3,
-    "error_floor": 1e-6,
-}
-"""Defaults of the ``accuracy`` configuration section (see :func:`settings_from`)."""
-
 PAPER_CONFIG = _config.load()
 """The paper's complete configuration (``config/config.yaml`` as the package ships it), used when
 no configuration is given."""
@@ -43,19 +17,23 @@ PAPER_STUDIES = PAPER_CONFIG["studies"]
 
 
 def settings_from(config: dict | None) -> dict:
-    """The ``accuracy`` section of a configuration, with :data:`DEFAULTS` filled in.
+    """The ``accuracy`` section of a configuration, completed with the schema's defaults.
 
-    Accepts either the whole configuration (with an ``accuracy`` key) or the section itself.
+    Accepts the whole configuration (with an ``accuracy`` key), the section itself, or ``None``
+    (the paper's configuration).  Missing keys take the defaults of ``config/schema.yaml``
+    (:func:`isoslide.config.defaults`), the only place they are written.
     """
-    cfg = dict(config or {})
-    if "accuracy" in cfg:
-        section = cfg["accuracy"] or {}
+    if config is None:
+        section = PAPER_CONFIG["accuracy"]
+    elif "accuracy" in config:
+        section = config["accuracy"] or {}
     else:
-        section = {} if cfg.get("studies") else cfg
-    out = dict(DEFAULTS)
+        section = {} if "studies" in config else config
+    defaults = _config.defaults()["accuracy"]
+    out = dict(defaults)
     for k, v in section.items():
-        if k not in DEFAULTS:
-            raise ValueError(f"accuracy.{k}: unknown key; allowed: {sorted(DEFAULTS)}")
+        if k not in defaults:
+            raise ValueError(f"accuracy.{k}: unknown key; allowed: {sorted(defaults)}")
         out[k] = v
     for k in ("exact_rtols", "reference_rtols", "regularized_stiffness"):
         out[k] = [float(x) for x in out[k]]
