@@ -1,10 +1,16 @@
-"""The Snakemake workflow, run as a user would: lint, config errors, a tiny end-to-end run,
-no-op reruns, per-study reruns and recovery from SIGKILL.
+"""The Snakemake workflow, run as a user would: lint, config errors, a tiny end-to-end run, the
+reports, benchmarks and resources, code hashes, no-op reruns, per-study reruns and recovery from
+SIGKILL.
 
 Every run happens in a temporary copy of the workflow (Snakefile, config/, workflow/,
-profiles/), so the repository's own results/ and reports/ are never touched.
+profiles/), so the repository's own results/ and reports/ are never touched.  Snakemake runs as
+``python -m snakemake`` with a PATH that holds neither the interpreter's directory nor any
+Snakemake, papermill or Jupyter launcher: an environment that is installed but not activated.
 """
 
+import ast
+import csv
+import json
 import os
 import re
 import shutil
@@ -18,11 +24,32 @@ import pytest
 import xarray as xr
 import yaml
 
-from isoslide import datasets
+import isoslide
+from isoslide import datasets, provenance
 
 ROOT = Path(__file__).resolve().parents[1]
 TEST_CONFIG = ["--configfile", "config/test.yaml"]
 STUDIES = sorted(yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["studies"])
+REPORTS = ["accuracy", "figures", "records", "similarity"]
+LAUNCHERS = ("snakemake", "papermill", "jupyter", "jupyter-nbconvert")
+
+
+def path_without_interpreter() -> str:
+    """PATH without the interpreter's directory and without any directory holding a launcher."""
+    here = Path(sys.executable).parent
+    keep = []
+    for entry in os.environ.get("PATH", "").split(os.pathsep):
+        d = Path(entry)
+        if not entry or d == here or (d.exists() and d.resolve() == here.resolve()):
+            continue
+        if any((d / name).exists() for name in LAUNCHERS):
+            continue
+        keep.append(entry)
+    return os.pathsep.join(keep)
+
+
+ENV = {k: v for k, v in os.environ.items() if k not in ("VIRTUAL_ENV", "CONDA_PREFIX")}
+ENV.update(PYTHONHASHSEED="0", PATH=path_without_interpreter())
 
 
 def copy_workflow(dest: Path) -> Path:
@@ -34,29 +61,90 @@ def copy_workflow(dest: Path) -> Path:
 
 
 def snakemake(cwd, *args, timeout=900, check=True):
-    env = dict(os.environ, PYTHONHASHSEED="0")
     proc = subprocess.run([sys.executable, "-m", "snakemake", *args], cwd=cwd, capture_output=True,
-                          text=True, timeout=timeout, env=env)
+                          text=True, timeout=timeout, env=ENV)
     out = proc.stdout + proc.stderr
     if check and proc.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed ({proc.returncode}):\n{out[-6000:]}")
     return proc.returncode, out
 
 
+def _job_blocks(out: str) -> list:
+    return [b for b in re.split(r"\n(?=\[.*\d{4}\]\n)", out) if re.search(r"^(?:local)?rule \w+:", b, re.M)]
+
+
 def planned_jobs(out: str) -> list:
     """(rule, wildcards) of every job a dry run plans."""
     jobs = []
-    for block in re.split(r"\n(?=\[.*\d{4}\]\n)", out):
-        m = re.search(r"^(?:local)?rule (\w+):", block, re.M)
-        if m:
-            w = re.search(r"^\s+wildcards: (.*)$", block, re.M)
-            jobs.append((m.group(1), w.group(1) if w else ""))
+    for block in _job_blocks(out):
+        rule = re.search(r"^(?:local)?rule (\w+):", block, re.M).group(1)
+        w = re.search(r"^\s+wildcards: (.*)$", block, re.M)
+        jobs.append((rule, w.group(1) if w else ""))
     return jobs
+
+
+def planned_benchmarks(out: str) -> dict:
+    """{(rule, wildcards): benchmark file or None} of every job a dry run plans."""
+    found = {}
+    for block, job in zip(_job_blocks(out), planned_jobs(out), strict=True):
+        b = re.search(r"^\s+benchmark: (.*)$", block, re.M)
+        found[job] = b.group(1).strip() if b else None
+    return found
+
+
+# ----------------------------------------------------------------------------------------------
+# the workflow as Snakemake reads it
+# ----------------------------------------------------------------------------------------------
+
+DESCRIBE = r"""
+import json, types
+from pathlib import Path
+from snakemake.api import SnakemakeApi
+from snakemake.settings.types import ConfigSettings, OutputSettings, ResourceSettings
+
+with SnakemakeApi(OutputSettings()) as api:
+    wf = api.workflow(ResourceSettings(), ConfigSettings(configfiles=[Path("config/test.yaml")]),
+                      snakefile=Path("Snakefile"), workdir=Path.cwd())._workflow
+    g = wf.globals
+    rules = {}
+    for rule in wf.rules:
+        code = dict(rule.params.items()).get("code")
+        if callable(code):       # the report rule: one value per report
+            code = {r: code(types.SimpleNamespace(report=r)) for r in g["REPORTS"]}
+        rules[rule.name] = {
+            "resources": sorted(k for k in rule.resources.keys() if not k.startswith("_") and k != "tmpdir"),
+            "benchmark": None if rule.benchmark is None else str(rule.benchmark),
+            "script": rule.script,
+            "shell": rule.shellcmd is not None,
+            "code": code,
+        }
+    print("DESCRIPTION " + json.dumps({"rules": rules, "code_modules": g["CODE_MODULES"], "code": g["CODE"],
+                                        "reports": g["REPORTS"]}))
+"""
 
 
 @pytest.fixture(scope="module")
 def wf(tmp_path_factory):
     return copy_workflow(tmp_path_factory.mktemp("wf"))
+
+
+@pytest.fixture(scope="module")
+def described(wf):
+    proc = subprocess.run([sys.executable, "-c", DESCRIBE], cwd=wf, capture_output=True, text=True,
+                          timeout=300, env=ENV)
+    line = [x for x in proc.stdout.splitlines() if x.startswith("DESCRIPTION ")]
+    assert proc.returncode == 0 and line, proc.stdout[-3000:] + proc.stderr[-3000:]
+    return json.loads(line[-1].removeprefix("DESCRIPTION "))
+
+
+def _rule_sources() -> dict:
+    """{rule name: its text} from the Snakefile and workflow/rules/*.smk."""
+    out = {}
+    for path in [ROOT / "Snakefile", *sorted((ROOT / "workflow" / "rules").glob("*.smk"))]:
+        for block in re.split(r"\n(?=rule \w+:)", path.read_text())[1:]:
+            name = re.match(r"rule (\w+):", block).group(1)
+            out[name] = block.split("\n\n\n")[0]
+    return out
 
 
 def test_lint_is_clean(wf):
@@ -65,13 +153,148 @@ def test_lint_is_clean(wf):
     assert code == 0
 
 
+def test_every_rule_declares_threads_and_resources(described):
+    rules = described["rules"]
+    sources = _rule_sources()
+    assert set(sources) == set(rules)
+    for name, rule in rules.items():
+        assert {"mem_mb", "runtime"} <= set(rule["resources"]), (name, rule["resources"])
+        assert re.search(r"^    threads: \d+$", sources[name], re.M), name
+        assert re.search(r"^        mem_mb=\d+,  # .*\d", sources[name], re.M), \
+            f"rule {name}: mem_mb without the measured numbers it is sized from"
+
+
+def test_every_compute_rule_writes_a_benchmark_per_job(described):
+    for name, rule in described["rules"].items():
+        if rule["script"] or rule["shell"]:
+            assert rule["benchmark"] and rule["benchmark"].startswith(f"results/benchmarks/{name}/"), name
+            assert rule["benchmark"].endswith(".tsv"), name
+        else:
+            assert rule["benchmark"] is None, name
+
+
+def test_one_script_per_rule_and_one_report_rule(described):
+    scripts = [r["script"] for r in described["rules"].values() if r["script"]]
+    assert len(scripts) == len(set(scripts)), scripts
+    for script in scripts:
+        text = (ROOT / "workflow" / "rules" / script).resolve().read_text()
+        assert "snakemake.rule" not in text, script
+    assert sorted(described["reports"]) == REPORTS
+    assert [n for n, r in described["rules"].items() if r["shell"]] == ["report"]
+    assert not [n for n in described["rules"] if n.startswith("report_")]
+
+
+# ----------------------------------------------------------------------------------------------
+# code hashes: every rule reruns when, and only when, a module it imports changes
+# ----------------------------------------------------------------------------------------------
+
+PKG = provenance.PACKAGE_DIR
+
+
+def _module_file(name: str) -> Path | None:
+    """File Python runs for ``isoslide.<name>`` (``None`` if no such module)."""
+    base = PKG.joinpath(*name.split("."))
+    if (base / "__init__.py").is_file():
+        return base / "__init__.py"
+    return base.with_name(base.name + ".py") if base.with_name(base.name + ".py").is_file() else None
+
+
+def _isoslide_imports(source: str, module: str | None = None) -> set:
+    """Dotted names (relative to the package) of the isoslide modules ``source`` imports."""
+    is_pkg = module is not None and _module_file(module).name == "__init__.py"
+    found = set()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = ["isoslide", *module.split(".")]
+                base = base if is_pkg else base[:-1]
+                base = base[: len(base) - (node.level - 1)]
+                mod = ".".join(base + ([node.module] if node.module else []))
+            else:
+                mod = node.module or ""
+            targets = [mod] + [f"{mod}.{a.name}" for a in node.names]
+            if mod == "isoslide":      # the lazy package namespace: names defined in its modules
+                targets += [f"isoslide.{isoslide._EXPORTS[a.name]}" for a in node.names if a.name in isoslide._EXPORTS]
+        elif isinstance(node, ast.Import):
+            targets = [a.name for a in node.names]
+        else:
+            continue
+        for t in targets:
+            parts = t.split(".")
+            if parts[0] != "isoslide":
+                continue
+            for i in range(2, len(parts) + 1):        # importing a.b.c runs a.b first
+                name = ".".join(parts[1:i])
+                if _module_file(name) is not None:
+                    found.add(name)
+    return found
+
+
+def _import_closure(source: str) -> set:
+    """Files of every isoslide module ``source`` imports, directly or through other modules."""
+    todo, seen = list(_isoslide_imports(source)), set()
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        todo += _isoslide_imports(_module_file(name).read_text(), name) - seen
+    return {_module_file(n) for n in seen}
+
+
+def _notebook_source(path: Path) -> str:
+    cells = json.loads(path.read_text())["cells"]
+    code = ["".join(c["source"]) for c in cells if c["cell_type"] == "code"]
+    return "\n".join(re.sub(r"^\s*[%!].*$", "pass", c, flags=re.M) for c in code)
+
+
+def _files(modules) -> set:
+    return {f for m in modules for f in provenance.module_files(m)}
+
+
+def test_code_hash_of_every_rule_is_that_of_the_modules_its_script_imports(described):
+    code_of = {family: h for family, h in described["code"].items()}
+    family_of = {h: family for family, h in code_of.items()}
+    assert len(family_of) == len(code_of)
+    checked = set()
+    for name, rule in described["rules"].items():
+        if rule["script"]:
+            source = (ROOT / "workflow" / "rules" / rule["script"]).resolve().read_text()
+            family = family_of.get(rule["code"])
+            assert family, f"rule {name}: its code parameter is not one of the CODE families"
+            assert _files(described["code_modules"][family]) == _import_closure(source), (name, family)
+            checked.add(family)
+    for report, value in described["rules"]["report"]["code"].items():
+        closure = _import_closure(_notebook_source(ROOT / "workflow" / "notebooks" / f"{report}.ipynb"))
+        if not closure:
+            assert value == "", report
+        else:
+            family = family_of.get(value)
+            assert family and _files(described["code_modules"][family]) == closure, report
+    assert checked == set(code_of), "a CODE_MODULES family that no rule uses"
+
+
+def test_solver_jobs_do_not_depend_on_the_records_modules(described):
+    solve = _files(described["code_modules"]["solve"])
+    records = _files(["records", "record_study"])
+    assert solve and not solve & records
+    assert described["rules"]["solve_chunk"]["code"] == described["code"]["solve"]
+    assert described["rules"]["solve_chunk"]["code"] != described["code"]["records"]
+
+
+# ----------------------------------------------------------------------------------------------
+# dry runs and configuration errors
+# ----------------------------------------------------------------------------------------------
+
 def test_dry_run_plans_the_whole_dag(wf):
     _, out = snakemake(wf, "-n", *TEST_CONFIG, timeout=300)
-    rules = {r for r, _ in planned_jobs(out)}
-    assert {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure", "report_similarity",
-            "report_figures", "fig4_record", "record_compare", "records_dataset", "figure_records",
-            "report_records", "accuracy_part", "accuracy_dataset", "report_accuracy", "all"} <= rules
-    chunk_wildcards = [w for r, w in planned_jobs(out) if r == "solve_chunk"]
+    jobs = planned_jobs(out)
+    rules = {r for r, _ in jobs}
+    assert {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure", "fig4_record",
+            "record_compare", "records_dataset", "figure_records", "accuracy_part", "accuracy_dataset",
+            "report", "all"} <= rules
+    assert sorted(w for r, w in jobs if r == "report") == [f"report={r}" for r in REPORTS]
+    chunk_wildcards = [w for r, w in jobs if r == "solve_chunk"]
     assert all(re.fullmatch(r"study=\w+, chunk=\d+", w) for w in chunk_wildcards)
 
 
@@ -92,6 +315,10 @@ def test_invalid_config_fails_before_any_job_naming_the_key(tmp_path, overlay, k
     assert not (d / "results").exists() and not (d / "logs").exists()
 
 
+# ----------------------------------------------------------------------------------------------
+# the tiny end-to-end run
+# ----------------------------------------------------------------------------------------------
+
 @pytest.fixture(scope="module")
 def full_run(wf):
     t0 = time.monotonic()
@@ -108,7 +335,8 @@ def test_tiny_config_runs_end_to_end(full_run):
         assert ds.attrs["Conventions"].startswith("CF") and "pi1" in ds
         assert ds["pi1"].dims[-1] == "pi2"
         ds.close()
-        assert (wf / "logs" / "merge_study" / f"{s}.log").exists()
+        log = (wf / "logs" / "merge_study" / f"{s}.log").read_text()
+        assert provenance.source_text().split(" (git")[0] in log and log.rstrip().endswith("done")
     for n in range(1, 9):
         for ext in ("png", "pdf"):
             assert (wf / "reports" / "figures" / f"fig{n}.{ext}").stat().st_size > 0
@@ -118,6 +346,60 @@ def test_tiny_config_runs_end_to_end(full_run):
     assert "Figure 8" in gallery and "Fig. 8." in gallery and "Traceback" not in gallery
     assert "Record versus pulse" in gallery and "Records. Peak sliding" in gallery
     assert not list((wf / "results").rglob(".*.tmp")) and not list((wf / "reports").glob(".*tmp*"))
+
+
+@pytest.mark.slow
+def test_workflow_runs_without_the_interpreter_on_path(full_run):
+    """The run above had no activated environment: papermill, nbconvert and the notebook kernel
+    were found through the interpreter that runs Snakemake, not through PATH."""
+    wf, _ = full_run
+    assert str(Path(sys.executable).parent) not in ENV["PATH"].split(os.pathsep)
+    for name in LAUNCHERS:
+        assert shutil.which(name, path=ENV["PATH"]) is None, name
+    python = shutil.which("python", path=ENV["PATH"])
+    assert python is None or Path(python).resolve() != Path(sys.executable).resolve()
+    for report in REPORTS:
+        assert (wf / "reports" / f"{report}.html").stat().st_size > 0, report
+        nb = json.loads((wf / "logs" / "report" / f"{report}.ipynb").read_text())
+        assert nb["metadata"]["papermill"]["exception"] is not True, report
+
+
+@pytest.mark.slow
+def test_one_report_rule_makes_every_report_the_same_way(full_run, described):
+    wf, _ = full_run
+    for report in REPORTS:
+        entry = described["reports"][report]
+        parameters = {**entry.get("data", {}), **entry.get("parameters", {})}
+        html = (wf / "reports" / f"{report}.html").read_text()
+        assert "Traceback" not in html, report
+        assert "data:image/png;base64," in html, report                   # --embed-images
+        assert not re.search(r'<img[^>]+src="(?!data:)', html), report
+        for name in parameters:                                            # --no-input
+            assert f"{name} = " not in html, (report, name)
+        # the executed notebook is kept as the job's log, with the parameters papermill injected
+        nb = json.loads((wf / "logs" / "report" / f"{report}.ipynb").read_text())
+        assert nb["metadata"]["papermill"]["parameters"] == parameters, report
+        injected = [c for c in nb["cells"] if "injected-parameters" in c["metadata"].get("tags", [])]
+        assert len(injected) == 1 and all(str(v) in "".join(injected[0]["source"]) for v in parameters.values())
+        assert "Executing notebook with kernel: python3" in (wf / "logs" / "report" / f"{report}.log").read_text()
+        assert not (wf / "reports" / f"{report}.ipynb").exists(), report
+
+
+@pytest.mark.slow
+def test_benchmark_files_of_every_job(full_run):
+    wf, _ = full_run
+    _, out = snakemake(wf, "-n", "--forceall", *TEST_CONFIG, timeout=300)
+    benchmarks = planned_benchmarks(out)
+    assert len(benchmarks) > 40
+    for (rule, wildcards), path in benchmarks.items():
+        if rule == "all":
+            assert path is None
+            continue
+        assert path and path.startswith(f"results/benchmarks/{rule}/"), (rule, wildcards)
+        with open(wf / path, newline="") as f:
+            rows = list(csv.DictReader(f, delimiter="\t"))
+        assert len(rows) == 1, path
+        assert float(rows[0]["s"]) > 0 and float(rows[0]["max_rss"]) > 0, path
 
 
 @pytest.mark.slow
@@ -164,9 +446,9 @@ def test_changing_one_study_reruns_only_that_study(full_run):
     assert per_study and all("study=fig7_pi7" in w for _, w in per_study), per_study
     # the accuracy scene set is drawn from the studies, so it is measured again; the records are not
     assert {r for r, _ in jobs} <= {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure",
-                                     "report_similarity", "report_figures", "accuracy_part", "accuracy_dataset",
-                                     "report_accuracy", "all"}
+                                     "accuracy_part", "accuracy_dataset", "report", "all"}
     assert {w for r, w in jobs if r == "figure"} == {"fig=fig7"}
+    assert {w for r, w in jobs if r == "report"} == {"report=similarity", "report=figures", "report=accuracy"}
 
 
 @pytest.mark.slow
@@ -174,30 +456,44 @@ def test_changing_the_records_reruns_only_record_jobs(full_run):
     wf, _ = full_run
     (wf / "config" / "rec.yaml").write_text(yaml.safe_dump({"records": {"pi4": 0.2}}))
     _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/rec.yaml", timeout=300)
-    rules = {r for r, _ in planned_jobs(out)}
-    assert {"record_compare", "records_dataset", "figure_records", "report_records"} <= rules
-    assert rules <= {"record_compare", "records_dataset", "figure_records", "report_records", "report_figures",
-                     "all"}, rules
+    jobs = planned_jobs(out)
+    rules = {r for r, _ in jobs}
+    assert {"record_compare", "records_dataset", "figure_records", "report"} <= rules
+    assert rules <= {"record_compare", "records_dataset", "figure_records", "report", "all"}, rules
+    assert {w for r, w in jobs if r == "report"} == {"report=records", "report=figures"}
 
 
 @pytest.mark.slow
-def test_sigkill_then_restart_gives_the_same_datasets(full_run, tmp_path):
+def test_sigkill_then_unlock_and_restart_gives_the_same_datasets(full_run, tmp_path):
     wf, _ = full_run
     d = copy_workflow(tmp_path / "killed")
     targets = [f"results/datasets/{s}.nc" for s in STUDIES]
     cmd = [sys.executable, "-m", "snakemake", *targets, "--cores", "2", *TEST_CONFIG]
-    proc = subprocess.Popen(cmd, cwd=d, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    proc = subprocess.Popen(cmd, cwd=d, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=ENV,
                             start_new_session=True)
     try:
         deadline = time.monotonic() + 600
         while time.monotonic() < deadline and proc.poll() is None:
-            if len(list((d / "results" / "chunks").rglob("*.nc"))) >= 2:   # killed mid-run
+            if len(list((d / "results" / "chunks").rglob("*.nc"))) >= 2:   # a few chunks done
                 break
-            time.sleep(0.2)
+            time.sleep(0.1)
+        alive_at_kill = proc.poll() is None
+        missing_at_kill = [s for s in STUDIES if not (d / "results" / "datasets" / f"{s}.nc").exists()]
+        if alive_at_kill:
+            os.killpg(proc.pid, signal.SIGKILL)        # the run and every job it started
     finally:
         if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGKILL)        # the run and every job it started
+            os.killpg(proc.pid, signal.SIGKILL)
         proc.wait()
+    assert alive_at_kill and proc.returncode == -signal.SIGKILL, "the run ended before it was killed"
+    assert missing_at_kill, "every dataset was already written when the run was killed"
+
+    # a SIGKILLed Snakemake cannot remove its lock: the next run stops and says what to do
+    # (profiles/default/config.yaml documents it)
+    assert list((d / ".snakemake" / "locks").iterdir())
+    code, out = snakemake(d, *targets, "--cores", "2", *TEST_CONFIG, check=False, timeout=300)
+    assert code != 0 and "cannot be locked" in out and "--unlock" in out, out[-3000:]
+    snakemake(d, "--unlock", *TEST_CONFIG, timeout=300)
     snakemake(d, *targets, "--cores", "2", *TEST_CONFIG, timeout=1500)
     for s in STUDIES:
         a = datasets.open_dataset(d / "results" / "datasets" / f"{s}.nc")
