@@ -160,8 +160,11 @@ def test_every_rule_declares_threads_and_resources(described):
     for name, rule in rules.items():
         assert {"mem_mb", "runtime"} <= set(rule["resources"]), (name, rule["resources"])
         assert re.search(r"^    threads: \d+$", sources[name], re.M), name
-        assert re.search(r"^        mem_mb=\d+,  # .*\d", sources[name], re.M), \
-            f"rule {name}: mem_mb without the measured numbers it is sized from"
+        if rule["benchmark"]:          # a compute rule: sized from its measured benchmarks
+            assert re.search(r"^        mem_mb=\d+,  # .*max_rss.*\d", sources[name], re.M), \
+                f"rule {name}: mem_mb without the measured max_rss it is sized from"
+            assert re.search(r"^        runtime=\d+,  # .*\d s\b", sources[name], re.M), \
+                f"rule {name}: runtime without the measured seconds it is sized from"
 
 
 def test_every_compute_rule_writes_a_benchmark_per_job(described):

@@ -34,8 +34,8 @@ rule accuracy_part:
         "results/benchmarks/accuracy_part/{part}.tsv"
     threads: 1
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=600,  # measured: max_rss 250 MB over 4 jobs
+        runtime=5,  # minutes; measured: 49.4 s at most (regularized; 30.9 s alone)
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -56,8 +56,8 @@ rule accuracy_dataset:
         "results/benchmarks/accuracy_dataset/accuracy.tsv"
     threads: 1
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=500,  # measured: max_rss 204 MB
+        runtime=2,  # minutes; measured: 3.3 s
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -70,5 +70,5 @@ rule accuracy:
         "reports/accuracy.html",
     threads: 1
     resources:
-        mem_mb=100,
+        mem_mb=100,  # a target: its job runs nothing
         runtime=1,

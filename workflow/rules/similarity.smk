@@ -17,8 +17,8 @@ rule similarity_study:
         "results/benchmarks/similarity_study/{study}.tsv"
     threads: 1
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=500,  # measured: max_rss 242 MB over 7 jobs
+        runtime=2,  # minutes; measured: 5.8 s at most
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -40,8 +40,8 @@ rule similarity:
         "results/benchmarks/similarity/similarity.tsv"
     threads: 1
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=500,  # measured: max_rss 200 MB
+        runtime=2,  # minutes; measured: 2.9 s
     conda:
         "../envs/isoslide.yaml"
     script:

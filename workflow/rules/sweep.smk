@@ -15,8 +15,8 @@ rule solve_chunk:
         "results/benchmarks/solve_chunk/{study}/{chunk}.tsv"
     threads: 1
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=500,  # measured: max_rss 246 MB over 10 jobs
+        runtime=2,  # minutes; measured: 5.3 s at most (median 3.6 s)
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -37,8 +37,8 @@ rule merge_study:
         "results/benchmarks/merge_study/{study}.tsv"
     threads: 1
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=500,  # measured: max_rss 248 MB over 7 jobs
+        runtime=2,  # minutes; measured: 3.9 s at most
     conda:
         "../envs/isoslide.yaml"
     script:
