@@ -124,13 +124,3 @@ def test_assert_same_data_ignores_provenance_only(merged):
     other["pi1"] = other["pi1"] * 1.0 + 1e-12
     with pytest.raises(AssertionError):
         datasets.assert_same_data(merged, other)
-
-
-def test_logging_to_captures_output_and_tracebacks(tmp_path):
-    log = tmp_path / "sub" / "job.log"
-    with pytest.raises(ZeroDivisionError):
-        with datasets.logging_to(log):
-            print("hello")
-            raise ZeroDivisionError("division by zero")
-    text = log.read_text()
-    assert "hello" in text and "ZeroDivisionError" in text and "isoslide" in text

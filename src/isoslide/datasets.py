@@ -20,7 +20,6 @@ output under the final name.
 
 from __future__ import annotations
 
-import contextlib
 import json
 import os
 import tempfile
@@ -294,21 +293,3 @@ def assert_same_data(a: xr.Dataset, b: xr.Dataset) -> None:
         for k in UNSTABLE_ATTRS:
             d.attrs.pop(k, None)
     xr.testing.assert_identical(a2, b2)
-
-
-@contextlib.contextmanager
-def logging_to(path):
-    """Send ``stdout``/``stderr`` (and any traceback) of a pipeline job to the log file ``path``."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w") as log, contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
-        import traceback
-
-        print(source_text(), flush=True)
-        try:
-            yield log
-        except BaseException:
-            traceback.print_exc(file=log)
-            log.flush()
-            raise
-        print("done", flush=True)
