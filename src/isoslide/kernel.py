@@ -633,8 +633,9 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     hist_cap : int
         Rows of history to keep (0: none).
     h_restart : float
-        Step length after a transition (or half the last step, if longer,
-        when no Stribeck transition zone is checked).
+        Step length after a transition, or half the last step if that is
+        longer (not when a slip begins under the Stribeck law, whose
+        static-to-kinetic transition zone is checked step by step).
     settle : bool
         Stop at settlement (else follow the scene to the horizon).
 
@@ -643,9 +644,9 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     ints : ndarray of int64, shape (N_R,)
         ``R_STEPS`` Runge-Kutta steps of every kind (accepted, rejected,
         verification and event-location steps); ``R_EVENTS`` transitions
-        (breakaways, ends of slip and reversals); ``R_SETTLED`` 1 if the scene
-        settled; ``R_SLIPPED`` 1 if the block slid at all; ``R_HIST`` rows of
-        ``hist``; ``R_LOC_STICK``, ``R_LOC_SLIP``, ``R_LOC_PEAK`` steps spent
+        (breakaways and ends of slip, a reversal counted once);
+        ``R_SETTLED`` 1 if the scene settled; ``R_SLIPPED`` 1 if the block
+        slid at all; ``R_HIST`` rows of ``hist``; ``R_LOC_STICK``, ``R_LOC_SLIP``, ``R_LOC_PEAK`` steps spent
         locating breakaways, ends of slip and peaks of the stuck demand
         (included in ``R_STEPS``); ``R_REJECTED`` steps rejected by the error
         test (included in ``R_STEPS``).
