@@ -9,6 +9,7 @@ balance, agreement between accuracy settings, and (slow) with the SciPy referenc
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import time
@@ -267,6 +268,7 @@ def marginal_scenes(draw):
                  pi8=base.pi8, pulse=pulse)
 
 
+@pytest.mark.slow
 @HYP_FEW
 @given(marginal_scenes())
 def test_accuracy_promise_with_many_marginal_transitions(sc):
@@ -309,11 +311,10 @@ def test_accuracy_settings_agree_heavy(sc):
 
 
 def test_plateau_at_threshold_is_solved_fast():
-    """Regression (found by the heavy sweep): the stuck demand sits on the static level for the
-    whole rectangular pulse (stiff over-damped base, heavy contents, strong viscous contact).
-    The kernel once chattered through 1.6e6 stick/slip transitions (1.6e8 steps, 115 s); fixed
-    in the solver (b29f397 and before), now ~2000 transitions in under a second.  Runs in a
-    subprocess: the compiled kernel cannot be interrupted from Python."""
+    """A stuck demand lying on the static level for the whole rectangular pulse (stiff over-damped
+    base, heavy contents, strong viscous contact) is solved in ~2000 transitions in under a second,
+    without chattering through millions of stick/slip transitions.  Runs in a subprocess: the
+    compiled kernel cannot be interrupted from Python."""
     import subprocess
     import sys
 
@@ -333,8 +334,8 @@ MANY = Scene(pi2=1.4999999949765033, pi3=1e-3, pi4=0.0, pi8=0.0, pulse="rectangu
 
 
 def test_error_target_with_thousands_of_transitions():
-    """Regression (found by the heavy sweep): the error accumulated over the transitions, rtol=1e-6
-    gave a relative error of 1.6e-5; fixed in the solver (e2e0c91..b29f397), now 6e-7."""
+    """Over more than 1000 transitions the default rtol = 1e-6 still meets 1e-6 against the
+    converged answer (errors accumulated over the transitions are controlled)."""
     conv = solve(MANY, rtol=1e-12, model="full").pi1
     s = solve(MANY)
     assert s.n_events > 1000
@@ -388,8 +389,8 @@ def test_no_slide_threshold_is_sharp():
 
 @pytest.mark.slow
 @settings(deadline=None, max_examples=12, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
-@given(sliding_scenes(st.sampled_from(["ricker", "makris_b"])).filter(lambda s: s.rate_independent
-                                                                      and s.pi3 >= 0.05))
+@given(sliding_scenes(st.sampled_from(["ricker", "makris_b"])).filter(lambda s: s.pi3 >= 0.05)
+       .map(lambda s: dataclasses.replace(s, pi6=0.0, pi7=0.0)))   # the stuck demand ignores pi6, pi7
 def test_agrees_with_reference_coulomb(sc):
     from isoslide.peers import solve_reference
 

@@ -86,7 +86,8 @@ def _model(pi2, pi3, pi4=0.1, pi5=1.0, pi6=0.0, pi7=0.0, pi8=0.0, law=0.0, thr=N
 def _run(m, pulse="ricker", track_max=False, hist_cap=100_000, settle=True, horizon=40.0):
     p = get_pulse(pulse)
     return kernel.run(m, p.code, p.param_array, p.breakpoint_array, p.tau_start, p.tau_end,
-                      p.tau_end + horizon, 0.15, 0.125, 1e-9, 1e-12, track_max, hist_cap, 1e-3, settle)
+                      p.tau_end + horizon, 0.15, 0.125, 1e-9, 1e-12, track_max, hist_cap, 1e-3, settle,
+                      kernel.MAX_STEPS)
 
 
 SCENES = {

@@ -12,6 +12,7 @@ import pytest
 
 import isoslide
 from isoslide import Scene, paper_groups, pulses, solve, solve_many
+from isoslide import kernel, solver
 from isoslide.solver import peak_stuck_demand
 
 from public_cases import PHYSICAL_CASES as PUBLIC_PHYSICAL_CASES  # noqa: E402
@@ -313,6 +314,24 @@ def test_overdamped_and_massless_valid():
     assert solve(Scene(0.2, 1.0, 2.5)).settled
     s = solve(Scene.from_physical(3.0, 1.0, 1e6, 2.0, 1.5, 0.0, 0.2, 0.2))
     assert s.model.endswith("one-way") and s.u_max > 0
+
+
+def test_a_run_out_of_steps_raises_instead_of_returning_a_truncated_answer(monkeypatch):
+    """A solve that exhausts its step budget raises StepBudgetError naming rtol; no partial Pi1."""
+    sc = Scene(pi2=0.1, pi3=1.0, pi4=0.1)
+    full = solve(sc)
+    assert full.settled and full.n_steps > 60
+    monkeypatch.setattr(solver, "step_budget", lambda scene, horizon=solver.DEFAULT_HORIZON: 60)
+    with pytest.raises(isoslide.StepBudgetError, match=r"rtol = 1e-06.*allowed range"):
+        solve(sc)
+
+
+def test_step_budget_grows_with_the_isolation_periods_followed():
+    """A stiff base is followed for horizon / Pi3 periods; the budget allows each of them."""
+    stiff, soft = Scene(pi2=0.5, pi3=1e-3, pi4=0.0), Scene(pi2=0.5, pi3=2.0, pi4=0.0)
+    assert solver.step_budget(soft) == kernel.MAX_STEPS
+    periods = (solver.DEFAULT_HORIZON + stiff.pulse.tau_end - stiff.pulse.tau_start) / stiff.pi3
+    assert solver.step_budget(stiff) == int(solver.STEPS_PER_PERIOD * periods) > kernel.MAX_STEPS
 
 
 def test_bad_solver_options():

@@ -20,7 +20,8 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0+unknown"
 
 _EXPORTS = {
-    "Batch": "solver", "Solution": "solver", "solve": "solver", "solve_many": "solver",
+    "Batch": "solver", "Solution": "solver", "StepBudgetError": "solver", "solve": "solver",
+    "solve_many": "solver",
     "G_STANDARD": "scene", "PhysicalScale": "scene", "Scene": "scene", "paper_groups": "scene",
     "Pulse": "pulses", "get_pulse": "pulses",
 }

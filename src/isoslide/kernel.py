@@ -82,7 +82,7 @@ CNT_REJECTED = 3
 
 NAN = math.nan
 MAX_STEPS = 5_000_000
-"""Safety cap on integrator steps per scene (a scene that hits it is reported unsettled)."""
+"""Smallest step budget of a scene (see :func:`isoslide.solver.step_budget`)."""
 ATOL_SLIDE = 1e-3
 """Absolute tolerance of the sliding components (u, u') relative to the base's:
 keeps short slides just above the no-slide threshold accurate in relative terms."""
@@ -591,7 +591,7 @@ def _slip_end(s, tau, y, h, g1, just_started, check, m, code, params, atol, rtol
 
 @njit(cache=True)
 def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free,
-        rtol, atol, track_max, hist_cap, h_restart, settle):
+        rtol, atol, track_max, hist_cap, h_restart, settle, max_steps):
     """Integrate one scene from rest at ``tau_start``; see the module docstring.
 
     Time is in units of T_p, lengths in a_p T_p^2, speeds in a_p T_p,
@@ -638,6 +638,9 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         static-to-kinetic transition zone is checked step by step).
     settle : bool
         Stop at settlement (else follow the scene to the horizon).
+    max_steps : int
+        Step budget: the integration stops after this many Runge-Kutta steps
+        (``F_TEND < tau_stop`` then tells a truncated run).
 
     Returns
     -------
@@ -718,7 +721,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     settled = True
                     if settle:
                         break
-        if tau >= tau_stop or steps > MAX_STEPS:
+        if tau >= tau_stop or steps > max_steps:
             if track_max and stick and not fixed:
                 amax = max(amax, _demand_bound(y, m))
             break
