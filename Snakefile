@@ -52,6 +52,7 @@ rule all:
         "results/datasets/records.nc",
         RECORD_FIGURE_FILES,
         "results/datasets/accuracy.nc",
+        "results/timings/accuracy_timings.nc",
         expand("reports/{report}.html", report=REPORTS),
     default_target: True
     threads: 1

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import io
+import json
 import math
 import re
 import shutil
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -17,12 +17,13 @@ import xarray as xr
 
 from isoslide import Scene, accuracy, bench, groups
 from isoslide.datasets import open_dataset, write_netcdf
+from isoslide.peers import solve_reference
 
 ROOT = Path(__file__).resolve().parents[1]
 
 TINY = {"accuracy": {"per_study": 1, "hard": False, "repeats": 1, "exact_rtols": [1e-3, 1e-6],
                      "reference_rtols": [1e-6], "reference_scenes": 2, "regularized_stiffness": [1e4],
-                     "regularized_rtol": 1e-4, "regularized_scenes": 1, "peer_timeout": 30.0,
+                     "regularized_rtol": 1e-4, "regularized_scenes": 1, "peer_max_work": 2_000_000,
                      "reduction_repeats": 1, "map_points": 3, "map_repeats": 1, "horizon": 20.0}}
 
 
@@ -103,14 +104,20 @@ def test_subset_spreads_over_classes_and_avoids_long_runs():
     assert s.subset(0) == []
 
 
-def test_time_limit_interrupts_python_code():
-    with pytest.raises(accuracy.SceneTimeout):
-        with accuracy.time_limit(0.05):
-            t0 = time.perf_counter()
-            while time.perf_counter() - t0 < 5:
-                pass
-    with accuracy.time_limit(None):
-        pass
+def test_peers_over_their_work_budget_are_reported_the_same_way_every_time():
+    """A peer is stopped by a count of right-hand-side evaluations, never by the clock."""
+    sc = Scene(pi2=0.1, pi3=1.0, pi4=0.1)
+    for method, extra in (("reference", {}), ("regularized", {"stiffness": 1e4})):
+        setting = accuracy.Setting(f"{method} test", method, 1e-6, **extra)
+        full = accuracy.run_setting(setting, sc, 20.0, max_work=None)
+        assert full[3] == "ok" and full[2] > 100, (method, full)
+        for _ in range(2):
+            pi1, _, work, status = accuracy.run_setting(setting, sc, 20.0, max_work=full[2] // 2)
+            assert (status, work) == ("over_budget", -1) and math.isnan(pi1), method
+        again = accuracy.run_setting(setting, sc, 20.0, max_work=full[2] + 10)
+        assert again[3] == "ok" and again[0] == full[0] and again[2] == full[2], method
+    with pytest.raises(ValueError, match="max_work"):
+        solve_reference(sc, max_work=0)
 
 
 def test_pareto_front():
@@ -206,6 +213,20 @@ def test_deterministic_part_reproduces(tiny_parts, tiny):
     assert not any(v.endswith("_seconds") for v in a.data_vars)
 
 
+def test_results_and_timings_split_and_join(tiny):
+    """The results file holds no wall-clock variable; the timings file holds all of them."""
+    results, timings = accuracy.split_timings(tiny)
+    assert not any(v.endswith("_seconds") for v in results.data_vars)
+    assert "nondeterministic_variables" not in results.attrs
+    assert sorted(timings.data_vars) == sorted(tiny.attrs["nondeterministic_variables"].split())
+    assert timings.attrs["nondeterministic"] == "true"
+    back = accuracy.join_timings(results, timings)
+    assert sorted(back.data_vars) == sorted(tiny.data_vars)
+    for v in tiny.data_vars:
+        xr.testing.assert_identical(back[v], tiny[v])
+    assert json.dumps(accuracy.trade_table(back)) == json.dumps(accuracy.trade_table(tiny))  # NaN-aware
+
+
 def test_round_trip_through_netcdf(tiny, tmp_path):
     path = write_netcdf(tiny, tmp_path / "accuracy.nc")
     back = open_dataset(path)
@@ -215,14 +236,15 @@ def test_round_trip_through_netcdf(tiny, tmp_path):
 
 @pytest.mark.slow
 def test_report_notebook_runs(tiny, tmp_path):
-    papermill = shutil.which("papermill")
-    if papermill is None:
-        pytest.skip("papermill not installed")
-    data = write_netcdf(tiny, tmp_path / "accuracy.nc")
+    results, timings = accuracy.split_timings(tiny)
+    data = write_netcdf(results, tmp_path / "accuracy.nc")
+    tdata = write_netcdf(timings, tmp_path / "accuracy_timings.nc")
     out = tmp_path / "accuracy.ipynb"
-    subprocess.run([papermill, str(ROOT / "workflow" / "notebooks" / "accuracy.ipynb"), str(out), "-k", "python3",
-                    "-p", "accuracy_path", str(data), "--no-progress-bar"], check=True, cwd=tmp_path,
-                   capture_output=True, timeout=600)
+    proc = subprocess.run([sys.executable, "-m", "papermill", str(ROOT / "workflow" / "notebooks" / "accuracy.ipynb"),
+                           str(out), "-k", "python3", "-p", "accuracy_path", str(data), "-p", "timings_path",
+                           str(tdata), "--no-progress-bar"], cwd=tmp_path, capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stderr[-4000:]
     import nbformat
 
     nb = nbformat.read(out, as_version=4)

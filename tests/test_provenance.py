@@ -4,6 +4,7 @@ Edits happen in a temporary copy of the package sources, never in the package it
 """
 
 import logging
+import re
 import shutil
 import warnings
 
@@ -157,7 +158,8 @@ def test_log_to_ends_a_successful_job_with_done(tmp_path):
     with provenance.log_to(log) as job:
         job.info("working")
     lines = log.read_text().splitlines()
-    assert len(lines) == 3 and lines[1].endswith("working") and lines[-1].endswith("done")
+    assert len(lines) == 4 and lines[2].endswith("working") and lines[-1].endswith("done")
+    assert re.search(r"isoslide\.job: phase start-up \d+\.\d{3} s$", lines[1]), lines[1]
     with provenance.log_to(log):
         pass
     assert "working" not in log.read_text()                          # a rerun starts the log afresh

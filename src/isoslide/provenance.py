@@ -23,6 +23,7 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from . import __version__
+from .budget import seconds_since_process_start
 
 PACKAGE_DIR = Path(__file__).resolve().parent
 """The directory of the installed ``isoslide`` package."""
@@ -129,7 +130,8 @@ def code_hash(include: Iterable[str] | None = None, exclude: Iterable[str] = (),
 def log_to(path, level: int = logging.INFO):
     """Send the :mod:`logging` records of a pipeline job to the log file ``path``.
 
-    The file starts with :func:`source_text`; warnings are logged too; if the block raises, the
+    The file starts with :func:`source_text` and the job's start-up time (interpreter and imports,
+    as phase ``start-up``, see :mod:`isoslide.budget`); warnings are logged too; if the block raises, the
     traceback is logged before the exception propagates; a successful block ends with ``done``.
     The handler is removed on exit.  Yields the logger ``isoslide.job``.
 
@@ -154,6 +156,9 @@ def log_to(path, level: int = logging.INFO):
     job = logging.getLogger("isoslide.job")
     try:
         job.info("%s", source_text())
+        startup = seconds_since_process_start()
+        if startup is not None:
+            job.info("phase start-up %.3f s", startup)
         try:
             yield job
         except BaseException:

@@ -34,19 +34,19 @@ FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 # import closure of its scripts.
 CODE_MODULES = {
     # solve_chunk, merge_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
-    "solve": ["config", "datasets", "dop853", "groups", "history", "kernel", "models", "peers",
+    "solve": ["budget", "config", "datasets", "dop853", "groups", "history", "kernel", "models", "peers",
               "provenance", "pulses", "scene", "solver", "sweep", "validation"],
     # similarity_study, similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
-    "similarity": ["claims", "datasets", "groups", "history", "models", "peers", "provenance", "pulses",
+    "similarity": ["budget", "claims", "datasets", "groups", "history", "models", "peers", "provenance", "pulses",
                    "scene", "similarity", "validation"],
     # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
-    "records": ["datasets", "dop853", "groups", "history", "kernel", "models", "peers", "provenance",
+    "records": ["budget", "datasets", "dop853", "groups", "history", "kernel", "models", "peers", "provenance",
                 "pulses", "record_study", "records", "scene", "solver", "validation"],
     # figure, figure_records (isoslide.figures)
-    "figures": ["datasets", "dop853", "figures", "groups", "history", "kernel", "models", "peers",
+    "figures": ["budget", "datasets", "dop853", "figures", "groups", "history", "kernel", "models", "peers",
                 "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
     # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
-    "accuracy": ["accuracy", "config", "datasets", "dop853", "groups", "history", "kernel", "models",
+    "accuracy": ["accuracy", "budget", "config", "datasets", "dop853", "groups", "history", "kernel", "models",
                  "peers", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
 }
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
@@ -87,7 +87,8 @@ REPORTS = {
         "code": "records",
     },
     "accuracy": {
-        "data": {"accuracy_path": "results/datasets/accuracy.nc"},
+        "data": {"accuracy_path": "results/datasets/accuracy.nc",
+                 "timings_path": "results/timings/accuracy_timings.nc"},
         "code": "accuracy",
     },
 }

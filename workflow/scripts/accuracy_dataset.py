@@ -1,8 +1,10 @@
-"""Rule accuracy_dataset: the measured parts combined into results/datasets/accuracy.nc (isoslide.accuracy)."""
+"""Rule accuracy_dataset: the measured parts combined into results/datasets/accuracy.nc and its
+wall-clock costs into results/timings/accuracy_timings.nc (isoslide.accuracy)."""
 
 from pathlib import Path
 
-from isoslide.accuracy import combine, trade_table
+from isoslide.accuracy import combine, split_timings, trade_table
+from isoslide.budget import phase
 from isoslide.datasets import open_dataset, write_netcdf
 from isoslide.provenance import log_to
 
@@ -11,4 +13,7 @@ with log_to(snakemake.log[0]) as log:
     ds = combine(parts, snakemake.params.config)
     for row in trade_table(ds):
         log.info("%s", row)
-    write_netcdf(ds, snakemake.output[0])
+    results, timings = split_timings(ds)
+    with phase("writing", log):
+        write_netcdf(timings, snakemake.output.timings)
+        write_netcdf(results, snakemake.output.results)

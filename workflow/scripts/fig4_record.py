@@ -1,10 +1,16 @@
 """Rule fig4_record: the real record of Fig. 4 with its fitted pulses (isoslide.record_study)."""
 
+from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
 from isoslide.provenance import log_to
+from isoslide.solver import warm_up
 from isoslide.record_study import fig4_dataset
 
 with log_to(snakemake.log[0]) as log:
-    ds = fig4_dataset(snakemake.params.settings)
+    with phase("compilation", log):
+        warm_up()
+    with phase("solving", log):
+        ds = fig4_dataset(snakemake.params.settings)
     log.info("%s", ds)
-    write_netcdf(ds, snakemake.output[0])
+    with phase("writing", log):
+        write_netcdf(ds, snakemake.output[0])

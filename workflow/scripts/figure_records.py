@@ -4,8 +4,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 
+from isoslide.budget import phase  # noqa: E402
 from isoslide.figures import draw  # noqa: E402
 from isoslide.provenance import log_to  # noqa: E402
 
-with log_to(snakemake.log[0]):
+with log_to(snakemake.log[0]) as log, phase("reporting", log):
     draw("records", dict(snakemake.input.items()), snakemake.output, snakemake.params.settings)

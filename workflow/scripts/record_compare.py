@@ -1,10 +1,16 @@
 """Rule record_compare: one record against its fitted pulse on the Pi2 x Pi3 grid (isoslide.record_study)."""
 
+from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
 from isoslide.provenance import log_to
+from isoslide.solver import warm_up
 from isoslide.record_study import record_dataset
 
 with log_to(snakemake.log[0]) as log:
-    ds = record_dataset(snakemake.wildcards.record, snakemake.params.settings)
+    with phase("compilation", log):
+        warm_up()
+    with phase("solving", log):
+        ds = record_dataset(snakemake.wildcards.record, snakemake.params.settings)
     log.info("%s", ds)
-    write_netcdf(ds, snakemake.output[0])
+    with phase("writing", log):
+        write_netcdf(ds, snakemake.output[0])

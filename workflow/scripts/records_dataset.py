@@ -1,5 +1,6 @@
 """Rule records_dataset: every record's comparison in one dataset (isoslide.record_study)."""
 
+from isoslide.budget import phase
 from isoslide.datasets import open_dataset, write_netcdf
 from isoslide.provenance import log_to
 from isoslide.record_study import records_dataset
@@ -7,4 +8,5 @@ from isoslide.record_study import records_dataset
 with log_to(snakemake.log[0]) as log:
     ds = records_dataset([open_dataset(p) for p in snakemake.input], snakemake.params.settings)
     log.info("%s", ds)
-    write_netcdf(ds, snakemake.output[0])
+    with phase("writing", log):
+        write_netcdf(ds, snakemake.output[0])

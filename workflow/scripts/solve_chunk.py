@@ -1,10 +1,17 @@
 """Rule solve_chunk: solve chunk {chunk} of study {study} (isoslide.sweep.solve_chunk)."""
 
+from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
 from isoslide.provenance import log_to
+from isoslide.solver import warm_up
 from isoslide.sweep import solve_chunk
 
 with log_to(snakemake.log[0]) as log:
     chunk = int(snakemake.wildcards.chunk)
     log.info("study %s, chunk %d", snakemake.wildcards.study, chunk)
-    write_netcdf(solve_chunk(snakemake.params.spec, chunk), snakemake.output[0])
+    with phase("compilation", log):
+        warm_up()
+    with phase("solving", log):
+        ds = solve_chunk(snakemake.params.spec, chunk)
+    with phase("writing", log):
+        write_netcdf(ds, snakemake.output[0])

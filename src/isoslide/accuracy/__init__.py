@@ -9,8 +9,9 @@ plots them.
 Scene set (:func:`scene_set`)
 -----------------------------
 * ``study``: a deterministic subsample (fixed seed) of every study's grid of
-  the configuration (``per_study`` scenes each; without a configuration the
-  paper's studies of :data:`PAPER_STUDIES`);
+  the configuration given (``per_study`` scenes each); the pipeline gives none,
+  so its scene set comes from the paper's studies of :data:`PAPER_STUDIES` and
+  does not change when a study of the run's configuration is edited;
 * the hard classes of :func:`hard_scenes`: just below and just above the
   no-slide threshold, resonance with light damping, ``xi_b = 0`` and
   over-damped bases, very sharp Stribeck transitions, heavy contents, long
@@ -46,13 +47,16 @@ default 50), so the peak is the same quantity for all of them.
 
 Determinism
 -----------
-Everything in the dataset is a deterministic function of the configuration
-and the code, *except* the wall-clock cost variables, whose names end in
-``_seconds`` and which carry the attribute ``nondeterministic = "true"``; the
-dataset attribute ``nondeterministic_variables`` lists them and
-:func:`deterministic_part` drops them (compare two runs with it).  Work
-counters (``work``: integrator steps for the compiled solver, right-hand-side
-evaluations for the SciPy peers) are deterministic.
+Everything measured is a deterministic function of the configuration and the
+code, *except* the wall-clock cost variables, whose names end in ``_seconds``
+and which carry the attribute ``nondeterministic = "true"``.  The pipeline
+writes them apart (:func:`split_timings`): ``results/datasets/accuracy.nc`` is
+the same bytes for the same configuration, and
+``results/timings/accuracy_timings.nc`` holds the costs (:func:`join_timings`
+puts them back together).  Work counters (``work``: integrator steps for the
+compiled solver, right-hand-side evaluations for the SciPy peers) are
+deterministic, and so is every outcome: the peers are bounded by work
+(``peer_max_work``), never by wall-clock time.
 
 Modules
 -------
@@ -61,7 +65,7 @@ Modules
 :mod:`.scenes`
     The scene set: study subsamples and the hard cases.
 :mod:`.timing`
-    One setting on one scene, timed, with a wall-clock limit (:func:`run_setting`).
+    One setting on one scene, timed, bounded by work (:func:`run_setting`).
 :mod:`.trade`, :mod:`.reductions`, :mod:`.domain`
     The measurements: error versus cost, the model reductions, the domain map.
 :mod:`.dataset`
@@ -71,21 +75,23 @@ Modules
 
 from ..groups import INPUT_NAMES as PI_INPUTS
 from ..peers import opensees_available, solve_opensees
-from .dataset import (NONDETERMINISTIC_SUFFIX, PARTS, accuracy_dataset, combine, deterministic_part,
-                      measure_part, pareto_front, trade_table)
+from .dataset import (NONDETERMINISTIC_SUFFIX, PARTS, TIMINGS_SUFFIX, accuracy_dataset, combine,
+                      deterministic_part, join_timings, measure_part, pareto_front, split_timings,
+                      trade_table)
 from .domain import DOMAIN, MAP_BASE, domain_map, map_values
 from .reductions import NOSLIDE_COLUMN, REDUCTION_TEXT, REDUCTIONS, measure_reductions
 from .scenes import Entry, SceneSet, hard_scenes, scene_coords, scene_set, study_entries
 from .settings import PAPER_CONFIG, PAPER_STUDIES, Setting, method_settings, settings_from
-from .timing import STATUS, STATUS_ATTRS, SceneTimeout, run_setting, tau_max, time_limit, warm_up
+from ..solver import warm_up
+from .timing import STATUS, STATUS_ATTRS, run_setting, tau_max
 from .trade import converged, measure_trade, rel_error, summarize_trade
 
 __all__ = [
     "DOMAIN", "Entry", "MAP_BASE", "NONDETERMINISTIC_SUFFIX", "NOSLIDE_COLUMN", "PAPER_CONFIG",
     "PAPER_STUDIES", "PARTS", "PI_INPUTS", "REDUCTIONS", "REDUCTION_TEXT", "STATUS", "STATUS_ATTRS",
-    "SceneSet", "SceneTimeout", "Setting", "accuracy_dataset", "combine", "converged", "deterministic_part",
-    "domain_map", "hard_scenes", "map_values", "measure_part", "measure_reductions", "measure_trade",
-    "method_settings", "opensees_available", "pareto_front", "rel_error", "run_setting", "scene_coords",
-    "scene_set", "settings_from", "solve_opensees", "study_entries", "summarize_trade", "tau_max",
-    "time_limit", "trade_table", "warm_up",
+    "SceneSet", "Setting", "TIMINGS_SUFFIX", "accuracy_dataset", "combine", "converged",
+    "deterministic_part", "domain_map", "hard_scenes", "join_timings", "map_values", "measure_part",
+    "measure_reductions", "measure_trade", "method_settings", "opensees_available", "pareto_front",
+    "rel_error", "run_setting", "scene_coords", "scene_set", "settings_from", "solve_opensees",
+    "split_timings", "study_entries", "summarize_trade", "tau_max", "trade_table", "warm_up",
 ]

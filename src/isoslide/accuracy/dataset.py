@@ -16,6 +16,8 @@ from .trade import measure_trade, summarize_trade
 
 NONDETERMINISTIC_SUFFIX = "_seconds"
 """Names of the wall-clock variables end in this (the only non-deterministic ones)."""
+TIMINGS_SUFFIX = "_timings.nc"
+"""Files holding wall-clock measurements end in this; they live apart from the results."""
 
 PARTS = ("exact", "regularized", "reductions", "map")
 """Independent pieces of the accuracy dataset (one pipeline job each)."""
@@ -71,8 +73,8 @@ def combine(parts: dict, config: dict | None = None) -> xr.Dataset:
         config=settings,
         nondeterministic_variables=" ".join(nondet),
         comment="Only the variables listed in nondeterministic_variables (wall-clock times, names "
-                "ending in _seconds) differ between runs of the same configuration; drop them with "
-                "isoslide.accuracy.deterministic_part before comparing. Timings were taken on a shared "
+                "ending in _seconds) differ between runs of the same configuration; "
+                "isoslide.accuracy.split_timings separates them. Timings were taken on a shared "
                 "machine: compare settings within one run, not across runs.",
         domain="; ".join(f"{k}: {v[2]}" for k, v in DOMAIN.items()),
         **extra, **map_attrs)
@@ -88,6 +90,35 @@ def deterministic_part(ds: xr.Dataset) -> xr.Dataset:
     """``ds`` without its wall-clock variables (those reproduce only up to timing noise)."""
     drop = [v for v in ds.data_vars if v.endswith(NONDETERMINISTIC_SUFFIX)]
     return ds.drop_vars(drop)
+
+
+def split_timings(ds: xr.Dataset) -> tuple[xr.Dataset, xr.Dataset]:
+    """``(results, timings)``: the deterministic part and the wall-clock part of ``ds``.
+
+    ``results`` is a deterministic function of the configuration and the code (same
+    configuration, same bytes); ``timings`` holds the variables whose names end in
+    :data:`NONDETERMINISTIC_SUFFIX`, with their coordinates, and says so in its attributes.
+    :func:`join_timings` puts them back together.
+    """
+    nondet = sorted(v for v in ds.data_vars if v.endswith(NONDETERMINISTIC_SUFFIX))
+    results = ds.drop_vars(nondet)
+    results.attrs = {k: v for k, v in ds.attrs.items() if k not in ("nondeterministic_variables", "comment")}
+    results.attrs["comment"] = ("Every variable is a deterministic function of the configuration and the "
+                                "code. The wall-clock costs of the same run are in the file of the same "
+                                f"name ending in {TIMINGS_SUFFIX} (isoslide.accuracy.join_timings).")
+    timings = ds[nondet]
+    timings.attrs = dict(ds.attrs)
+    timings.attrs["title"] = ds.attrs.get("title", "") + ": wall-clock costs"
+    timings.attrs["nondeterministic"] = "true"
+    timings.attrs["comment"] = ("Wall-clock seconds measured on the machine that ran the pipeline; they "
+                                "differ between runs. Settings were timed side by side within one run: "
+                                "compare them within a run, not across runs.")
+    return results, timings
+
+
+def join_timings(results: xr.Dataset, timings: xr.Dataset) -> xr.Dataset:
+    """The accuracy dataset with its wall-clock variables (the inverse of :func:`split_timings`)."""
+    return xr.merge([results, timings], compat="equals", join="exact", combine_attrs="override")
 
 
 def trade_table(ds: xr.Dataset) -> list[dict]:

@@ -11,7 +11,7 @@ import xarray as xr
 from ..groups import INPUT_NAMES
 from ..scene import Scene
 from ..solver import solve
-from .timing import warm_up
+from ..solver import warm_up
 from .trade import rel_error
 
 DOMAIN = {

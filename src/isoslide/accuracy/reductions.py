@@ -10,7 +10,7 @@ import xarray as xr
 from ..scene import Scene
 from ..solver import solve, solve_many
 from .scenes import SceneSet, scene_coords
-from .timing import warm_up
+from ..solver import warm_up
 
 NOSLIDE_COLUMN = 20
 """Scenes per base over which the no-slide shortcut's cost is amortised (a Pi2 column)."""

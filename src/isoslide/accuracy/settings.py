@@ -42,11 +42,12 @@ def settings_from(config: dict | None) -> dict:
     if out["opensees"] not in (True, False, "auto"):
         raise ValueError(f"accuracy.opensees = {out['opensees']!r}; allowed: true, false, auto")
     for k in ("per_study", "repeats", "reference_scenes", "regularized_scenes", "opensees_scenes", "peer_repeats",
+              "peer_max_work",
               "reduction_repeats", "map_points", "map_repeats", "seed"):
         out[k] = int(out[k])
         if out[k] < 0 or (k.endswith("repeats") and out[k] < 1):
             raise ValueError(f"accuracy.{k} = {out[k]!r} is out of range")
-    for k in ("horizon", "peer_timeout", "default_rtol", "converged_rtol", "regularized_rtol",
+    for k in ("horizon", "default_rtol", "converged_rtol", "regularized_rtol",
               "error_floor"):
         out[k] = float(out[k])
         if not (math.isfinite(out[k]) and out[k] > 0):

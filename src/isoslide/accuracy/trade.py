@@ -10,7 +10,8 @@ import xarray as xr
 from ..solver import solve
 from .scenes import SceneSet, scene_coords
 from .settings import Setting, method_settings
-from .timing import STATUS, STATUS_ATTRS, run_setting, warm_up
+from ..solver import warm_up
+from .timing import STATUS, STATUS_ATTRS, run_setting
 
 log = logging.getLogger(__name__)
 
@@ -30,7 +31,7 @@ def converged(entries, settings: dict, reference_idx=()) -> dict:
         spread[i] = abs(a - b) / a if a > 0 else abs(a - b)
     for i in reference_idx:
         pi1, _, _, st = run_setting(Setting("reference converged", "reference", rtol), entries[i].scene,
-                                    H, timeout=settings["peer_timeout"])
+                                    H, max_work=settings["peer_max_work"])
         ref[i] = pi1 if st == "ok" else np.nan
     return {"pi1_converged": conv, "converged_spread": spread, "pi1_reference": ref}
 
@@ -67,8 +68,9 @@ def measure_trade(entries, settings: dict, part: str | None = None) -> xr.Datase
     The compiled solver's settings run on every scene, ``repeats`` times, interleaved
     (setting after setting, then the next repetition) so that they are timed side by side;
     the cost is the median.  The SciPy peers run on an evenly spread subset
-    (``reference_scenes``/``regularized_scenes``) with ``peer_repeats`` and a wall-clock
-    limit of ``peer_timeout`` seconds per run.
+    (``reference_scenes``/``regularized_scenes``) with ``peer_repeats``, each run bounded by
+    ``peer_max_work`` right-hand-side evaluations (work, not wall-clock time: outcomes do not
+    depend on the machine's load).
 
     Parameters
     ----------
@@ -110,7 +112,7 @@ def measure_trade(entries, settings: dict, part: str | None = None) -> xr.Datase
         for i in idx:
             ts = []
             for _ in range(settings["peer_repeats"]):
-                p, t, w, st = run_setting(s, entries[i].scene, H, settings["peer_timeout"], **extra)
+                p, t, w, st = run_setting(s, entries[i].scene, H, settings["peer_max_work"], **extra)
                 ts.append(t)
                 if st != "ok":
                     break
@@ -178,8 +180,8 @@ def summarize_trade(ds: xr.Dataset, default_rtol: float = 1e-6, error_floor: flo
                                      vectorize=True)
     out["n_scenes"] = (ok).sum("scene").astype(np.int32).assign_attrs(
         long_name="scenes the setting ran on successfully", units="1")
-    out["n_failed"] = ((ds["status"] == STATUS["error"]) | (ds["status"] == STATUS["timeout"])).sum(
-        "scene").astype(np.int32).assign_attrs(long_name="scenes with an error or a timeout", units="1")
+    out["n_failed"] = ((ds["status"] == STATUS["error"]) | (ds["status"] == STATUS["over_budget"])).sum(
+        "scene").astype(np.int32).assign_attrs(long_name="scenes with an error or over the work budget", units="1")
     out["error_median"] = q(e, 50).assign_attrs(long_name="median relative error of Pi1 over sliding scenes",
                                                 units="1")
     out["error_p95"] = q(e, 95).assign_attrs(long_name="95th percentile of the relative error", units="1")

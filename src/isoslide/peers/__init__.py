@@ -17,11 +17,11 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.history.Histo
 from .opensees import opensees_available, solve_opensees
 from .reference import solve_reference
 from .regularized import solve_regularized
-from .result import PeerResult
+from .result import PeerResult, WorkLimitError
 from .si import simulate_si
 
 SCENE_SOLVERS = {"reference": solve_reference, "regularized": solve_regularized}
 """The peers :func:`isoslide.solve` runs for ``method=...`` (they take a :class:`isoslide.Scene`)."""
 
-__all__ = ["PeerResult", "SCENE_SOLVERS", "opensees_available", "simulate_si", "solve_opensees",
-           "solve_reference", "solve_regularized"]
+__all__ = ["PeerResult", "SCENE_SOLVERS", "WorkLimitError", "opensees_available", "simulate_si",
+           "solve_opensees", "solve_reference", "solve_regularized"]

@@ -77,7 +77,7 @@ from scipy.integrate import solve_ivp
 from ..history import History
 from ..pulses import accel_at
 from ..scene import Scene
-from .result import PeerResult
+from .result import PeerResult, counted
 
 __all__ = ["solve_reference", "friction_level", "stuck_supremum", "energy_bound"]
 
@@ -221,7 +221,7 @@ def _default_horizon(scene: Scene) -> float:
 
 def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
                     atol: float = 1e-15, tau_max: float | None = None,
-                    max_events: int = 100_000) -> PeerResult:
+                    max_events: int = 100_000, max_work: int | None = None) -> PeerResult:
     """Solve one scene with the event-driven DOP853 reference integrator.
 
     Parameters
@@ -239,6 +239,9 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
         Horizon in units of ``T_p``; default see the module docstring.
     max_events : int
         Safety cap on the number of transitions (raises ``RuntimeError``).
+    max_work : int or None
+        Most right-hand-side evaluations (raises :class:`~isoslide.peers.result.WorkLimitError`);
+        None: unbounded.
 
     Returns
     -------
@@ -283,6 +286,7 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
     peak, tau_peak = 0.0, tau
     n_events = 0
     nfev = 0
+    used = [0]
     settled = False
     hist = [] if history else None
     zero_len = 0
@@ -364,8 +368,8 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
             ev_stop.direction = -1.0
             events = [ev_stop]
 
-        sol = solve_ivp(rhs, (t0, t_end), y, method="DOP853", rtol=rtol, atol=atol,
-                        events=events, max_step=hmax)
+        sol = solve_ivp(counted(rhs, max_work, "reference", used), (t0, t_end), y, method="DOP853",
+                        rtol=rtol, atol=atol, events=events, max_step=hmax)
         nfev += sol.nfev
         if sol.status < 0:
             raise RuntimeError(f"solve_ivp failed: {sol.message}")

@@ -84,7 +84,7 @@ from ..history import History, phase_of
 from ..pulses import accel_at
 from ..scene import Scene
 from .reference import _default_horizon, _sech
-from .result import PeerResult
+from .result import PeerResult, counted
 
 __all__ = ["solve_regularized"]
 
@@ -92,7 +92,7 @@ __all__ = ["solve_regularized"]
 def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
                       history: bool = False, method: str = "Radau",
                       atol: float | None = None, tau_max: float | None = None,
-                      use_jac: bool = True) -> PeerResult:
+                      use_jac: bool = True, max_work: int | None = None) -> PeerResult:
     """Solve one scene with the paper's stiff-spring (bilinear) regularization.
 
     Parameters
@@ -122,6 +122,9 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
     use_jac : bool
         Pass the analytic (piecewise) Jacobian to the integrator (default);
         False uses scipy's finite differences (about 2x the cost).
+    max_work : int or None
+        Most right-hand-side evaluations (raises :class:`~isoslide.peers.result.WorkLimitError`);
+        None: unbounded.
 
     Returns
     -------
@@ -238,6 +241,7 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
     y = np.zeros(5)
     sols = []
     nfev = njev = nsteps = 0
+    used = [0]
     settled = False
     ts, ys = [], []
     for t0, t1 in zip(edges[:-1], edges[1:], strict=True):
@@ -249,7 +253,8 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
             break
         fun = make_rhs(t0, t1)
         jkw = {"jac": fun.jac} if use_jac else {}
-        sol = solve_ivp(fun, (t0, t1), y, method=method, rtol=rtol, atol=atol,
+        sol = solve_ivp(counted(fun, max_work, "regularized", used), (t0, t1), y, method=method,
+                        rtol=rtol, atol=atol,
                         dense_output=True, events=ev, **jkw)
         if sol.status < 0:
             raise RuntimeError(f"solve_ivp failed: {sol.message}")

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from ..history import History
 from ..scene import Scene, to_metres
 
-__all__ = ["PeerResult"]
+__all__ = ["PeerResult", "WorkLimitError", "counted"]
 
 
 @dataclass(frozen=True)
@@ -67,3 +67,27 @@ class PeerResult:
     def metres(self, scene: Scene) -> float:
         """``u_max`` in metres for a scene built with :meth:`isoslide.Scene.from_physical`."""
         return to_metres(self.pi1, scene)
+
+
+class WorkLimitError(RuntimeError):
+    """A peer solve needed more right-hand-side evaluations than its ``max_work`` allows."""
+
+
+def counted(fun, max_work: int | None, what: str, used: list):
+    """``fun`` counting its calls in ``used[0]``; raises :class:`WorkLimitError` past ``max_work``.
+
+    A peer bounded this way stops after the same amount of work on every machine and under any
+    load, so its outcome (answer or ``WorkLimitError``) does not depend on wall-clock time.
+    """
+    if max_work is None:
+        return fun
+    if not (isinstance(max_work, int) and max_work > 0):
+        raise ValueError(f"max_work = {max_work!r} is invalid; allowed: a positive integer or None")
+
+    def wrapped(t, y):
+        used[0] += 1
+        if used[0] > max_work:
+            raise WorkLimitError(f"{what}: more than max_work = {max_work} right-hand-side evaluations")
+        return fun(t, y)
+
+    return wrapped
