@@ -8,9 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import isoslide
 from isoslide import Scene
 from isoslide import pulses
 from isoslide import records as R
+from isoslide.history_io import history_table
 from isoslide.pulses import get_pulse
 from isoslide.records import fitting, reading
 
@@ -401,18 +403,25 @@ def test_mp_record_time_shape_is_the_scene_pulse_at_physical_scales(gamma, nu):
 # ----------------------------------------------------------------------------- record as pulse
 
 
-def test_record_as_pulse_normalisation_and_alignment():
+def test_record_as_pulse_runs_as_recorded_and_aligns_on_request():
+    """Defaults: the record's own sign and time axis at the fitted scales; with the fit's
+    ``t_ref`` and ``polarity`` it lines up with the fitted pulse; explicit scales and windows."""
     a, dt = _synthetic_ricker(noise=0.0, polarity=-1)
     r = R.Record("syn", a, dt, t_start=0.0)
     f = r.fit()
     assert r.fit() is f  # cached
+    assert f.polarity == -1
     P = r.as_pulse()
     assert P.name == "syn"
-    tau = np.linspace(-1.5, 1.5, 301)
-    # linear interpolation between samples (dtau = 0.0125) vs the exact wavelet
-    np.testing.assert_allclose(P.accel(tau), f.as_pulse().accel(tau), atol=2e-3)
     assert P.params[1] == pytest.approx(dt / f.T_p)
-    assert P.tau_start == pytest.approx(-f.t_peak / f.T_p)
+    assert P.tau_start == 0.0
+    np.testing.assert_allclose(P.params[2:], a * R.G / f.a_p, atol=1e-15)  # as recorded: no sign flip
+    tau = np.linspace(-1.5, 1.5, 301)
+    A = r.as_pulse(t_ref=f.t_ref, polarity=f.polarity)
+    assert A.tau_start == pytest.approx(-f.t_peak / f.T_p)
+    # linear interpolation between samples (dtau = 0.0125) vs the exact wavelet
+    np.testing.assert_allclose(A.accel(tau), f.as_pulse().accel(tau), atol=2e-3)
+    np.testing.assert_allclose(P.accel(tau + f.t_peak / f.T_p), -f.as_pulse().accel(tau), atol=2e-3)
     # explicit scales override the fit
     Q = r.as_pulse(a_p=2.0, T_p=0.5, t_ref=1.0, polarity=1)
     assert Q.params[1] == pytest.approx(dt / 0.5)
@@ -420,7 +429,7 @@ def test_record_as_pulse_normalisation_and_alignment():
     np.testing.assert_allclose(Q.params[2:], a * R.G / 2.0)
     # window
     W = r.as_pulse(window=(5.0, 7.0))
-    assert W.tau_start == pytest.approx((5.0 - f.t_peak) / f.T_p, abs=dt / f.T_p)
+    assert W.tau_start == pytest.approx(5.0 / f.T_p, abs=dt / f.T_p)
     assert len(W.params) - 2 == 201
     with pytest.raises(ValueError, match="window"):
         r.as_pulse(window=(50.0, 60.0))
@@ -428,18 +437,62 @@ def test_record_as_pulse_normalisation_and_alignment():
         r.as_pulse(a_p=-1.0)
     with pytest.raises(ValueError, match="polarity"):
         r.as_pulse(polarity=2)
+    with pytest.raises(ValueError, match="t_ref = nan"):
+        r.as_pulse(t_ref=math.nan)
 
 
 def test_scene_accepts_record_and_uses_fitted_scales():
+    """``Scene(pulse=record)`` is the record as recorded at its fitted scales; from_physical
+    with the same scales gives the same pulse and Pi-groups."""
     a, dt = _synthetic_ricker(noise=0.0)
     r = R.Record("syn", a, dt)
     s = Scene(pi2=0.3, pi3=1.0, pi4=0.1, pulse=r)
     assert s.pulse == r.as_pulse()
     f = r.fit()
     s2 = Scene.from_physical(a_p=f.a_p, T_p=f.T_p, M_b=1e5, T_b=f.T_p, xi_b=0.1, m_ec=1.0,
-                             mu_s=0.3, mu_k=0.3, pulse=r.as_pulse(a_p=f.a_p, T_p=f.T_p))
+                             mu_s=0.3, mu_k=0.3, pulse=r)
     assert s2.pulse == s.pulse
     assert s2.pi3 == pytest.approx(1.0)
+
+
+def test_scene_from_record_with_given_scales_never_fits(monkeypatch):
+    """With a_p and T_p given (from_physical, or as_pulse with both scales) no fit runs,
+    even for a new Record object."""
+    calls = []
+    real = R.record.fit_pulse
+
+    def spy(*args, **kw):
+        calls.append(kw.get("shape"))
+        return real(*args, **kw)
+
+    monkeypatch.setattr(R.record, "fit_pulse", spy)
+    a, dt = _synthetic_ricker(noise=0.0, polarity=-1)
+    r = R.Record("fresh", a, dt)
+    s = Scene.from_physical(a_p=3.0, T_p=0.8, M_b=1e5, T_b=1.6, xi_b=0.1, m_ec=1.0, mu_s=0.1,
+                            mu_k=0.1, pulse=r)
+    r.as_pulse(a_p=3.0, T_p=0.8)
+    assert calls == []
+    np.testing.assert_allclose(s.pulse.params[2:], a * R.G / 3.0, atol=1e-15)
+    assert s.pulse.params[1] == pytest.approx(dt / 0.8)
+
+
+def test_fit_cached_by_content_across_record_objects(monkeypatch):
+    """Two Record objects with the same samples share one fit; different samples fit again."""
+    calls = []
+    real = R.record.fit_pulse
+
+    def spy(*args, **kw):
+        calls.append(1)
+        return real(*args, **kw)
+
+    monkeypatch.setattr(R.record, "fit_pulse", spy)
+    a, dt = _synthetic_ricker(noise=0.0)
+    a = a * 1.000123  # content not fitted by any other test
+    f1 = R.Record("one", a, dt).fit()
+    f2 = R.Record("two", a.copy(), dt).fit()
+    assert f1 == f2 and len(calls) == 1
+    R.Record("three", a * 2.0, dt).fit()
+    assert len(calls) == 2
 
 
 def test_record_fit_mp_through_record():
@@ -447,7 +500,7 @@ def test_record_fit_mp_through_record():
     r = R.Record("mp", a, dt)
     f = r.fit("mp")
     assert r.fit("mavroeidis_papageorgiou") is f
-    P = r.as_pulse(shape="mp")
+    P = r.as_pulse(shape="mp", t_ref=f.t_ref, polarity=f.polarity)
     tau = np.linspace(-1.0, 1.0, 201)
     np.testing.assert_allclose(P.accel(tau), f.as_pulse().accel(tau), atol=0.1)
 
@@ -467,6 +520,54 @@ def test_takatori_fit_within_sanity_band():
     assert f.r2 > 0.4
     m = r.fit("mp")
     assert 1.0 <= m.T_p <= 1.7
+
+
+def _kobe_kwargs(record):
+    """Physical parameters at the record's fitted Ricker scales (Pi2 = 0.3, Pi3 = 1: it slides)."""
+    f = record.fit()
+    mu = 0.3 * f.a_p / R.G
+    return dict(a_p=f.a_p, T_p=f.T_p, M_b=1e6, T_b=f.T_p, xi_b=0.1, m_ec=1e4, mu_s=mu, mu_k=mu)
+
+
+def _kobe_scene(record):
+    return Scene.from_physical(**_kobe_kwargs(record), pulse=record)
+
+
+def test_history_ground_acceleration_is_the_raw_record_sample_by_sample():
+    """Kobe TAK-090 (fitted Ricker of negative polarity) through ``pulse=record``: at every record
+    time the history's ground acceleration is the record's, with its sign (m/s^2)."""
+    r = R.sample("Kobe_1995_TAK-090")
+    assert r.fit().polarity == -1
+    scene = _kobe_scene(r)
+    sol = isoslide.solve(scene, history=True)
+    c = history_table(sol, scene).columns
+    k = np.rint((c["time"] - r.t_start) / r.dt)
+    on_sample = (np.abs(c["time"] - (r.t_start + k * r.dt)) < 1e-9) & (k >= 0) & (k < r.npts - 1)
+    idx, first = np.unique(k[on_sample].astype(int), return_index=True)
+    assert idx.size == r.npts - 1  # every sample but the last (the pulse is 0 from its end on)
+    np.testing.assert_allclose(c["ground_accel"][on_sample][first], r.accel_si[idx], rtol=1e-12,
+                               atol=1e-12 * r.pga * R.G)
+
+
+def test_kobe_residual_sign_as_recorded_and_peak_as_mirrored():
+    """Run as recorded, Kobe TAK-090 leaves the block displaced in the negative direction; the
+    mirrored, fit-aligned record (the earlier behaviour) gives the same Pi1 and the opposite
+    residual; Scene(pulse=record) equals the hand-built sampled pulse of the raw record."""
+    r = R.sample("Kobe_1995_TAK-090")
+    f = r.fit()
+    as_recorded = isoslide.solve(_kobe_scene(r))
+    hand = pulses.sampled(r.accel * R.G / f.a_p, r.dt / f.T_p, r.t_start / f.T_p, name=r.name)
+    by_hand = isoslide.solve(Scene.from_physical(**_kobe_kwargs(r), pulse=hand))
+    assert as_recorded.u_residual == pytest.approx(by_hand.u_residual, rel=1e-9)
+    assert as_recorded.u_residual < 0.0
+    dimless = isoslide.solve(Scene(pi2=0.3, pi3=1.0, pi4=0.1, pi8=0.01, pulse=r))
+    mirrored = isoslide.solve(Scene(pi2=0.3, pi3=1.0, pi4=0.1, pi8=0.01,
+                                    pulse=r.as_pulse(t_ref=f.t_ref, polarity=f.polarity)))
+    assert dimless.pi1 > 0.0
+    assert dimless.pi1 == pytest.approx(mirrored.pi1, rel=1e-6)
+    assert dimless.pi1_residual == pytest.approx(-mirrored.pi1_residual, rel=1e-5)
+    assert dimless.pi1_residual == pytest.approx(as_recorded.pi1_residual, rel=1e-6)
+    assert dimless.tau_peak - mirrored.tau_peak == pytest.approx(f.t_peak / f.T_p, rel=1e-9)
 
 
 @pytest.mark.parametrize("name", R.PULSE_LIKE_SAMPLES)

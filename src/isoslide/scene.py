@@ -181,14 +181,18 @@ class Scene:
 def _resolve_pulse(pulse, a_p=None, T_p=None) -> Pulse:
     """A Pulse from a Pulse, a shape name, or a record (anything with ``as_pulse``).
 
-    A record is scaled by the given ``a_p`` (m/s^2) and ``T_p`` (s) when a scene
-    is built from physical units, else by its own fitted pulse.
+    A record runs as recorded (its own sign and time axis, ``t = tau T_p``),
+    scaled by the given ``a_p`` (m/s^2, a positive scale: ``|a_p|`` is used) and
+    ``T_p`` (s) when a scene is built from physical units, without fitting
+    anything; else by its own fitted pulse's scales.
     """
     if isinstance(pulse, Pulse):
         return pulse
     as_pulse = getattr(pulse, "as_pulse", None)
     if callable(as_pulse):
-        return as_pulse() if a_p is None else as_pulse(a_p=a_p, T_p=T_p)
+        if a_p is None:
+            return as_pulse()
+        return as_pulse(a_p=abs(a_p), T_p=T_p, t_ref=0.0, polarity=1)
     return get_pulse(pulse)
 
 

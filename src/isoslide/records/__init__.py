@@ -44,10 +44,16 @@ PAC-175 0.502, 0.470, 0.79; VSP-360 0.816, 0.460, 0.64.
 Scenes excited by a record
 --------------------------
 ``Scene(pi2, pi3, ..., pulse=record)`` calls :meth:`Record.as_pulse`, which
-normalises the record by its fitted Ricker ``a_p`` and ``T_p`` and puts
-``tau = 0`` at the fitted pulse peak, so record and fitted pulse are aligned
-in ``tau`` and the Pi-groups of the scene use the fitted scales.  For other
-scales pass ``pulse=record.as_pulse(a_p=..., T_p=...)``.
+runs the record **as recorded**: its own sign and its own time axis (``t =
+tau T_p`` is the record time), normalised by the fitted Ricker's ``a_p`` and
+``T_p`` (positive scales; the Pi-groups of the scene use them).  Signed
+results (residual slide, histories) therefore refer to the record itself,
+whatever the polarity of the fitted pulse; the peak ``Pi1`` does not depend on
+it (the equations are odd in the excitation).
+``Scene.from_physical(..., pulse=record)`` uses the given ``a_p`` and ``T_p``
+and fits nothing.  Fits are cached by record content, so reading a file again
+does not refit it.  To align a record with its fitted pulse pass
+``record.as_pulse(t_ref=fit.t_ref, polarity=fit.polarity)``.
 """
 
 from .errors import RecordFormatError

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass, field
 
@@ -38,7 +39,7 @@ class Record:
 
     Notes
     -----
-    Records compare by identity.  :meth:`fit` results are cached per shape.
+    Records compare by identity.  :meth:`fit` results are cached per shape and by content.
     """
 
     name: str
@@ -113,7 +114,7 @@ class Record:
 
     # ---- pulse
     def fit(self, shape: str = "ricker", **options) -> PulseFit:
-        """Fit an analytical pulse to the record's dominant acceleration pulse (cached).
+        """Fit an analytical pulse to the record's dominant acceleration pulse (cached by content).
 
         Parameters
         ----------
@@ -126,22 +127,51 @@ class Record:
         Returns
         -------
         PulseFit
+
+        Notes
+        -----
+        Fits are cached per record object and, across objects, by content
+        (samples, ``dt``, ``t_start``, shape and options), so reading the same
+        file twice fits it once.
         """
         shape = canonical_shape(shape)
         key = (shape, tuple(sorted((k, _hashable(v)) for k, v in options.items())))
         if key not in self._fits:
-            self._fits[key] = fit_pulse(self.accel, self.dt, shape=shape, t_start=self.t_start, **options)
+            ckey = (self.content_key, key)
+            fit = _FIT_CACHE.get(ckey)
+            if fit is None:
+                fit = fit_pulse(self.accel, self.dt, shape=shape, t_start=self.t_start, **options)
+                if len(_FIT_CACHE) >= _FIT_CACHE_SIZE:
+                    _FIT_CACHE.pop(next(iter(_FIT_CACHE)))
+                _FIT_CACHE[ckey] = fit
+            self._fits[key] = fit
         return self._fits[key]
 
-    def as_pulse(self, a_p=None, T_p=None, t_ref=None, *, shape: str = "ricker", polarity=None,
+    @property
+    def content_key(self) -> tuple:
+        """``(sha256 of the samples, dt, t_start)``: equal for records with equal data."""
+        key = self.__dict__.get("_content_key")
+        if key is None:
+            key = (hashlib.sha256(self.accel.tobytes()).hexdigest(), self.dt, self.t_start)
+            object.__setattr__(self, "_content_key", key)
+        return key
+
+    def as_pulse(self, a_p=None, T_p=None, t_ref=0.0, *, shape: str = "ricker", polarity=1,
                  window=None) -> Pulse:
-        """The record as a dimensionless sampled :class:`~isoslide.pulses.Pulse`.
+        """The record, as recorded, as a dimensionless sampled :class:`~isoslide.pulses.Pulse`.
 
         ``p(tau) = a_g(t) / (polarity * a_p)`` with ``tau = (t - t_ref) / T_p``,
-        linear between samples and zero outside the record.  With the defaults
-        the scales are those of the record's fitted pulse (:meth:`fit`), so the
-        record and :meth:`PulseFit.as_pulse` are aligned in ``tau`` (for the
-        Ricker ``tau = 0`` at the fitted peak, where the fitted pulse is ``+1``).
+        linear between samples and zero outside the record.  With the
+        defaults the record runs as recorded: its own sign (``polarity = +1``)
+        and its own time axis (``t_ref = 0``, so ``t = tau T_p`` is the record
+        time), and the histories and signed residuals of a solve refer to the
+        record itself.  Missing scales are those of the record's fitted pulse
+        (:meth:`fit`, called only when ``a_p`` or ``T_p`` is missing); the
+        fitted pulse's sign does not matter, ``a_p`` is a positive scale.
+
+        To align the record with :meth:`PulseFit.as_pulse` (``tau = 0`` at the
+        fitted peak, the dominant pulse positive) pass
+        ``t_ref=fit.t_ref, polarity=fit.polarity``.
 
         Parameters
         ----------
@@ -149,32 +179,34 @@ class Record:
             Acceleration scale, m/s^2 (> 0).  Default: fitted ``a_p``.
         T_p : float, optional
             Time scale, s (> 0).  Default: fitted ``T_p``.
-        t_ref : float, optional
-            Record time that becomes ``tau = 0``, s.  Default: the fit's
-            :attr:`PulseFit.t_ref` (the peak for the Ricker, the envelope
-            centre for Mavroeidis-Papageorgiou).
+        t_ref : float
+            Record time that becomes ``tau = 0``, s (default 0: the record's
+            own time axis).
         shape : str
-            Which fit supplies missing values.
-        polarity : {+1, -1}, optional
-            Sign applied so the dominant pulse is positive.  Default: the fit's.
+            Which fit supplies missing scales.
+        polarity : {+1, -1}
+            Sign applied to the record (default +1: as recorded).
         window : (float, float), optional
             Keep only the samples with ``window[0] <= t <= window[1]`` (s).
 
         Returns
         -------
         Pulse
+            A sampled pulse (:func:`isoslide.pulses.sampled`) named after the
+            record, with knots at ``(t_i - t_ref) / T_p`` for the record times
+            ``t_i``.
         """
-        if a_p is None or T_p is None or t_ref is None or polarity is None:
+        if a_p is None or T_p is None:
             fit = self.fit(shape)
             a_p = fit.a_p if a_p is None else a_p
             T_p = fit.T_p if T_p is None else T_p
-            t_ref = fit.t_ref if t_ref is None else t_ref
-            polarity = fit.polarity if polarity is None else polarity
         a_p, T_p, t_ref = float(a_p), float(T_p), float(t_ref)
         if not (math.isfinite(a_p) and a_p > 0):
             raise ValueError(f"a_p = {a_p!r} is invalid; allowed range: 0 < a_p < inf (m/s^2)")
         if not (math.isfinite(T_p) and T_p > 0):
             raise ValueError(f"T_p = {T_p!r} is invalid; allowed range: 0 < T_p < inf (s)")
+        if not math.isfinite(t_ref):
+            raise ValueError(f"t_ref = {t_ref!r} is invalid; allowed range: -inf < t_ref < inf (s)")
         if polarity not in (1, -1):
             raise ValueError(f"polarity = {polarity!r} is invalid; allowed: +1 or -1")
         i0, i1 = 0, self.npts
@@ -188,6 +220,12 @@ class Record:
         p = self.accel[i0:i1] * (G / (polarity * a_p))
         tau0 = (self.t_start + i0 * self.dt - t_ref) / T_p
         return sampled(p, self.dt / T_p, tau0, name=self.name)
+
+
+_FIT_CACHE: dict = {}
+"""Fits by record content and fit options (see :meth:`Record.fit`)."""
+_FIT_CACHE_SIZE = 256
+"""Most fits kept in :data:`_FIT_CACHE` (the oldest goes first)."""
 
 
 def _hashable(v):

@@ -1,0 +1,99 @@
+"""Histories written to CSV and HDF5: columns, units, round trip and the floor acceleration."""
+
+import h5py
+import numpy as np
+import pytest
+
+import isoslide
+from isoslide.history_io import COLUMNS, history_table, read_history, write_history
+
+
+def _physical_scene(**kw):
+    args = dict(a_p=6.0, T_p=1.2, M_b=8e5, T_b=2.4, xi_b=0.1, m_ec=8e4, mu_s=0.25, mu_k=0.2,
+                beta=200.0, gamma=0.05)
+    return isoslide.Scene.from_physical(**(args | kw))
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".h5", ".hdf5"])
+def test_write_then_read_gives_the_same_columns_units_and_attributes(tmp_path, suffix):
+    scene = _physical_scene()
+    sol = isoslide.solve(scene, history=True)
+    table = history_table(sol, scene)
+    path = write_history(sol, scene, tmp_path / f"h{suffix}")
+    back = read_history(path)
+    assert list(back.columns) == [c[0] for c in COLUMNS]
+    for name, values in table.columns.items():
+        np.testing.assert_array_equal(back.columns[name], values, err_msg=name)
+    assert back.columns["phase"].dtype == np.int8
+    assert back.units == table.units
+    assert back.attrs == table.attrs
+    assert back.attrs["u_max"] == sol.u_max and back.attrs["model"] == sol.model
+
+
+def test_hdf5_datasets_carry_si_units_and_long_names(tmp_path):
+    scene = _physical_scene()
+    sol = isoslide.solve(scene, history=True)
+    write_history(sol, scene, tmp_path / "h.h5")
+    with h5py.File(tmp_path / "h.h5") as f:
+        assert {k: f[k].attrs["units"] for k in f} == {
+            "time": "s", "ground_accel": "m s-2", "floor_accel": "m s-2", "floor_disp": "m",
+            "floor_vel": "m s-1", "slide_disp": "m", "slide_vel": "m s-1", "phase": "1"}
+        assert f["slide_disp"].attrs["long_name"] == "block sliding displacement relative to the floor"
+        assert f.attrs["T_p"] == 1.2 and bool(f.attrs["physical"]) is True
+
+
+def test_physical_columns_are_the_dimensionless_history_times_the_scales():
+    scene = _physical_scene()
+    sol = isoslide.solve(scene, history=True)
+    h, c = sol.history, history_table(sol, scene).columns
+    a_p, T_p = 6.0, 1.2
+    np.testing.assert_allclose(c["time"], h.tau * T_p, rtol=1e-15)
+    np.testing.assert_allclose(c["slide_disp"], h.u * a_p * T_p**2, rtol=1e-15)
+    np.testing.assert_allclose(c["floor_vel"], h.xd * a_p * T_p, rtol=1e-15)
+    np.testing.assert_allclose(c["ground_accel"], scene.pulse.accel(h.tau) * a_p, rtol=1e-15)
+    assert np.max(np.abs(c["slide_disp"])) == pytest.approx(sol.u_max, rel=1e-9)
+
+
+def test_dimensionless_scene_gives_unit_1_columns(tmp_path):
+    scene = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1)
+    sol = isoslide.solve(scene, history=True)
+    back = read_history(write_history(sol, scene, tmp_path / "h.csv"))
+    assert set(back.units.values()) == {"1"}
+    assert back.attrs["physical"] is False
+    np.testing.assert_array_equal(back.columns["time"], sol.history.tau)
+    with h5py.File(write_history(sol, scene, tmp_path / "h.h5")) as f:
+        assert f["slide_disp"].attrs["scale"] == "a_p T_p^2"
+
+
+@pytest.mark.parametrize("m_ec", [8e4, 0.0])
+def test_floor_acceleration_is_ground_plus_derivative_of_floor_velocity(m_ec):
+    """Away from stick/slip transitions (where it jumps) the floor's absolute acceleration equals
+    the ground's plus the time derivative of the floor velocity relative to the ground."""
+    scene = _physical_scene(m_ec=m_ec)
+    sol = isoslide.solve(scene, history=True, max_step=0.002)
+    c = history_table(sol, scene).columns
+    assert np.any(c["phase"] != 0) and np.any(c["phase"] == 0)
+    numeric = c["ground_accel"] + np.gradient(c["floor_vel"], c["time"])
+    change = np.flatnonzero(np.diff(c["phase"]) != 0)
+    away = np.ones(c["time"].size, dtype=bool)
+    for k in change:
+        away[max(k - 2, 0):k + 3] = False
+    away[[0, -1]] = False
+    scale = np.max(np.abs(c["floor_accel"]))
+    np.testing.assert_allclose(c["floor_accel"][away], numeric[away], atol=2e-3 * scale)
+
+
+def test_fixed_base_floor_moves_with_the_ground():
+    scene = _physical_scene(T_b=0.0)
+    sol = isoslide.solve(scene, history=True)
+    c = history_table(sol, scene).columns
+    np.testing.assert_array_equal(c["floor_accel"], c["ground_accel"])
+    assert not np.any(c["floor_disp"])
+
+
+def test_unknown_extension_and_missing_history_are_refused(tmp_path):
+    scene = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1)
+    with pytest.raises(ValueError, match=r"history file = .*h\.txt.* allowed: \.csv, \.h5, \.hdf5"):
+        write_history(isoslide.solve(scene, history=True), scene, tmp_path / "h.txt")
+    with pytest.raises(ValueError, match="history=True"):
+        write_history(isoslide.solve(scene), scene, tmp_path / "h.csv")
