@@ -11,11 +11,18 @@
 # largest max_rss, runtime (minutes) at least ten times the longest wall time, since a cold numba
 # cache adds the kernel's compilation to the first jobs.
 
+import os
 import re
 
 from snakemake.utils import min_version, validate
 
 min_version("9.0")
+
+# Every job is single-threaded; one BLAS/OpenMP thread also keeps sums in a fixed order, so the
+# same config gives the same bytes on any machine (jobs inherit this environment, locally and on
+# a cluster, where each job reads this file again).
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_var] = "1"
 
 
 configfile: "config/config.yaml"

@@ -29,6 +29,7 @@ rule accuracy_part:
         "logs/accuracy/{part}.log",
     benchmark:
         "results/benchmarks/accuracy_part/{part}.tsv"
+    priority: 10  # the longest jobs of a run, and they need no other job: start them first
     threads: 1
     resources:
         mem_mb=600,  # measured: max_rss 250 MB over 4 jobs
