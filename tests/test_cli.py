@@ -1,4 +1,4 @@
-"""The command line: one scene in Pi-groups or physical units."""
+"""The command line: one scene in Pi-groups or physical units, records, fits, histories and plots."""
 
 import json
 import shutil
@@ -6,10 +6,12 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import isoslide
 from isoslide.cli import main
+from isoslide.history_io import read_history
 
 
 def test_cli_pi_groups_json_matches_python(capsys):
@@ -44,3 +46,134 @@ def test_console_script_installed():
     r = subprocess.run([str(script), "solve", "--pi2", "1.5", "--pi3", "0"],
                        capture_output=True, text=True, check=True)
     assert "pi1: 0.0" in r.stdout and "fixed-base+no-slide" in r.stdout
+
+
+# ----------------------------------------------------------------------------- records on the command line
+
+PHYSICAL = ["--M-b", "8e5", "--T-b", "2.4", "--xi-b", "0.1", "--m-ec", "800", "--mu-s", "0.25",
+            "--mu-k", "0.2"]
+
+
+def test_solve_physical_with_a_sample_record_defaults_to_the_fitted_scales(capsys):
+    """--record without --a-p/--T-p: the fitted Ricker's scales, reported; the result is the
+    library's for the record as recorded."""
+    assert main(["solve-physical", "--record", "TAK-090", *PHYSICAL, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    rec = isoslide.records.sample("Kobe_1995_TAK-090")
+    fit = rec.fit()
+    scene = isoslide.Scene.from_physical(fit.a_p, fit.T_p, 8e5, 2.4, 0.1, 800.0, 0.25, 0.2, pulse=rec)
+    sol = isoslide.solve(scene)
+    assert out["u_max_m"] == sol.u_max and out["u_residual_m"] == sol.u_residual
+    assert out["fitted_pulse"]["a_p"] == fit.a_p and out["fitted_pulse"]["T_p"] == fit.T_p
+    assert out["fitted_pulse"]["polarity"] == -1
+    assert out["scene"]["pulse"] == "Kobe_1995_TAK-090" and out["record"]["station"] == "Takatori"
+
+
+def test_solve_physical_with_given_scales_and_an_at2_file_does_not_fit(capsys, tmp_path, monkeypatch):
+    """--record FILE.AT2 with --a-p and --T-p: those scales, no fit, no fitted pulse reported."""
+    calls = []
+    monkeypatch.setattr(isoslide.records.record, "fit_pulse", lambda *a, **k: calls.append(1))
+    at2 = Path(__file__).parent / "data" / "records" / "nga_west2.AT2"
+    assert main(["solve-physical", "--record", str(at2), "--a-p", "2", "--T-p", "0.1", *PHYSICAL,
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert calls == [] and "fitted_pulse" not in out
+    assert out["scene"]["a_p"] == 2.0 and out["scene"]["T_p"] == 0.1
+    assert out["scene"]["pi2"] == pytest.approx(0.2 * 9.80665 / 2.0)
+
+
+def test_solve_in_pi_groups_with_a_csv_record_reports_the_fit(capsys, tmp_path):
+    rec = isoslide.records.sample("PAC-175")
+    csv_path = tmp_path / "pac.csv"
+    np.savetxt(csv_path, np.column_stack([rec.time, rec.accel]), delimiter=",", header="time,accel",
+               comments="")
+    assert main(["solve", "--pi2", "0.3", "--pi3", "1", "--pi4", "0.1", "--record", str(csv_path)]) == 0
+    text = capsys.readouterr().out
+    sol = isoslide.solve(isoslide.Scene(0.3, 1.0, 0.1, pulse=rec))
+    assert f"pi1: {sol.pi1}" in text and f"pi1_residual: {sol.pi1_residual}" in text
+    assert "fitted pulse: ricker: a_p = 4.92718 m/s^2 (0.5024 g), T_p = 0.470482 s" in text
+    assert "polarity -1" in text
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".h5"])
+def test_history_option_writes_the_solved_history(capsys, tmp_path, suffix):
+    path = tmp_path / f"h{suffix}"
+    assert main(["solve-physical", "--a-p", "6", "--T-p", "1.2", *PHYSICAL, "--history", str(path),
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    table = read_history(path)
+    assert out["history_file"] == str(path)
+    assert table.units["slide_disp"] == "m" and table.attrs["u_max"] == out["u_max_m"]
+    assert np.max(np.abs(table.columns["slide_disp"])) == pytest.approx(out["u_max_m"], rel=1e-9)
+
+
+@pytest.mark.parametrize("suffix, magic", [(".png", b"\x89PNG"), (".pdf", b"%PDF")])
+def test_plot_option_writes_png_or_pdf(capsys, tmp_path, suffix, magic):
+    path = tmp_path / f"p{suffix}"
+    assert main(["solve", "--pi2", "0.2", "--pi3", "1", "--pi4", "0.1", "--plot", str(path)]) == 0
+    assert f"plot_file: {path}" in capsys.readouterr().out
+    assert path.read_bytes()[:4] == magic and path.stat().st_size > 10_000
+
+
+def test_fit_command_prints_and_plots_the_fitted_pulse(capsys, tmp_path):
+    assert main(["fit", "Kobe_1995_TAK-090", "--shape", "mp", "--json", "--plot", str(tmp_path / "f.png")]) == 0
+    out = json.loads(capsys.readouterr().out)
+    fit = isoslide.records.sample("Kobe_1995_TAK-090").fit("mp")
+    assert out["fitted_pulse"]["shape"] == "mavroeidis_papageorgiou"
+    assert out["fitted_pulse"]["T_p"] == fit.T_p and out["fitted_pulse"]["gamma"] == fit.shape_params["gamma"]
+    assert (tmp_path / "f.png").read_bytes()[:4] == b"\x89PNG"
+    assert main(["fit", "TAK-090"]) == 0
+    text = capsys.readouterr().out
+    assert "fitted ricker: a_p = 4.82343 m/s^2 (0.4919 g), T_p = 1.56095 s" in text
+
+
+def test_records_command_lists_every_sample_with_event_station_and_licence(capsys):
+    assert main(["records", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["name"] for r in rows] == list(isoslide.records.samples())
+    kobe = next(r for r in rows if r["name"] == "Kobe_1995_TAK-090")
+    assert kobe["event"] == "Kobe, Japan 1995" and kobe["station"] == "Takatori" and kobe["pulse_like"]
+    assert all("GPL-3.0-only" in r["licence"] for r in rows)
+    assert main(["records"]) == 0
+    text = capsys.readouterr().out
+    assert len(text.splitlines()) == len(rows) + 2 and "licence: pyslammer" in text
+
+
+@pytest.mark.parametrize("args, words", [
+    (["solve", "--pi2", "abc", "--pi3", "1"], "argument --pi2: invalid float value: 'abc'"),
+    (["solve", "--pi2", "nan", "--pi3", "1"], "pi2 = nan is invalid; allowed: a finite number"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--record", "no-such-record"],
+     "record = 'no-such-record' is not a .at2/.csv file or a bundled sample"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--record", "missing.AT2"], "record = 'missing.AT2': no such file"),
+    (["fit", "{bad_at2}"], "line 7: expected 23 values"),
+    (["fit", "{binary_csv}"], "not a text file"),
+    (["fit", "TAK-090", "--shape", "cosine"], "argument --shape: invalid choice: 'cosine'"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--history", "h.txt"], "history = 'h.txt' has an unknown extension"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--plot", "p.jpg"], "plot = 'p.jpg' has an unknown extension"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--history", "/no/such/dir/h.csv"], "history = '/no/such/dir/h.csv'"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--record", "TAK-090", "--pulse", "ricker"],
+     "pulse = 'ricker' and record = 'TAK-090' exclude each other"),
+    (["solve-physical", *PHYSICAL], "the following arguments are required: --a-p, --T-p"),
+    (["solve-physical", "--record", "TAK-090", "--a-p", "-3", *PHYSICAL], "a_p = -3.0 is out of range"),
+])
+def test_bad_input_gives_one_line_naming_parameter_and_value_exit_2(capsys, tmp_path, args, words):
+    bad_at2 = Path(__file__).parent / "data" / "records" / "truncated.AT2"
+    binary_csv = tmp_path / "binary.csv"
+    binary_csv.write_bytes(b"\xff\xfe\x00\x81" * 50)
+    args = [a.format(bad_at2=bad_at2, binary_csv=binary_csv) for a in args]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("isoslide: error: ") and words in err, err
+
+
+def test_console_script_solves_a_record_and_reports_bad_input(tmp_path):
+    """The installed ``isoslide`` script: a record scene with a history file, then a bad sample (exit 2)."""
+    script = Path(sys.executable).parent / "isoslide"
+    if not script.exists():
+        script = shutil.which("isoslide")
+    h = tmp_path / "kobe.hdf5"
+    r = subprocess.run([str(script), "solve-physical", "--record", "TAK-090", *PHYSICAL, "--history", str(h)],
+                       capture_output=True, text=True, check=True)
+    assert "fitted pulse: ricker" in r.stdout and read_history(h).attrs["pulse"] == "Kobe_1995_TAK-090"
+    bad = subprocess.run([str(script), "fit", "nope"], capture_output=True, text=True)
+    assert bad.returncode == 2 and bad.stderr.startswith("isoslide: error: record = 'nope'")

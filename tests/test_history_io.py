@@ -93,7 +93,7 @@ def test_fixed_base_floor_moves_with_the_ground():
 
 def test_unknown_extension_and_missing_history_are_refused(tmp_path):
     scene = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1)
-    with pytest.raises(ValueError, match=r"history file = .*h\.txt.* allowed: \.csv, \.h5, \.hdf5"):
+    with pytest.raises(ValueError, match=r"path = .*h\.txt.* allowed: \.csv, \.h5, \.hdf5"):
         write_history(isoslide.solve(scene, history=True), scene, tmp_path / "h.txt")
     with pytest.raises(ValueError, match="history=True"):
         write_history(isoslide.solve(scene), scene, tmp_path / "h.csv")

@@ -1,4 +1,4 @@
-r"""Command line: one scene, in Pi-groups or in physical units.
+r"""Command line: one scene in Pi-groups or physical units, real records and their fitted pulses.
 
 Examples
 --------
@@ -8,30 +8,64 @@ Examples
     isoslide solve --pi2 0.2 --pi3 1 --pi4 0.1 --pi5 0.7 --pi6 1000 --json
     isoslide solve-physical --a-p 6 --T-p 1.2 --M-b 8e5 --T-b 2.4 --xi-b 0.1 \
         --m-ec 800 --mu-s 0.25 --mu-k 0.2 --beta 200 --gamma 0.05 --json
+    isoslide solve-physical --record TAK-090 --M-b 8e5 --T-b 2.4 --xi-b 0.1 \
+        --m-ec 800 --mu-s 0.25 --mu-k 0.2 --history kobe.h5 --plot kobe.png
+    isoslide fit Kobe_1995_TAK-090 --shape mp --plot fit.png
+    isoslide records
+
+A record (``--record``, ``fit``) is a PEER ``.AT2`` file, a two-column
+``.csv`` file (time in s, acceleration in g) or the name of a bundled sample
+(``isoslide records``).  It runs as recorded (its own sign and time axis);
+its fitted Ricker pulse supplies the scales ``a_p`` and ``T_p`` that are not
+given.  Bad input prints one line naming the parameter and its value, and
+exits with code 2.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 
 from . import __version__
 from .groups import INPUTS
+from .history_io import FORMATS, history_format, history_table, write_history
 from .pulses import PULSE_NAMES
+from .quicklook import check_plot_path, plot_fit, plot_history
+from .records import load_record, sample, samples
+from .records import PULSE_LIKE_SAMPLES as _PULSE_LIKE
 from .scene import G_STANDARD, Scene
 from .solver import DEFAULT_RTOL, solve
 
+EXIT_USAGE = 2
+"""Exit code for bad input (as argparse uses)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors: ``isoslide: error: <message>``, exit code 2."""
+
+    def error(self, message):  # noqa: D102 (argparse API)
+        self.exit(EXIT_USAGE, f"isoslide: error: {message}\n")
+
 
 def _common(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--pulse", default="ricker", choices=PULSE_NAMES, help="pulse shape (default ricker)")
+    p.add_argument("--pulse", default=None, choices=PULSE_NAMES,
+                   help="pulse shape (default ricker; not with --record)")
+    p.add_argument("--record", metavar="PATH|SAMPLE",
+                   help="excite with a real record: .AT2 or .csv file (time s, acceleration g) or a bundled "
+                        "sample name (isoslide records); runs as recorded, scaled by its fitted Ricker pulse")
     p.add_argument("--rtol", type=float, default=DEFAULT_RTOL,
                    help=f"target relative error of Pi1 (default {DEFAULT_RTOL:g})")
+    p.add_argument("--history", metavar="FILE",
+                   help="write the time history (ground, floor, block) to FILE: .csv, .h5 or .hdf5")
+    p.add_argument("--plot", metavar="FILE",
+                   help="plot accelerations and sliding (stick/slip shaded) to FILE: .png, .pdf or .svg")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
 
 
 def _parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="isoslide", description=__doc__.split("\n")[0])
+    ap = _Parser(prog="isoslide", description=__doc__.split("\n")[0])
     ap.add_argument("--version", action="version", version=f"isoslide {__version__}")
     sub = ap.add_subparsers(dest="command", required=True)
     s = sub.add_parser("solve", help="one scene given by its Pi-groups")
@@ -41,41 +75,200 @@ def _parser() -> argparse.ArgumentParser:
                        help=f"{g.definition}: {g.meaning}; {g.range_text.replace('value', g.name)} ({default})")
     _common(s)
     q = sub.add_parser("solve-physical", help="one scene in SI units")
-    for name, unit, default in [("a-p", "m/s^2", None), ("T-p", "s", None), ("M-b", "kg", None),
+    for name, unit, default in [("a-p", "m/s^2; default with --record: the fitted pulse's", None),
+                                ("T-p", "s; default with --record: the fitted pulse's", None),
+                                ("M-b", "kg", None),
                                 ("T-b", "s, 0 = fixed base", None), ("xi-b", "-", None),
                                 ("m-ec", "kg", None), ("mu-s", "-", None), ("mu-k", "-", None),
                                 ("beta", "s/m", 0.0), ("gamma", "s/m", 0.0), ("g", "m/s^2", G_STANDARD)]:
-        q.add_argument(f"--{name}", type=float, required=default is None, default=default,
+        required = default is None and name not in ("a-p", "T-p")
+        q.add_argument(f"--{name}", type=float, required=required, default=default,
                        help=f"{name.replace('-', '_')} [{unit}]")
     _common(q)
+    f = sub.add_parser("fit", help="fit a pulse to a record's dominant acceleration pulse")
+    f.add_argument("record", metavar="PATH|SAMPLE", help=".AT2 or .csv file, or a bundled sample name")
+    f.add_argument("--shape", default="ricker", choices=("ricker", "mp", "mavroeidis_papageorgiou"),
+                   help="pulse shape (default ricker; mp = Mavroeidis-Papageorgiou)")
+    f.add_argument("--plot", metavar="FILE", help="plot record and pulse to FILE: .png, .pdf or .svg")
+    f.add_argument("--json", action="store_true", help="print the fit as JSON")
+    r = sub.add_parser("records", help="list the bundled sample records")
+    r.add_argument("--json", action="store_true", help="print the list as JSON")
     return ap
 
 
-def main(argv=None) -> int:
-    """Run the command line with ``argv`` (default ``sys.argv[1:]``); return the exit code."""
-    args = _parser().parse_args(argv)
-    try:
-        if args.command == "solve":
-            scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=args.pulse)
-        else:
-            scene = Scene.from_physical(args.a_p, args.T_p, args.M_b, args.T_b, args.xi_b, args.m_ec,
-                                        args.mu_s, args.mu_k, args.beta, args.gamma, args.g, args.pulse)
-        sol = solve(scene, rtol=args.rtol)
-    except ValueError as exc:
-        print(f"isoslide: error: {exc}", file=sys.stderr)
-        return 2
+def _fit_dict(fit) -> dict:
+    """A fitted pulse as plain values (a_p in m/s^2 and g, times in s)."""
+    out = {"shape": fit.shape, "a_p": fit.a_p, "a_p_g": fit.a_p_g, "T_p": fit.T_p, "t_peak": fit.t_peak,
+           "polarity": fit.polarity, "r2": fit.r2, "nrmse": fit.nrmse, "energy_fraction": fit.energy_fraction}
+    out.update(dict(fit.params))
+    return out
+
+
+def _record_dict(rec) -> dict:
+    return {"name": rec.name, "event": rec.event, "station": rec.station, "component": rec.component,
+            "npts": rec.npts, "dt": rec.dt, "pga_g": rec.pga, "source": rec.source, "licence": rec.licence}
+
+
+def _check_outputs(args) -> None:
+    """Refuse bad output file names before any work."""
+    if getattr(args, "history", None):
+        try:
+            history_format(args.history)
+        except ValueError:
+            raise ValueError(f"history = {args.history!r} has an unknown extension; allowed: "
+                             f"{', '.join(FORMATS)}") from None
+    if getattr(args, "plot", None):
+        check_plot_path(args.plot)
+
+
+def _scene(args):
+    """The scene of ``solve`` / ``solve-physical`` and the record's description (or None)."""
+    if args.record is not None and args.pulse is not None:
+        raise ValueError(f"pulse = {args.pulse!r} and record = {args.record!r} exclude each other; "
+                         "allowed: one of --pulse, --record")
+    rec = load_record(args.record) if args.record is not None else None
+    excitation = rec if rec is not None else (args.pulse or "ricker")
+    info = None if rec is None else {"record": _record_dict(rec)}
+    if args.command == "solve":
+        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=excitation)
+        if rec is not None:
+            info["fitted_pulse"] = _fit_dict(rec.fit())
+        return scene, info
+    a_p, T_p = args.a_p, args.T_p
+    if rec is None:
+        missing = [n for n, v in (("--a-p", a_p), ("--T-p", T_p)) if v is None]
+        if missing:
+            raise ValueError(f"the following arguments are required: {', '.join(missing)} "
+                             "(or --record to take them from the record's fitted pulse)")
+    elif a_p is None or T_p is None:
+        fit = rec.fit()
+        info["fitted_pulse"] = _fit_dict(fit)
+        a_p = fit.a_p if a_p is None else a_p
+        T_p = fit.T_p if T_p is None else T_p
+    scene = Scene.from_physical(a_p, T_p, args.M_b, args.T_b, args.xi_b, args.m_ec, args.mu_s, args.mu_k,
+                                args.beta, args.gamma, args.g, excitation)
+    return scene, info
+
+
+def _print_fit(fit: dict, indent: str = "") -> None:
+    extra = ", ".join(f"{k} = {fit[k]:.6g}" for k in ("gamma", "nu", "t0", "A") if k in fit)
+    print(f"{indent}{fit['shape']}: a_p = {fit['a_p']:.6g} m/s^2 ({fit['a_p_g']:.4f} g), "
+          f"T_p = {fit['T_p']:.6g} s, t_peak = {fit['t_peak']:.6g} s, polarity {fit['polarity']:+d}, "
+          f"R^2 = {fit['r2']:.3f}" + (f", {extra}" if extra else ""))
+
+
+def _solve(args) -> int:
+    _check_outputs(args)
+    scene, info = _scene(args)
+    want_history = bool(args.history or args.plot)
+    sol = solve(scene, rtol=args.rtol, history=want_history)
     out = {"pi1": sol.pi1, "pi1_residual": sol.pi1_residual, "tau_peak": sol.tau_peak,
            "settled": sol.settled, "model": sol.model, "n_steps": sol.n_steps, "n_events": sol.n_events,
            "scene": {**scene.pis(), "pulse": scene.pulse.name}}
     if scene.scale is not None:
         out.update({"u_max_m": sol.u_max, "u_residual_m": sol.u_residual, "t_peak_s": sol.t_peak})
+        out["scene"].update({"a_p": scene.scale.a_p, "T_p": scene.scale.T_p} if info else {})
+    if info:
+        out.update(info)
+    try:
+        if args.history:
+            write_history(sol, scene, args.history)
+            out["history_file"] = args.history
+        if args.plot:
+            title = f"{scene.pulse.name}: Pi1 = {sol.pi1:.4g}" + (
+                f", u_max = {sol.u_max:.4g} m" if scene.scale is not None else "")
+            plot_history(history_table(sol, scene), args.plot, title=title)
+            out["plot_file"] = args.plot
+    except OSError as exc:
+        which = "history" if args.history and "history_file" not in out else "plot"
+        raise ValueError(f"{which} = {getattr(args, which)!r}: cannot be written ({exc.strerror})") from None
     if args.json:
         print(json.dumps(out, indent=1))
-    else:
-        for k, v in out.items():
-            if k != "scene":
-                print(f"{k:>13s}: {v}")
+        return 0
+    for k, v in out.items():
+        if k in ("scene", "record", "fitted_pulse"):
+            continue
+        print(f"{k:>13s}: {v}")
+    if info:
+        r = info["record"]
+        print(f"{'record':>13s}: {r['name']} ({r['event']}, {r['station']} {r['component']}), as recorded")
+        if "fitted_pulse" in info:
+            print(f"{'fitted pulse':>13s}: ", end="")
+            _print_fit(info["fitted_pulse"])
     return 0
+
+
+def _fit(args) -> int:
+    if args.plot:
+        check_plot_path(args.plot)
+    rec = load_record(args.record)
+    fit = rec.fit(args.shape)
+    out = {"record": _record_dict(rec), "fitted_pulse": _fit_dict(fit)}
+    if args.plot:
+        try:
+            plot_fit(rec, fit, args.plot)
+        except OSError as exc:
+            raise ValueError(f"plot = {args.plot!r}: cannot be written ({exc.strerror})") from None
+        out["plot_file"] = args.plot
+    if args.json:
+        print(json.dumps(out, indent=1))
+        return 0
+    r = out["record"]
+    print(f"record: {r['name']} ({r['event']}, {r['station']} {r['component']}), {r['npts']} samples "
+          f"at {r['dt']:g} s, PGA {r['pga_g']:.3f} g")
+    print("fitted ", end="")
+    _print_fit(out["fitted_pulse"])
+    f = out["fitted_pulse"]
+    print(f"window: {fit.window[0]:.4g} to {fit.window[1]:.4g} s, NRMSE {f['nrmse']:.3f}, "
+          f"share of the record's energy {f['energy_fraction']:.3f}")
+    if args.plot:
+        print(f"plot: {args.plot}")
+    return 0
+
+
+def _records(args) -> int:
+    rows = []
+    for name in samples():
+        rec = sample(name)
+        rows.append({"name": rec.name, "event": rec.event, "station": rec.station,
+                     "component": rec.component, "duration_s": rec.duration, "pga_g": rec.pga,
+                     "pulse_like": name in _PULSE_LIKE, "licence": rec.licence})
+    if args.json:
+        print(json.dumps(rows, indent=1))
+        return 0
+    print(f"{'name':<30s} {'event':<22s} {'station':<10s} {'comp':>4s} {'dur s':>6s} {'PGA g':>6s} pulse")
+    for r in rows:
+        print(f"{r['name']:<30s} {r['event']:<22s} {r['station']:<10s} {r['component']:>4s} "
+              f"{r['duration_s']:6.1f} {r['pga_g']:6.3f} {'yes' if r['pulse_like'] else ''}")
+    licences = sorted({r["licence"] for r in rows})
+    for lic in licences:
+        print(f"licence: {lic}")
+    return 0
+
+
+def main(argv=None) -> int:
+    """Run the command line with ``argv`` (default ``sys.argv[1:]``); return the exit code."""
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or a usage error already printed
+        return exc.code if isinstance(exc.code, int) else EXIT_USAGE
+    for k, v in vars(args).items():
+        if isinstance(v, float) and not math.isfinite(v):
+            return _fail(f"{k} = {v!r} is invalid; allowed: a finite number")
+    try:
+        if args.command == "fit":
+            return _fit(args)
+        if args.command == "records":
+            return _records(args)
+        return _solve(args)
+    except (ValueError, ModuleNotFoundError) as exc:
+        return _fail(str(exc))
+
+
+def _fail(message: str) -> int:
+    """Print ``isoslide: error: <message>`` on one line to stderr; return the usage exit code."""
+    print(f"isoslide: error: {' '.join(message.split())}", file=sys.stderr)
+    return EXIT_USAGE
 
 
 if __name__ == "__main__":  # pragma: no cover

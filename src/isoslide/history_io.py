@@ -100,7 +100,7 @@ def history_format(path) -> str:
     """
     ext = Path(path).suffix.lower()
     if ext not in FORMATS:
-        raise ValueError(f"history file = {str(path)!r} has an unknown extension {ext!r}; "
+        raise ValueError(f"path = {str(path)!r} has an unknown extension {ext!r}; "
                          f"allowed: {', '.join(FORMATS)}")
     return FORMATS[ext]
 
@@ -240,11 +240,11 @@ def read_history(path) -> HistoryTable:
             if line.strip():
                 rows.append(line)
     if header is None:
-        raise ValueError(f"history file = {str(path)!r} has no header row; expected: "
+        raise ValueError(f"path = {str(path)!r} has no header row; expected: "
                          + ", ".join(f"{n} [unit]" for n in _NAMES))
     names = [h.split(" [")[0] for h in header]
     if tuple(names) != _NAMES:
-        raise ValueError(f"history file = {str(path)!r} has columns {names}; expected {list(_NAMES)}")
+        raise ValueError(f"path = {str(path)!r} has columns {names}; expected {list(_NAMES)}")
     units = {n: h.split(" [", 1)[1].rstrip("]") for n, h in zip(names, header, strict=True)}
     data = np.array([[float(x) for x in r] for r in csv.reader(rows)], dtype=float).reshape(-1, len(_NAMES))
     cols = {n: data[:, i] for i, n in enumerate(names)}

@@ -18,6 +18,8 @@ Modules
   near-fault and other records that the ``pyslammer`` package ships (read
   from the installed package, no network);
 * :mod:`~isoslide.records.fitting` -- :func:`fit_pulse` and :class:`PulseFit`;
+* :mod:`~isoslide.records.loading` -- :func:`load_record`: a record from a
+  file path or a sample name (the command line's ``--record``);
 * :mod:`~isoslide.records.units` and :mod:`~isoslide.records.errors` -- unit
   conversion and :class:`RecordFormatError`.
 
@@ -58,12 +60,13 @@ does not refit it.  To align a record with its fitted pulse pass
 
 from .errors import RecordFormatError
 from .fitting import SHAPES, PulseFit, canonical_shape, fit_pulse
+from .loading import RECORD_SUFFIXES, load_record
 from .reading import read_at2, read_csv
 from .record import Record
 from .samples import PULSE_LIKE_SAMPLES, sample, samples
 from .units import G
 
 __all__ = [
-    "G", "PULSE_LIKE_SAMPLES", "PulseFit", "Record", "RecordFormatError", "SHAPES",
-    "canonical_shape", "fit_pulse", "read_at2", "read_csv", "sample", "samples",
+    "G", "PULSE_LIKE_SAMPLES", "PulseFit", "RECORD_SUFFIXES", "Record", "RecordFormatError", "SHAPES",
+    "canonical_shape", "fit_pulse", "load_record", "read_at2", "read_csv", "sample", "samples",
 ]
