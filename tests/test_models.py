@@ -6,7 +6,11 @@ import xarray as xr
 
 import isoslide
 from isoslide import datasets
-from isoslide.models import MODEL_LABELS, PEER_LABELS, label
+from isoslide.models import MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, label
+from isoslide.pulses import sampled
+
+RECORD = sampled(np.sin(np.linspace(0.0, 2.0 * np.pi, 201)), 0.005)
+"""A short sampled record: one sine cycle of unit amplitude over one T_p."""
 
 # one scene per model path of the exact solver: (scene, solve keyword arguments)
 PATHS = [
@@ -23,6 +27,12 @@ PATHS = [
     (isoslide.Scene(pi2=0.2, pi3=0.0, pi5=0.7), {"model": "static-kinetic"}),
     (isoslide.Scene(pi2=0.3, pi3=0.0), {"method": "regularized", "stiffness": 1e4, "rtol": 1e-4}),
     (isoslide.Scene(pi2=0.3, pi3=0.0), {"method": "reference"}),
+    # a sampled record with Coulomb contents: the exact piecewise propagation
+    (isoslide.Scene(pi2=5.0, pi3=1.0, pi4=0.1, pulse=RECORD), {}),                    # no-slide+piecewise
+    (isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi8=0.1, pulse=RECORD), {}),           # coulomb+piecewise
+    (isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi8=0.0, pulse=RECORD), {}),           # coulomb+one-way+piecewise
+    (isoslide.Scene(pi2=5.0, pi3=0.0, pulse=RECORD), {}),                             # fixed-base+no-slide+piecewise
+    (isoslide.Scene(pi2=0.2, pi3=0.0, pulse=RECORD), {}),                             # fixed-base+coulomb+piecewise
 ]
 
 
@@ -55,3 +65,11 @@ def test_label_rejects_an_unknown_friction_law():
     with pytest.raises(ValueError, match="friction = 'viscous'"):
         label(False, False, "viscous", False)
     assert set(PEER_LABELS) <= set(MODEL_LABELS)
+
+
+def test_piecewise_labels_are_appended_after_the_older_codes():
+    assert MODEL_LABELS[-len(PIECEWISE_LABELS):] == PIECEWISE_LABELS
+    assert MODEL_LABELS.index("fixed-base+static-kinetic") == 12
+    assert label(True, False, "coulomb", False, piecewise=True) == "fixed-base+coulomb+piecewise"
+    with pytest.raises(ValueError, match="piecewise = True needs friction = 'coulomb'"):
+        label(False, False, "stribeck", False, piecewise=True)

@@ -17,6 +17,11 @@ scene, as parts joined by ``+``:
 ``one-way``
     The block's back-reaction on the base is dropped (``Pi8 = 0``, or proven
     below the accuracy target).
+``piecewise``
+    Appended to the label when the exact piecewise propagation of
+    :mod:`isoslide.piecewise` ran instead of the integrator (a sampled record
+    with Coulomb contents on a linear or fixed base, ``model="auto"``), e.g.
+    ``coulomb+piecewise``, ``fixed-base+no-slide+piecewise``.
 ``regularized``, ``reference``
     A peer solver ran instead (``solve(..., method=...)``).
 
@@ -33,7 +38,7 @@ PEER_LABELS = ("regularized", "reference")
 """Labels of the peer solvers ``solve(..., method=...)`` can run."""
 
 
-def label(fixed: bool, noslide: bool, friction: str, oneway: bool) -> str:
+def label(fixed: bool, noslide: bool, friction: str, oneway: bool, piecewise: bool = False) -> str:
     """The model label of an exact solve.
 
     Parameters
@@ -46,6 +51,8 @@ def label(fixed: bool, noslide: bool, friction: str, oneway: bool) -> str:
         The friction law integrated.
     oneway : bool
         The back-reaction on the base was dropped (ignored for a fixed base).
+    piecewise : bool
+        The exact piecewise propagation ran (Coulomb friction only).
     """
     if friction not in FRICTION_MODELS:
         raise ValueError(f"friction = {friction!r} is invalid; allowed: {FRICTION_MODELS}")
@@ -56,6 +63,10 @@ def label(fixed: bool, noslide: bool, friction: str, oneway: bool) -> str:
         parts.append(friction)
         if oneway and not fixed:
             parts.append("one-way")
+    if piecewise:
+        if friction != "coulomb":
+            raise ValueError(f"piecewise = True needs friction = 'coulomb', got friction = {friction!r}")
+        parts.append("piecewise")
     return "+".join(parts)
 
 
@@ -74,5 +85,20 @@ def _exact_labels() -> tuple:
 _STABLE = ("no-slide", "fixed-base+no-slide", "coulomb", "coulomb+one-way", "stribeck",
            "stribeck+one-way", "fixed-base+coulomb", "fixed-base+stribeck", "regularized", "reference")
 
-MODEL_LABELS = _STABLE + tuple(n for n in _exact_labels() + PEER_LABELS if n not in _STABLE)
+def _piecewise_labels() -> tuple:
+    out = []
+    for fixed in (False, True):
+        for noslide in (True, False):
+            for oneway in (False, True):
+                name = label(fixed, noslide, "coulomb", oneway, piecewise=True)
+                if name not in out:
+                    out.append(name)
+    return tuple(out)
+
+
+PIECEWISE_LABELS = _piecewise_labels()
+"""Labels of the exact piecewise propagation (appended after the integrator's and the peers')."""
+
+MODEL_LABELS = (_STABLE + tuple(n for n in _exact_labels() + PEER_LABELS if n not in _STABLE)
+                + PIECEWISE_LABELS)
 """Every label :func:`isoslide.solve` can produce, in flag-code order (codes never change)."""

@@ -43,6 +43,11 @@ Models (``Solution.model``, joined by ``+``)
     response); ``T`` is taken as twice the decoupled response's duration.
 ``stribeck``
     The full Stribeck law with two-way coupling (the general model).
+``+piecewise``
+    A sampled record with Coulomb contents on a linear or fixed base
+    (:func:`piecewise_applies`): every phase is propagated exactly between
+    samples by :mod:`isoslide.piecewise` (no integrator, no refinement pass;
+    the answer is exact to round-off, whatever ``rtol``).
 """
 
 from __future__ import annotations
@@ -52,10 +57,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import kernel
+from . import kernel, piecewise
 from .history import History
 from .models import label as model_label
 from .peers import SCENE_SOLVERS, PeerResult
+from .pulses import SAMPLED
 from .scene import Scene
 
 DEFAULT_RTOL = 1e-6
@@ -229,6 +235,32 @@ def _run(scene: Scene, pi8: float, coulomb: float, rtol: float, hist_cap: int = 
                       hist_cap, min(H_RESTART, max_step), settle, step_budget(scene, horizon))
 
 
+def piecewise_applies(scene: Scene) -> bool:
+    """True when ``model="auto"`` propagates the scene exactly (:mod:`isoslide.piecewise`).
+
+    The pulse is a sampled record (linear between samples) and the friction is
+    speed-independent (:attr:`Scene.rate_independent`); the base is linear
+    (``Pi3 > 0``) or fixed (``Pi3 = 0``).
+    """
+    return scene.pulse.code == SAMPLED and scene.rate_independent
+
+
+def _run_piecewise(scene: Scene, pi8: float, hist_cap: int = 0, horizon: float = DEFAULT_HORIZON,
+                   track_max: bool = False, settle: bool = True):
+    """:func:`isoslide.piecewise.run` for a scene (same results layout as :func:`_run`)."""
+    pulse = scene.pulse
+    m = _model_array(scene, pi8, 1.0, thr=math.inf if track_max else None)
+    budget = step_budget(scene, horizon)
+    res = piecewise.run(m, pulse.param_array, pulse.tau_start, pulse.tau_end, _horizon(scene, horizon),
+                        track_max, hist_cap, settle, budget)
+    if res[1][kernel.F_TEND] < _horizon(scene, horizon) and not res[0][kernel.R_SETTLED] \
+            and res[0][kernel.R_STEPS] > budget:
+        raise StepBudgetError(
+            f"the step budget ({budget} substeps) ran out at tau = {res[1][kernel.F_TEND]:.6g}; the "
+            f"answer would be truncated. Shorten the horizon (horizon = {horizon:g}) for {scene}")
+    return res
+
+
 def step_budget(scene: Scene, horizon: float = DEFAULT_HORIZON) -> int:
     """Most Runge-Kutta steps one run of a scene may take.
 
@@ -301,9 +333,10 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
         How long to follow a scene that does not settle, after the pulse, in
         isolation periods (pulse periods for a fixed base).
     model : {"auto", "full", "static-kinetic"}
-        ``"auto"`` runs the smallest exact model; ``"full"`` disables every
-        reduction but the fixed base (to test the reductions against the full
-        model); ``"static-kinetic"`` is the limit ``Pi6 -> inf`` (stick up to
+        ``"auto"`` runs the smallest exact model (the exact piecewise
+        propagation where :func:`piecewise_applies`); ``"full"`` disables every
+        reduction but the fixed base and always integrates (to test the
+        reductions and the piecewise path against the full model); ``"static-kinetic"`` is the limit ``Pi6 -> inf`` (stick up to
         ``mu_s``, kinetic ``mu_k`` at any sliding speed).
     max_step : float
         Largest step in units of T_p (a denser history; accuracy is set by ``rtol``).
@@ -341,6 +374,10 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     hist_cap = 200_000 if history else 0
     pi8 = 0.0 if fixed else scene.pi8
     oneway = pi8 == 0.0
+    if model == "auto" and piecewise_applies(scene):
+        ints, floats, hist = _run_piecewise(scene, pi8, hist_cap, horizon, settle=settle)
+        label = model_label(fixed, ints[kernel.R_SLIPPED] == 0, "coulomb", oneway, piecewise=True)
+        return _solution(scene, ints, floats, label, _history(hist) if history else None)
     def run(p8, irtol=None, many=False):
         res = _run(scene, p8, friction, rtol, hist_cap, horizon, max_step=max_step, settle=settle,
                    irtol=irtol, many_transitions=many)
@@ -436,7 +473,10 @@ def peak_stuck_demand(scene: Scene, rtol: float | None = None, horizon: float = 
     """
     rtol = _check_rtol(rtol)
     pi8 = 0.0 if scene.pi3 == 0.0 else scene.pi8
-    ints, floats, _ = _run(scene, pi8, 1.0, rtol, 0, horizon, track_max=True)
+    if scene.pulse.code == SAMPLED:  # linear between samples: exact peaks (isoslide.piecewise)
+        ints, floats, _ = _run_piecewise(scene, pi8, 0, horizon, track_max=True)
+    else:
+        ints, floats, _ = _run(scene, pi8, 1.0, rtol, 0, horizon, track_max=True)
     return float(floats[kernel.F_AMAX])
 
 

@@ -40,6 +40,7 @@ import logging
 import itertools
 import json
 import math
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -50,6 +51,7 @@ from . import solver
 from .config import ConfigError
 from .datasets import chunk_dataset, merge_chunks, open_dataset
 from .groups import INPUT_NAMES, group
+from .progress import Progress
 from .pulses import get_pulse
 from .scene import Scene
 from .validation import check_range
@@ -407,7 +409,12 @@ def solve_points(grid: Grid, indices, rtol=None, method="exact"):
     scenes = grid.scenes(indices)
     if method == "exact":
         return solver.solve_many(scenes, rtol=rtol)
-    sols = [solver.solve(s, rtol=rtol, method=method) for s in scenes]
+    progress = Progress(log, f"study {grid.name} ({method})", len(scenes))
+    sols = []
+    for i, s in enumerate(scenes):
+        progress.update(i)
+        sols.append(solver.solve(s, rtol=rtol, method=method))
+    progress.finish()
     return solver.Batch(**{f: np.array([getattr(s, f) for s in sols])
                            for f in ("pi1", "pi1_residual", "tau_peak", "settled", "model",
                                      "tau_end", "n_steps", "n_events")})
@@ -431,7 +438,11 @@ def solve_chunk(spec: dict, chunk: int):
     grid = build_grid(spec)
     idx = grid.chunk_indices(int(chunk), spec["chunk_size"])
     log.info("study %s, chunk %d: %d scenes", grid.name, int(chunk), idx.size)
+    start = time.monotonic()
     batch = solve_points(grid, idx, rtol=spec["solver"]["rtol"], method=spec["solver"]["method"])
+    took = time.monotonic() - start
+    log.info("study %s, chunk %d: %d scenes solved in %.3g s (%.4g scenes/s)", grid.name, int(chunk),
+             idx.size, took, idx.size / max(took, 1e-12))
     return chunk_dataset(grid, idx, batch)
 
 
