@@ -52,6 +52,7 @@ Models (``Solution.model``, joined by ``+``)
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass, field
 
@@ -62,6 +63,7 @@ from .history import History
 from .models import label as model_label
 from .peers import SCENE_SOLVERS, PeerResult
 from .pulses import SAMPLED
+from .progress import Progress
 from .scene import Scene
 
 DEFAULT_RTOL = 1e-6
@@ -78,6 +80,8 @@ STEPS_PER_PERIOD = 200
 """Step budget per isolation period followed (see :func:`step_budget`)."""
 DEFAULT_HORIZON = 200.0
 """Follow-up after the pulse, in isolation periods (pulse periods for a fixed base)."""
+
+log = logging.getLogger(__name__)
 
 
 class StepBudgetError(RuntimeError):
@@ -487,7 +491,9 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
     Scenes that share a base (``Pi3, Pi4, Pi8`` and pulse) share one
     computation of the stuck system's peak demand; every scene whose static
     threshold ``Pi2/Pi5`` exceeds it is answered ``Pi1 = 0`` (model
-    ``no-slide``) without integrating anything.
+    ``no-slide``) without integrating anything.  Progress (scenes done, rate,
+    time left) goes to the ``isoslide.solver`` log at most every 5 s
+    (:class:`isoslide.progress.Progress`).
 
     Returns
     -------
@@ -505,7 +511,9 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
     nsteps = np.zeros(n, dtype=np.int64)
     nev = np.zeros(n, dtype=np.int64)
     demand: dict = {}
+    progress = Progress(log, "solve_many", n)
     for i, sc in enumerate(scenes):
+        progress.update(i)
         if not isinstance(sc, Scene):
             raise TypeError(f"scenes[{i}] must be an isoslide.Scene, got {type(sc).__name__}")
         key = (sc.pi3, sc.pi4, 0.0 if sc.pi3 == 0 else sc.pi8, sc.pulse)
@@ -521,6 +529,7 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
         s = solve(sc, rtol=rtol, horizon=horizon, model=model)
         pi1[i], res[i], tpk[i], settled[i] = s.pi1, s.pi1_residual, s.tau_peak, s.settled
         models[i], tend[i], nsteps[i], nev[i] = s.model, s.tau_end, s.n_steps, s.n_events
+    progress.finish(n)
     return Batch(pi1=pi1, pi1_residual=res, tau_peak=tpk, settled=settled, model=models.astype(str),
                  tau_end=tend, n_steps=nsteps, n_events=nev)
 

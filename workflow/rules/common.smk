@@ -35,19 +35,19 @@ FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 CODE_MODULES = {
     # solve_chunk, merge_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
     "solve": ["budget", "config", "datasets", "dop853", "groups", "history", "kernel", "models", "peers", "piecewise",
-              "provenance", "pulses", "scene", "solver", "sweep", "validation"],
+              "progress", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
     # similarity_study, similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
     "similarity": ["budget", "claims", "datasets", "groups", "history", "models", "peers", "provenance", "pulses",
                    "scene", "similarity", "validation"],
     # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
-    "records": ["budget", "datasets", "dop853", "groups", "history", "kernel", "models", "peers", "piecewise", "provenance",
-                "pulses", "record_study", "records", "scene", "solver", "validation"],
+    "records": ["budget", "datasets", "dop853", "groups", "history", "kernel", "models", "peers", "piecewise", "progress",
+                "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
     # figure, figure_records (isoslide.figures)
     "figures": ["budget", "datasets", "dop853", "figures", "groups", "history", "kernel", "models", "peers", "piecewise",
-                "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
+                "progress", "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
     # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
     "accuracy": ["accuracy", "budget", "config", "datasets", "dop853", "groups", "history", "kernel", "models",
-                 "peers", "piecewise", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
+                 "peers", "piecewise", "progress", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
 }
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
 
