@@ -118,6 +118,7 @@ with SnakemakeApi(OutputSettings()) as api:
             "script": rule.script,
             "shell": rule.shellcmd is not None,
             "code": code,
+            "log": dict(rule.log.items()) | {str(i): str(f) for i, f in enumerate(rule.log)},
         }
     print("DESCRIPTION " + json.dumps({"rules": rules, "code_modules": g["CODE_MODULES"], "code": g["CODE"],
                                         "reports": g["REPORTS"]}))
@@ -175,6 +176,15 @@ def test_every_compute_rule_writes_a_benchmark_per_job(described):
             assert rule["benchmark"].endswith(".tsv"), name
         else:
             assert rule["benchmark"] is None, name
+
+
+def test_every_job_logs_next_to_its_benchmark(described):
+    """logs/<rule>/<wildcards>.log pairs with results/benchmarks/<rule>/<wildcards>.tsv, so that
+    python -m isoslide.budget finds the phases of every job."""
+    for name, rule in described["rules"].items():
+        if rule["benchmark"]:
+            expected = "logs/" + rule["benchmark"].removeprefix("results/benchmarks/").removesuffix(".tsv") + ".log"
+            assert expected in {str(v) for v in rule["log"].values()}, (name, rule["log"], expected)
 
 
 def test_one_script_per_rule_and_one_report_rule(described):

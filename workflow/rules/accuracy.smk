@@ -26,7 +26,7 @@ rule accuracy_part:
     wildcard_constraints:
         part="|".join(ACCURACY_PARTS),
     log:
-        "logs/accuracy/{part}.log",
+        "logs/accuracy_part/{part}.log",
     benchmark:
         "results/benchmarks/accuracy_part/{part}.tsv"
     priority: 10  # the longest jobs of a run, and they need no other job: start them first
@@ -50,7 +50,7 @@ rule accuracy_dataset:
         config=ACCURACY_CONFIG,
         code=CODE["accuracy"],
     log:
-        "logs/accuracy/combine.log",
+        "logs/accuracy_dataset/accuracy.log",
     benchmark:
         "results/benchmarks/accuracy_dataset/accuracy.tsv"
     threads: 1

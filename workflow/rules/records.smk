@@ -10,7 +10,7 @@ rule fig4_record:
         code=CODE["records"],
         settings=FIG4_SETTINGS,
     log:
-        "logs/records/fig4_record.log",
+        "logs/fig4_record/fig4_record.log",
     benchmark:
         "results/benchmarks/fig4_record/fig4_record.tsv"
     threads: 1
@@ -30,7 +30,7 @@ rule record_compare:
         code=CODE["records"],
         settings=RECORDS_SETTINGS,
     log:
-        "logs/records/{record}.log",
+        "logs/record_compare/{record}.log",
     benchmark:
         "results/benchmarks/record_compare/{record}.tsv"
     threads: 1
@@ -52,7 +52,7 @@ rule records_dataset:
         code=CODE["records"],
         settings=RECORDS_SETTINGS,
     log:
-        "logs/records/records.log",
+        "logs/records_dataset/records.log",
     benchmark:
         "results/benchmarks/records_dataset/records.tsv"
     threads: 1
@@ -74,7 +74,7 @@ rule figure_records:
         code=CODE["figures"],
         settings=FIGURE_SETTINGS,
     log:
-        "logs/figure/records.log",
+        "logs/figure_records/records.log",
     benchmark:
         "results/benchmarks/figure_records/records.tsv"
     threads: 1
