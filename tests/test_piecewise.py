@@ -1,12 +1,13 @@
 """Exact piecewise propagation of record-driven Coulomb scenes against the integrator and closed forms."""
 
+import io
 import math
 
 import numpy as np
 import pytest
 
 import isoslide
-from isoslide import kernel, piecewise, records, solver
+from isoslide import bench, kernel, piecewise, records, solver
 from isoslide.pulses import sampled
 
 NAMES = records.samples()
@@ -184,3 +185,17 @@ def test_propagation_matrix_is_the_exact_free_vibration_of_the_stuck_base():
     assert E[0, 1] == pytest.approx(math.sin(ws * h) / ws, rel=1e-14)
     assert E[1, 0] == pytest.approx(-ws * math.sin(ws * h), rel=1e-14)
     assert E[0, 4] == pytest.approx(-(1.0 - math.cos(ws * h)) / ws ** 2, rel=1e-13)
+
+
+def test_bench_records_section_times_every_path_and_reports_errors_within_the_promise():
+    res = bench.run_records(repeats=1, names=NAMES[:2])
+    summ = bench.summarize_records(res)
+    assert summ["n"] == 2 and summ["samples"] == sum(r["samples"] for r in res["rows"])
+    for r in res["rows"]:
+        assert r["pw_model"].endswith("+piecewise") and not r["auto_model"].endswith("+piecewise")
+        assert r["int_model"] == "stribeck" and r["pw_err"] <= PROMISE and r["int_err"] <= PROMISE
+    out = io.StringIO()
+    bench.report_records(res, summ, file=out)
+    text = out.getvalue()
+    for name in ("piecewise exact", "piecewise_path=False", "model='full'", "ns/sample med", "total ms"):
+        assert name in text

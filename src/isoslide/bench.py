@@ -11,7 +11,15 @@ of every paper study plus the hard cases) it times, scene after scene and interl
   elastic-plastic spring, SciPy Radau) on an evenly spread subset (it takes seconds per scene).
 
 Errors are relative to the converged answer (isoslide at ``rtol = 1e-12``, every reduction
-off).  It prints the medians, the ratios of per-scene costs on the same scenes, the target
+off).
+
+A second section times the bundled records (:func:`isoslide.records.samples`) at one Pi point,
+record after record and interleaved, through both exact paths: the exact piecewise propagation
+that ``solve`` takes for a record with Coulomb contents (:mod:`isoslide.piecewise`) and the
+integrator, both as ``solve(..., piecewise_path=False)`` runs it (Coulomb and one-way reductions,
+the solve before the piecewise path) and as ``solve(..., model="full")`` runs it.  It prints the cost per record sample (median and
+largest over the records), the total time for all records and each path's error against the
+integrator at ``rtol = 1e-12`` (:func:`run_records`, :func:`report_records`).  It prints the medians, the ratios of per-scene costs on the same scenes, the target
 check (median <= 0.1 ms per scene at <= 1e-6 relative error) and where the time goes (steps
 per scene by scene class).  Timings are wall-clock on whatever else the machine is running:
 read ratios, which are measured side by side, rather than absolute figures.
@@ -28,11 +36,20 @@ import time
 
 import numpy as np
 
-from . import accuracy
+from . import accuracy, records
+from .scene import Scene
 from .solver import DEFAULT_RTOL, solve
 
 TARGET_MS = 0.1
 TARGET_ERROR = 1e-6
+RECORD_POINT = {"pi2": 0.2, "pi3": 1.0, "pi4": 0.1, "pi5": 1.0, "pi6": 0.0, "pi7": 0.0, "pi8": 1e-5}
+"""Pi point of the records section (the record study's fixed groups, Pi2 = 0.2, Pi3 = 1)."""
+RECORD_PATHS = {"pw": {}, "auto": {"piecewise_path": False}, "int": {"model": "full"}}
+"""Paths timed on the records: ``solve`` keyword arguments by short name."""
+TARGET_RECORDS_MS = 30.0
+"""Target: all bundled records at one Pi point in at most this many milliseconds (piecewise path)."""
+TARGET_NS_PER_SAMPLE = 150.0
+"""Target: median cost per record sample of the piecewise path, nanoseconds."""
 
 
 def _median(a):
@@ -182,6 +199,84 @@ def report(res: dict, summ: dict, file=sys.stdout) -> None:
           f"{b['max_steps']:10.0f} {b['median_events']:10.0f} {b['us_per_step']:8.2f} {b['unsettled']:9d}")
 
 
+def run_records(point: dict | None = None, repeats: int = 7, names=None) -> dict:
+    """Time both exact paths on the bundled records at one Pi point; return per-record rows.
+
+    Parameters
+    ----------
+    point : dict, optional
+        Pi-groups ``pi2 ... pi8`` (default :data:`RECORD_POINT`).
+    repeats : int
+        Timed runs per record and path (the median is kept), interleaved.
+    names : sequence of str, optional
+        Record names (default: every bundled sample).
+    """
+    point = dict(RECORD_POINT if point is None else point)
+    names = records.samples() if names is None else tuple(names)
+    scenes = [Scene(pulse=records.sample(n), **point) for n in names]
+    for sc in scenes[:1]:   # compile or load every path before timing
+        solve(sc)
+        solve(sc, piecewise_path=False)
+        solve(sc, model="full")
+    rows = []
+    for name, sc in zip(names, scenes, strict=True):
+        conv = solve(sc, rtol=1e-12, model="full").pi1
+        times = {path: [] for path in RECORD_PATHS}
+        sols = {}
+        for _ in range(repeats):
+            for path, kw in RECORD_PATHS.items():
+                t0 = time.perf_counter()
+                sols[path] = solve(sc, **kw)
+                times[path].append(time.perf_counter() - t0)
+        row = {"record": name, "samples": sc.pulse.param_array.shape[0] - 2, "pi1": conv}
+        for path in RECORD_PATHS:
+            row.update({f"{path}_model": sols[path].model, f"{path}_s": _median(times[path]),
+                        f"{path}_err": _rel(sols[path].pi1, conv), f"{path}_events": sols[path].n_events})
+        rows.append(row)
+    return {"rows": rows, "point": point, "repeats": repeats}
+
+
+def summarize_records(res: dict) -> dict:
+    """Per-path cost per sample (median, max), total time and errors (median, max) over the records."""
+    rows = res["rows"]
+    out = {"n": len(rows), "samples": int(sum(r["samples"] for r in rows))}
+    for path in RECORD_PATHS:
+        per = np.array([r[f"{path}_s"] / r["samples"] for r in rows])
+        err = np.array([r[f"{path}_err"] for r in rows])
+        out[f"{path}_ns_median"] = float(1e9 * np.median(per))
+        out[f"{path}_ns_max"] = float(1e9 * per.max())
+        out[f"{path}_total_ms"] = float(1e3 * sum(r[f"{path}_s"] for r in rows))
+        out[f"{path}_err_median"] = float(np.median(err))
+        out[f"{path}_err_max"] = float(err.max())
+    out["target_met"] = bool(out["pw_total_ms"] <= TARGET_RECORDS_MS and out["pw_ns_median"] <= TARGET_NS_PER_SAMPLE
+                             and out["pw_err_max"] <= TARGET_ERROR)
+    return out
+
+
+def report_records(res: dict, summ: dict, file=sys.stdout) -> None:
+    """Print the records section in plain text."""
+    p = lambda *a: print(*a, file=file)  # noqa: E731
+    pt = ", ".join(f"{k}={v:g}" for k, v in res["point"].items())
+    p(f"records: {summ['n']} bundled records ({summ['samples']} samples) at {pt}; median of "
+      f"{res['repeats']} interleaved runs per record and path; errors relative to the integrator at "
+      f"rtol=1e-12 (model='full')")
+    hdr = (f"{'path':40s} {'ns/sample med':>13s} {'ns/sample max':>13s} {'total ms':>9s} "
+           f"{'med err':>9s} {'max err':>9s}")
+    p(hdr)
+    p("-" * len(hdr))
+    for path, name in (("pw", "piecewise exact (solve default)"),
+                       ("auto", "integrator (piecewise_path=False)"),
+                       ("int", "integrator (model='full')")):
+        p(f"{name:40s} {summ[f'{path}_ns_median']:13.1f} {summ[f'{path}_ns_max']:13.1f} "
+          f"{summ[f'{path}_total_ms']:9.2f} {summ[f'{path}_err_median']:9.1e} {summ[f'{path}_err_max']:9.1e}")
+    verdict = "MET" if summ["target_met"] else "NOT MET"
+    p(f"target: all records <= {TARGET_RECORDS_MS:g} ms and median <= {TARGET_NS_PER_SAMPLE:g} ns per sample "
+      f"at <= {TARGET_ERROR:g} relative error -> {verdict}: {summ['pw_total_ms']:.2f} ms, "
+      f"{summ['pw_ns_median']:.1f} ns per sample ({summ['auto_total_ms'] / summ['pw_total_ms']:.1f}x faster "
+      f"than the integrator with the same reductions, {summ['int_total_ms'] / summ['pw_total_ms']:.1f}x than "
+      f"model='full')")
+
+
 def main(argv=None) -> int:
     """Command line: measure, then print the report (or JSON); returns the exit status."""
     ap = argparse.ArgumentParser(prog="python -m isoslide.bench", description=__doc__.split("\n\n")[0])
@@ -199,9 +294,24 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="1 scene per study, 5 repeats, 2 regularised scenes")
     ap.add_argument("--json", metavar="PATH", help="also write the records and summary as JSON")
     ap.add_argument("-v", "--verbose", action="store_true", help="print every scene as it is measured")
+    ap.add_argument("--records-only", action="store_true",
+                    help="only the records section (both exact paths on the bundled records, about 15 s)")
+    ap.add_argument("--no-records", action="store_true", help="leave out the records section")
     a = ap.parse_args(argv)
     if a.quick:
         a.per_study, a.repeats, a.peer_repeats, a.regularized_scenes = 1, 5, 1, 2
+    out = {}
+    if not a.no_records:
+        rres = run_records(repeats=3 if a.quick else 7)
+        rsumm = summarize_records(rres)
+        report_records(rres, rsumm)
+        out["records"] = {"result": rres, "summary": rsumm}
+        if a.records_only:
+            if a.json:
+                with open(a.json, "w") as f:
+                    json.dump(out, f, indent=1, default=float)
+            return 0
+        print("")
     res = run(per_study=a.per_study, hard=not a.no_hard, repeats=a.repeats, peer_repeats=a.peer_repeats,
               reference_rtol=a.reference_rtol, regularized_scenes=a.regularized_scenes,
               stiffness=a.stiffness, regularized_rtol=a.regularized_rtol, max_work=a.max_work,
@@ -210,7 +320,7 @@ def main(argv=None) -> int:
     report(res, summ)
     if a.json:
         with open(a.json, "w") as f:
-            json.dump({"result": res, "summary": summ}, f, indent=1, default=float)
+            json.dump({"result": res, "summary": summ, **out}, f, indent=1, default=float)
     return 0
 
 

@@ -315,7 +315,7 @@ MODEL_OPTIONS = ("auto", "full", "static-kinetic")
 
 def solve(scene: Scene, rtol: float | None = None, history: bool = False, method: str = "exact",
           horizon: float = DEFAULT_HORIZON, model: str = "auto", max_step: float = math.inf,
-          settle: bool = True, **options) -> Solution:
+          settle: bool = True, piecewise_path: bool = True, **options) -> Solution:
     """Peak sliding of one scene.
 
     Parameters
@@ -347,6 +347,10 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     settle : bool
         Stop at settlement (default).  ``False`` follows the scene to the
         horizon, to check the settlement criterion.
+    piecewise_path : bool
+        With ``model="auto"``, propagate a scene exactly where
+        :func:`piecewise_applies` (default); ``False`` integrates it with every
+        other reduction (the solve before the piecewise path, for comparison).
 
     Returns
     -------
@@ -378,7 +382,7 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     hist_cap = 200_000 if history else 0
     pi8 = 0.0 if fixed else scene.pi8
     oneway = pi8 == 0.0
-    if model == "auto" and piecewise_applies(scene):
+    if model == "auto" and piecewise_path and piecewise_applies(scene):
         ints, floats, hist = _run_piecewise(scene, pi8, hist_cap, horizon, settle=settle)
         label = model_label(fixed, ints[kernel.R_SLIPPED] == 0, "coulomb", oneway, piecewise=True)
         return _solution(scene, ints, floats, label, _history(hist) if history else None)
