@@ -199,3 +199,9 @@ def test_bench_records_section_times_every_path_and_reports_errors_within_the_pr
     text = out.getvalue()
     for name in ("piecewise exact", "piecewise_path=False", "model='full'", "ns/sample med", "total ms"):
         assert name in text
+
+
+def test_a_finite_max_step_keeps_the_integrator_for_a_record(pulses):
+    sc = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse=pulses[NAMES[0]])
+    sol = isoslide.solve(sc, max_step=0.5)
+    assert sol.model == "coulomb" and sol.pi1 == pytest.approx(isoslide.solve(sc).pi1, rel=PROMISE)

@@ -349,8 +349,9 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
         horizon, to check the settlement criterion.
     piecewise_path : bool
         With ``model="auto"``, propagate a scene exactly where
-        :func:`piecewise_applies` (default); ``False`` integrates it with every
-        other reduction (the solve before the piecewise path, for comparison).
+        :func:`piecewise_applies` (default; a finite ``max_step`` keeps the
+        integrator); ``False`` integrates it with every other reduction (the
+        solve before the piecewise path, for comparison).
 
     Returns
     -------
@@ -382,7 +383,7 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     hist_cap = 200_000 if history else 0
     pi8 = 0.0 if fixed else scene.pi8
     oneway = pi8 == 0.0
-    if model == "auto" and piecewise_path and piecewise_applies(scene):
+    if model == "auto" and piecewise_path and math.isinf(max_step) and piecewise_applies(scene):
         ints, floats, hist = _run_piecewise(scene, pi8, hist_cap, horizon, settle=settle)
         label = model_label(fixed, ints[kernel.R_SLIPPED] == 0, "coulomb", oneway, piecewise=True)
         return _solution(scene, ints, floats, label, _history(hist) if history else None)
