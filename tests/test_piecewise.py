@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import isoslide
 from isoslide import bench, kernel, piecewise, records, solver
@@ -101,6 +103,18 @@ def test_constant_ground_acceleration_on_a_fixed_base_gives_the_closed_form_slid
     assert sol.pi1_residual == pytest.approx(-exact, rel=1e-12)
     assert sol.tau_peak == pytest.approx(T + (A - thr) * T / thr, rel=1e-12)
     assert sol.n_events == 2 and sol.settled
+
+
+def test_breakaway_in_the_last_sample_interval_of_a_fixed_base_record_gives_the_closed_form_slide():
+    """p ramps from 0.5 to 1 over the last interval (slope j = 1) past t = 0.9, then the ground rests.
+
+    Breakaway at t_b = 0.9, d = 1 - t_b: |u|max = j d^3 / 6 + j^2 d^4 / (8 t) (slide on the ramp, then
+    the stop under the friction alone).
+    """
+    thr, j, d = 0.9, 1.0, 0.1
+    sol = isoslide.solve(isoslide.Scene(pi2=thr, pi3=0.0, pulse=sampled([0.0, 0.5, 1.0], 0.5)))
+    assert sol.pi1 == pytest.approx(j * d ** 3 / 6.0 + j * j * d ** 4 / (8.0 * thr), rel=1e-10)
+    assert sol.n_events == 2
 
 
 def test_constant_ground_acceleration_breaks_an_isolated_block_away_at_the_closed_form_time():
@@ -205,3 +219,29 @@ def test_a_finite_max_step_keeps_the_integrator_for_a_record(pulses):
     sc = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse=pulses[NAMES[0]])
     sol = isoslide.solve(sc, max_step=0.5)
     assert sol.model == "coulomb" and sol.pi1 == pytest.approx(isoslide.solve(sc).pi1, rel=PROMISE)
+
+
+@pytest.mark.slow
+@settings(max_examples=80, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.floats(-1.0, 1.0), min_size=3, max_size=150), st.floats(-3.0, -0.5),
+       st.floats(-2.5, 2.0), st.one_of(st.just(0.0), st.floats(-3.0, 1.0)),
+       st.sampled_from([0.0, 1e-3, 0.3, 1.0, 10.0]), st.floats(0.3, 1.0), st.floats(0.02, 1.0))
+def test_piecewise_matches_integrator_on_random_records_on_isolated_bases(acc, log_dtau, log_pi3, log_pi4,
+                                                                          pi8, pi5, frac):
+    """Random short records (isolated base, Pi3 from 3e-3 to 100, Pi4 from 0 to 10): both paths to 1e-6."""
+    a = np.asarray(acc)
+    if not np.any(a != 0.0):
+        a = np.array([0.0, 1.0, 0.0])
+    pulse = sampled(a / np.max(np.abs(a)), 10.0 ** log_dtau)
+    groups = {"pi3": 10.0 ** log_pi3, "pi4": 0.0 if log_pi4 == 0.0 else 10.0 ** log_pi4, "pi5": pi5,
+              "pi6": 0.0, "pi8": pi8}
+    peak = solver.peak_stuck_demand(isoslide.Scene(pi2=1.0, pulse=pulse, **groups))
+    sc = isoslide.Scene(pi2=frac * peak * pi5, pulse=pulse, **groups)
+    fast = isoslide.solve(sc)
+    full = isoslide.solve(sc, model="full", rtol=1e-10)
+    assert fast.model.endswith("+piecewise")
+    if full.pi1 > 1e-12:
+        assert abs(fast.pi1 - full.pi1) <= PROMISE * full.pi1, (sc, fast.pi1, full.pi1)
+    else:
+        assert abs(fast.pi1 - full.pi1) <= 1e-15
+    assert fast.settled == full.settled
