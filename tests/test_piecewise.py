@@ -245,3 +245,18 @@ def test_piecewise_matches_integrator_on_random_records_on_isolated_bases(acc, l
     else:
         assert abs(fast.pi1 - full.pi1) <= 1e-15
     assert fast.settled == full.settled
+
+
+@pytest.mark.parametrize("acc", [[0.0, 0.5, 1.0], [0.0, 0.3, -0.2, 0.6, 1.0], [0.0, 1.0, 0.0, 1.0]])
+def test_fixed_base_breakaway_in_the_last_sample_interval_is_found_by_both_paths(acc):
+    """A record whose last samples exceed mu_s g on a fixed base slides on both exact paths: the
+    integrator sees the ground acceleration's left limit at the record's end, not the zero after it.
+    Closed form for [0, 0.5, 1] (dtau 0.25, Pi2 = 0.9): a = 2 tau on the last interval, slip from
+    tau_b = 0.45, u(0.5) = 0.05^3 / 3 with u'(0.5) = 0.05^2, then deceleration 0.9 to rest."""
+    sc = isoslide.Scene(pi2=0.9, pi3=0.0, pulse=sampled(np.array(acc), 0.25))
+    a = isoslide.solve(sc)
+    b = isoslide.solve(sc, model="full")
+    assert a.model.endswith("+piecewise") and "piecewise" not in b.model
+    assert a.pi1 > 0.0 and b.pi1 == pytest.approx(a.pi1, rel=1e-6)
+    if acc == [0.0, 0.5, 1.0]:
+        assert a.pi1 == pytest.approx(0.05 ** 3 / 3.0 + 0.05 ** 4 / 1.8, rel=1e-9)

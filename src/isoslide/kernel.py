@@ -761,7 +761,9 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             # the stuck demand and its rate at both ends of the step; for the
             # isolated base the rates come from the step's own first and last stages
             ar0 = a_req(tau, y, m, code, params)
-            ar1 = a_req(tnew, y1, m, code, params)
+            # the demand at the step's end as the step saw it: on a fixed base the ground
+            # acceleration's left limit (a record's last sample, not the zero after it)
+            ar1 = a_req(_left_limit(tnew) if fixed else tnew, y1, m, code, params)
             if fixed:
                 r0 = jerk_at(code, params, tau)
                 r1 = jerk_at(code, params, _left_limit(tnew))
