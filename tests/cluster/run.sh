@@ -71,6 +71,7 @@ mkdir -p "$W"/{etc,run,log,state,spool,db}
 chmod 755 "$W"
 PIDFILES=()   # in start order; stopped in reverse
 OK=0
+LINKED=0      # 1 once /etc/slurm/slurm.conf is our symlink
 
 stop_daemons() {
     local i pidfile pid n
@@ -92,6 +93,7 @@ on_exit() {
     local rc=$?
     trap - EXIT INT TERM
     stop_daemons
+    if [ "$LINKED" = 1 ] && [ -L /etc/slurm/slurm.conf ]; then rm -f /etc/slurm/slurm.conf; fi
     if [ "$rc" = 0 ] && [ "$OK" = 1 ] && [ -z "${ISOSLIDE_SLURM_DIR:-}" ]; then
         rm -rf "$W"
     elif [ "$rc" != 0 ]; then
@@ -188,11 +190,22 @@ MailProg=/bin/true
 AccountingStorageType=accounting_storage/slurmdbd
 AccountingStorageHost=127.0.0.1
 AccountingStoragePort=6819
+AccountingStoreFlags=job_comment
 JobAcctGatherType=jobacct_gather/linux
 JobAcctGatherFrequency=10
 $NODE_LINE NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=$PARTITION Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 EOF
+
+# The plugin's job step removes every SLURM_* variable, SLURM_CONF included, before its srun: the
+# configuration must be where SLURM looks by default.  A symlink to ours, removed on exit.
+if [ -e /etc/slurm/slurm.conf ] || [ -L /etc/slurm/slurm.conf ]; then
+    say "FAILED: /etc/slurm/slurm.conf exists (a SLURM is configured here); this test writes its own"
+    exit 1
+fi
+mkdir -p /etc/slurm
+ln -s "$W/etc/slurm.conf" /etc/slurm/slurm.conf
+LINKED=1
 
 PIDFILES+=("$W/run/slurmdbd.pid")
 setsid slurmdbd </dev/null >/dev/null 2>&1
@@ -230,7 +243,9 @@ smk() {  # smk DIR LOG ARGS...: snakemake in DIR on the clone's own package, kil
     (cd "$dir" && PYTHONPATH="$dir/src" timeout -s KILL "$RUN_TIMEOUT" \
         python -m snakemake "$@" >"$log" 2>&1)
 }
-SLURM_ARGS=(--profile profiles/slurm --slurm-keep-successful-logs --slurm-init-seconds-before-status-checks 2)
+# the profile as a user runs it; the test keeps SLURM's logs (check.py reads them) and polls often
+SLURM_ARGS=(--profile profiles/slurm --slurm-keep-successful-logs --slurm-init-seconds-before-status-checks 2
+            --seconds-between-status-checks 3 --max-status-checks-per-second 1)
 
 t=$(now)
 smk "$W/local" "$W/log/run-local.log" --cores 2 --configfile config/test.yaml \
@@ -250,6 +265,8 @@ if [ "$rc" = 0 ] || [ "$rc" = 137 ]; then
     tail -n 40 "$W/log/run-failing.log"
     exit 1
 fi
+python "$REPO/tests/cluster/check.py" failure --cluster "$W/cluster" --log "$W/log/run-failing.log" \
+    --record "$BAD_RECORD"
 
 t=$(now)
 smk "$W/cluster" "$W/log/run-cluster.log" "${SLURM_ARGS[@]}" --configfile config/test.yaml \
@@ -258,9 +275,8 @@ say "3. fixed rerun on SLURM: $(took "$t") s"
 
 smk "$W/cluster" "$W/log/dryrun-cluster.log" -n --cores 2 --configfile config/test.yaml
 t=$(now)
-python "$REPO/tests/cluster/check.py" --local "$W/local" --cluster "$W/cluster" \
-    --failing-log "$W/log/run-failing.log" --bad-record "$BAD_RECORD" \
-    --nothing-to-do-log "$W/log/dryrun-cluster.log"
+python "$REPO/tests/cluster/check.py" results --local "$W/local" --cluster "$W/cluster" \
+    --dry-run-log "$W/log/dryrun-cluster.log"
 say "4. checks: $(took "$t") s"
 RUN_S=$(took "$t_run")
 say "phase run: ${RUN_S} s"
