@@ -226,7 +226,8 @@ say "phase daemons: ${DAEMONS_S} s ($(sinfo -h -N -o '%N %c CPUs %m MB %T'), par
 if [ "${1:-}" = "--" ]; then
     shift
     say "running: $*"
-    "$@"
+    "$@" &
+    wait $!   # in the background, so that SIGTERM reaches the trap at once
     OK=1
     exit 0
 fi
