@@ -9,6 +9,7 @@ import yaml
 import isoslide
 import isoslide.config
 from isoslide import sweep
+from isoslide.datasets import write_netcdf
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -116,3 +117,15 @@ def test_solve_chunk_dataset():
     assert ds["pi1"].values[0] > 0
     ref = isoslide.solve(isoslide.Scene(pi2=0.1, pi3=1.0, pi4=0.1))
     assert ds["pi1"].values[0] == pytest.approx(ref.pi1, rel=1e-6)
+
+
+def test_a_study_of_one_chunk_solved_in_one_job_gives_the_same_bytes(tmp_path):
+    """solve_study equals solve_chunk -> chunk file -> merge_chunk_files, byte for byte once written."""
+    spec = sweep.check_config(cfg(dims={"pi3": [1.0]}))["s"]          # 4 scenes, chunk_size 5
+    chunk = write_netcdf(sweep.solve_chunk(spec, 0), tmp_path / "0.nc")
+    a = write_netcdf(sweep.merge_chunk_files([chunk], spec), tmp_path / "merged.nc")
+    b = write_netcdf(sweep.solve_study(spec), tmp_path / "direct.nc")
+    assert a.read_bytes() == b.read_bytes()
+    two = sweep.check_config(cfg(dims={"pi3": [1.0, 2.0]}))["s"]      # 8 scenes: two chunks
+    with pytest.raises(ValueError, match="has 2 chunks at chunk_size = 5"):
+        sweep.solve_study(two)

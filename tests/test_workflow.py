@@ -26,6 +26,8 @@ import xarray as xr
 import yaml
 
 import isoslide
+import isoslide.config
+import isoslide.sweep
 from isoslide import datasets, provenance
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -310,6 +312,12 @@ def test_dry_run_plans_the_whole_dag(wf):
     assert sorted(w for r, w in jobs if r == "report") == [f"report={r}" for r in REPORTS]
     chunk_wildcards = [w for r, w in jobs if r == "solve_chunk"]
     assert all(re.fullmatch(r"study=\w+, chunk=\d+", w) for w in chunk_wildcards)
+    # a study of one chunk (e.g. fig3_newmark: 6 scenes, chunk_size 15) is solved by its merge job
+    specs = isoslide.sweep.check_config(isoslide.config.load(ROOT / "config" / "test.yaml"))
+    several = {f"study={name}" for name, spec in specs.items() if len(isoslide.sweep.spec_chunks(spec)) > 1}
+    assert "study=fig3_newmark" not in several and len(several) >= 2
+    assert {w.split(",")[0] for w in chunk_wildcards} == several
+    assert {w for r, w in jobs if r == "merge_study"} == {f"study={s}" for s in STUDIES}
 
 
 @pytest.mark.parametrize("overlay, key", [

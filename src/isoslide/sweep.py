@@ -446,6 +446,22 @@ def solve_chunk(spec: dict, chunk: int):
     return chunk_dataset(grid, idx, batch)
 
 
+def solve_study(spec: dict) -> xr.Dataset:
+    """Solve a study that fits one chunk in this process: the dataset of ``spec``.
+
+    The same dataset (byte for byte once written) as solving its one chunk with
+    :func:`solve_chunk`, writing it and merging the file with :func:`merge_chunk_files`; the
+    pipeline does this where a study has a single chunk, saving a job and a file.
+    """
+    grid = build_grid(spec)
+    n = grid.n_chunks(spec["chunk_size"])
+    if n != 1:
+        raise ValueError(f"study {grid.name!r} has {n} chunks at chunk_size = {spec['chunk_size']}; "
+                         "solve_study takes a study of one chunk (solve_chunk and merge_chunk_files "
+                         "the others)")
+    return merge_chunks([solve_chunk(spec, 0)], grid)
+
+
 def merge_chunk_files(paths, spec: dict) -> xr.Dataset:
     """Open chunk files and :func:`isoslide.datasets.merge_chunks` them into the dataset of ``spec``."""
     grid = build_grid(spec)

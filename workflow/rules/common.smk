@@ -95,8 +95,10 @@ REPORTS = {
 
 
 def chunk_files(wildcards):
-    """Chunk files of one study."""
+    """Chunk files of one study; none for a study of one chunk (merge_study solves it itself)."""
     spec = SPECS[wildcards.study]
+    if len(sweep.spec_chunks(spec)) == 1:
+        return []
     return expand(
         "results/chunks/{study}/{chunk}.nc",
         study=wildcards.study,

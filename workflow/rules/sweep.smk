@@ -1,5 +1,6 @@
 # Fan-out and merge: each study is cut into chunks of `chunk_size` scenes, solved one job per
-# chunk, and merged with an exact coordinate join into results/datasets/<study>.nc.
+# chunk, and merged with an exact coordinate join into results/datasets/<study>.nc.  A study of
+# one chunk is solved by its merge_study job directly (same bytes, one job instead of two).
 
 
 rule solve_chunk:
