@@ -4,7 +4,7 @@
     python tests/cluster/check.py results --local DIR --cluster DIR --dry-run-log LOG
 
 ``failure``: the run with a record that does not exist failed because of that record's job, named
-its log (``logs/records/<NAME>.log``) and the SLURM job that ran it, and the log says why.
+its log (``logs/.../<NAME>.log``) and the SLURM job that ran it, and the log says why.
 
 ``results``: every compute job of the local reference run (one benchmark file each, since every
 rule declares one) also ran on the cluster, inside a SLURM job that ``sacct`` lists COMPLETED (the
@@ -29,21 +29,24 @@ BENCHMARK_LINE = re.compile(r"^\s+benchmark: (\S+)$", re.MULTILINE)
 def failure_problems(cluster: Path, log: Path, record: str) -> list[str]:
     """What is wrong with the failing run's output (empty list: nothing)."""
     text = log.read_text(errors="replace")
-    job_log = f"logs/records/{record}.log"
     problems = []
     if "Error in rule record_compare" not in text:
         problems.append("the failing run does not report an error in rule record_compare")
-    if job_log not in text:
-        problems.append(f"the failing run does not name the job's log {job_log}")
+    named = re.search(rf"^\s+log: (logs/\S*{re.escape(record)}\.log)", text, re.MULTILINE)
+    if not named:
+        problems.append(f"the failing run does not name the job's log (logs/.../{record}.log)")
     if not re.search(rf"slurm_logs/rule_record_compare/{re.escape(record)}/\d+\.log", text):
         problems.append("the failing run does not name the SLURM log of the failed job")
     if "SLURM status is: 'FAILED'" not in text:
         problems.append("the failing run does not report the SLURM state FAILED")
-    path = cluster / job_log
-    if not path.is_file():
-        problems.append(f"{job_log} was not written")
-    elif f"sample = {record!r} is invalid" not in path.read_text(errors="replace"):
-        problems.append(f"{job_log} does not say that sample = {record!r} is invalid")
+    if named:
+        path = cluster / named.group(1)
+        if not path.is_file():
+            problems.append(f"{named.group(1)} was not written")
+        elif f"sample = {record!r} is invalid" not in path.read_text(errors="replace"):
+            problems.append(f"{named.group(1)} does not say that sample = {record!r} is invalid")
+        else:
+            print(f"check: the failing run names {named.group(1)}: sample = {record!r} is invalid")
     return problems
 
 
