@@ -62,7 +62,7 @@ from . import kernel, piecewise
 from .history import History
 from .models import label as model_label
 from .peers import SCENE_SOLVERS, PeerResult
-from .pulses import SAMPLED
+from .pulses import SAMPLED, sampled
 from .progress import Progress
 from .scene import Scene
 
@@ -539,13 +539,17 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
                  tau_end=tend, n_steps=nsteps, n_events=nev)
 
 
-def warm_up() -> None:
+def warm_up(records: bool = False) -> None:
     """Have the compiled kernel ready: load it from numba's cache, or compile it (once per install).
 
     Solves three tiny scenes (isolated Coulomb, fixed-base Stribeck, viscous contact) and their
     stuck demand, so that the first timed or logged solve measures solving, not compilation.
+    ``records=True`` also readies the piecewise-exact path of record-driven scenes.
     """
-    for sc in (Scene(pi2=0.2, pi3=1.0, pi4=0.1), Scene(pi2=0.2, pi3=0.0, pi5=0.5, pi6=10.0),
-               Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi7=1.0)):
+    scenes = [Scene(pi2=0.2, pi3=1.0, pi4=0.1), Scene(pi2=0.2, pi3=0.0, pi5=0.5, pi6=10.0),
+              Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi7=1.0)]
+    if records:
+        scenes.append(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse=sampled(np.array([0.0, 1.0, -0.5, 0.0]), 0.25)))
+    for sc in scenes:
         solve(sc)
         peak_stuck_demand(sc)

@@ -8,7 +8,7 @@ from isoslide.record_study import fig4_dataset
 
 with log_to(snakemake.log[0]) as log:
     with phase("compilation", log):
-        warm_up()
+        warm_up(records=True)
     with phase("solving", log):
         ds = fig4_dataset(snakemake.params.settings)
     log.info("%s", ds)

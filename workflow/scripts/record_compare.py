@@ -8,7 +8,7 @@ from isoslide.record_study import record_dataset
 
 with log_to(snakemake.log[0]) as log:
     with phase("compilation", log):
-        warm_up()
+        warm_up(records=True)
     with phase("solving", log):
         ds = record_dataset(snakemake.wildcards.record, snakemake.params.settings)
     log.info("%s", ds)
