@@ -61,6 +61,7 @@ rule all:
         "results/datasets/accuracy.nc",
         "results/timings/accuracy_timings.nc",
         expand("reports/{report}.html", report=REPORTS),
+        "reports/index.html",
     default_target: True
     threads: 1
     resources:

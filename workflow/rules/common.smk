@@ -48,6 +48,8 @@ CODE_MODULES = {
     # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
     "accuracy": ["accuracy", "budget", "config", "datasets", "dop853", "groups", "history", "kernel", "models",
                  "peers", "piecewise", "progress", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
+    # index_page (isoslide.index_page)
+    "index": ["budget", "index_page", "provenance"],
 }
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
 
@@ -75,6 +77,9 @@ for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
 REPORTS = {
     "similarity": {
         "data": {"similarity_path": "results/datasets/similarity.nc"},
+        "parameters": {"dataset_dir": "results/datasets"},
+        "needs": DATASETS,  # the master curves each complete-similarity verdict and conclusion judges
+        "code": "similarity",
     },
     "figures": {
         "parameters": {"figure_dir": "reports/figures"},
@@ -91,6 +96,19 @@ REPORTS = {
                  "timings_path": "results/timings/accuracy_timings.nc"},
         "code": "accuracy",
     },
+}
+
+
+# reports/index.html, made by index_page in workflow/rules/reports.smk.  It lists the datasets
+# (name to file), shows the figures (PNG; the PDF of the same name is linked), links the reports
+# and shows the complete configuration.
+INDEX = {
+    "datasets": {name: f"results/datasets/{name}.nc"
+                 for name in STUDIES + ["similarity", "fig4_record", "records", "accuracy"]}
+                | {"accuracy_timings": "results/timings/accuracy_timings.nc"},
+    "figures": expand("reports/figures/{fig}.png", fig=FIGURES + ["records"]),
+    "reports": expand("reports/{report}.html", report=REPORTS),
+    "config": sweep.jsonable(config),
 }
 
 

@@ -1,6 +1,10 @@
 # HTML reports, one rule for all of them: papermill runs workflow/notebooks/<report>.ipynb (kernel
 # python3, parameters from REPORTS in common.smk injected after its `parameters` cell), nbconvert
-# renders the executed notebook without code cells and with its images embedded.  Both run under
+# renders the executed notebook without code cells and with its images embedded, through
+# workflow/notebooks/offline.html.j2 (JupyterLab's template without its CDN scripts: MathJax,
+# require.js, mermaid), so a report makes no network request and reads the same offline; math in
+# the notebooks is written in Unicode (Π₁, μ_k) for that reason.  MPLBACKEND=Agg keeps the job
+# headless; a notebook that draws selects `%matplotlib inline` so its figures are embedded.  Both run under
 # the interpreter that runs Snakemake, so no activated environment is needed.  The executed
 # notebook is kept as a log (logs/report/<report>.ipynb), next to the commands' output.
 
@@ -8,6 +12,7 @@
 rule report:
     input:
         unpack(report_input),
+        template="workflow/notebooks/offline.html.j2",
     output:
         html="reports/{report}.html",
     params:
@@ -32,5 +37,36 @@ rule report:
         {params.python:q} -m papermill {input.notebook:q} {log.notebook:q} -k python3 \
             {params.parameters} --no-progress-bar > {log.log:q} 2>&1
         {params.python:q} -m nbconvert --to html --no-input --embed-images \
-            --output-dir {params.html_dir:q} --output {wildcards.report} {log.notebook:q} >> {log.log:q} 2>&1
+            --template-file {input.template:q} --output-dir {params.html_dir:q} --output {wildcards.report} {log.notebook:q} >> {log.log:q} 2>&1
         """
+
+
+# reports/index.html: the run at a glance (datasets with the line that opens each, figure
+# thumbnails, links to every report, provenance and run time), built by isoslide.index_page from
+# the files listed in INDEX (common.smk).  It comes last, so the benchmark files of every other
+# job of the run are there to be summed.
+rule index_page:
+    input:
+        datasets=list(INDEX["datasets"].values()),
+        figures=INDEX["figures"],
+        reports=INDEX["reports"],
+        needs=FIGURE_FILES + RECORD_FIGURE_FILES,
+    output:
+        "reports/index.html",
+    params:
+        code=CODE["index"],
+        names=list(INDEX["datasets"]),
+        config=INDEX["config"],
+        benchmark_dir="results/benchmarks",
+    log:
+        "logs/index_page/index.log",
+    benchmark:
+        "results/benchmarks/index_page/index.tsv"
+    threads: 1
+    resources:
+        mem_mb=400,  # measured: max_rss 150 MB
+        runtime=2,  # minutes; measured: 3 s
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/index_page.py"
