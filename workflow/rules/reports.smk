@@ -27,8 +27,8 @@ rule report:
         "results/benchmarks/report/{report}.tsv"
     threads: 1
     resources:
-        mem_mb=800,  # measured: max_rss 347 MB (accuracy; papermill + kernel)
-        runtime=3,  # minutes; measured: 8.3 s at most
+        mem_mb=800,  # measured: max_rss 359 MB (accuracy; papermill + kernel)
+        runtime=3,  # minutes; measured: 12.8 s at most (similarity, with its master curves)
     conda:
         "../envs/isoslide.yaml"
     shell:
@@ -64,8 +64,8 @@ rule index_page:
         "results/benchmarks/index_page/index.tsv"
     threads: 1
     resources:
-        mem_mb=400,  # measured: max_rss 150 MB
-        runtime=2,  # minutes; measured: 3 s
+        mem_mb=300,  # measured: max_rss 103 MB (test config)
+        runtime=2,  # minutes; measured: 0.7 s (test config)
     conda:
         "../envs/isoslide.yaml"
     script:
