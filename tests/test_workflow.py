@@ -484,7 +484,7 @@ def test_changing_one_study_reruns_only_that_study(full_run):
     # the accuracy scene set comes from the paper's studies (the package's), so it is not measured
     # again; nor are the records
     assert {r for r, _ in jobs} <= {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure",
-                                     "report", "all"}
+                                     "report", "index_page", "all"}
     assert {w for r, w in jobs if r == "figure"} == {"fig=fig7"}
     assert {w for r, w in jobs if r == "report"} == {"report=similarity", "report=figures"}
 
@@ -497,7 +497,7 @@ def test_changing_the_records_reruns_only_record_jobs(full_run):
     jobs = planned_jobs(out)
     rules = {r for r, _ in jobs}
     assert {"record_compare", "records_dataset", "figure_records", "report"} <= rules
-    assert rules <= {"record_compare", "records_dataset", "figure_records", "report", "all"}, rules
+    assert rules <= {"record_compare", "records_dataset", "figure_records", "report", "index_page", "all"}, rules
     assert {w for r, w in jobs if r == "report"} == {"report=records", "report=figures"}
 
 
