@@ -1,0 +1,422 @@
+"""Lognormal fragility curves fitted by maximum likelihood (Baker 2015), with a bootstrap over records.
+
+A fragility curve is ``P(EDP > limit | IM = x) = Phi(ln(x / theta) / beta)``: ``theta`` the median
+capacity (IM units), ``beta`` the dispersion (-).  The fit maximises the likelihood of the observed
+outcomes, not a least-squares fit of fractions (Baker, J. W. 2015, Earthquake Spectra 31(1),
+"Efficient analytical fragility function fitting using dynamic structural analysis"):
+
+* **stripes** (records scaled to levels ``x_j``, ``n_j`` analyses, ``z_j`` exceedances):
+  ``L = prod_j C(n_j, z_j) p_j^z_j (1 - p_j)^(n_j - z_j)``, ``p_j = Phi(ln(x_j / theta) / beta)``;
+* **per analysis** (a continuous IM of each analysis, e.g. the floor's own peak velocity): one
+  Bernoulli term per analysis, a probit regression on ``ln x``.
+
+Both are the probit model ``p = Phi(a + b ln x)`` with ``theta = exp(-a / b)``, ``beta = 1 / b``.
+Its log-likelihood is concave in ``(a, b)`` (``ln Phi`` is log-concave), so Newton's method with a
+step-halving line search, started from a moment estimate and run on the standardised ``ln x``,
+converges to the unique maximum whenever one exists.  It does not exist when the outcomes are
+separated by the IM (every analysis below some level survives, every one above it exceeds): the
+likelihood then grows without bound as ``beta -> 0``.  :func:`fit_lognormal` detects that before
+fitting and says which analyses would identify a curve.
+
+The module holds science only (no I/O, no configuration defaults): the bootstrap's ``n_boot``,
+``level`` and ``seed`` come from ``fragility.bootstrap`` and ``fragility.seed`` in
+``config/schema.yaml``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import gammaln, log_ndtr, ndtr, ndtri
+
+__all__ = ["BootstrapInterval", "LognormalFit", "bootstrap", "fit_lognormal", "probability"]
+
+_LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
+_MAX_NEWTON = 200
+_STEP_TOL = 1e-12   # Newton stops when no (standardised) parameter moves by more than this
+
+
+@dataclass(frozen=True)
+class LognormalFit:
+    """A maximum-likelihood lognormal fragility curve ``P = Phi(ln(x / theta) / beta)``.
+
+    Attributes
+    ----------
+    theta : float
+        Median capacity, in the units of the IM it was fitted on (e.g. m/s^2, m/s).
+    beta : float
+        Lognormal dispersion (standard deviation of ``ln`` capacity), dimensionless, > 0.
+    n_analyses : int
+        Analyses in the fit (sum of ``n_j`` for stripes).
+    n_exceeded : int
+        Analyses that exceeded the limit state.
+    log_likelihood : float
+        Maximised log-likelihood, binomial coefficients ``ln C(n_j, z_j)`` included (zero per
+        analysis).
+    """
+
+    theta: float
+    beta: float
+    n_analyses: int
+    n_exceeded: int
+    log_likelihood: float
+
+
+@dataclass(frozen=True)
+class BootstrapInterval:
+    """Percentile bootstrap interval of ``theta`` and ``beta`` (records resampled).
+
+    Attributes
+    ----------
+    theta_low, theta_high : float
+        Bounds of the interval of the median, IM units.
+    beta_low, beta_high : float
+        Bounds of the interval of the dispersion, dimensionless.
+    n_boot : int
+        Resamples drawn (failed ones included).
+    n_failed : int
+        Resamples that could not identify a curve (none or every analysis exceeded, separated
+        outcomes, fewer than two IM levels); the bounds are percentiles of the other
+        ``n_boot - n_failed`` fits.
+    """
+
+    theta_low: float
+    theta_high: float
+    beta_low: float
+    beta_high: float
+    n_boot: int
+    n_failed: int
+
+
+# ----------------------------------------------------------------------------------------------
+# input checks
+# ----------------------------------------------------------------------------------------------
+
+def _shape_text(a: np.ndarray) -> str:
+    return f"shape {a.shape}"
+
+
+def _as_1d(name: str, value) -> np.ndarray:
+    arr = np.asarray(value)
+    if arr.ndim != 1:
+        raise ValueError(f"{name} has {_shape_text(arr)}; allowed: a one-dimensional array")
+    if arr.size == 0:
+        raise ValueError(f"{name} is empty ({_shape_text(arr)}); allowed: at least 2 values")
+    return arr
+
+
+def _first_bad(arr: np.ndarray, bad: np.ndarray) -> str:
+    i = int(np.flatnonzero(bad)[0])
+    return f"{arr[i].item()!r} at index {i}"
+
+
+def _check_im(im) -> np.ndarray:
+    x = _as_1d("im", im)
+    if not (np.issubdtype(x.dtype, np.number) and not np.issubdtype(x.dtype, np.complexfloating)):
+        raise ValueError(f"im has dtype {x.dtype}; allowed: real numbers > 0")
+    x = x.astype(float)
+    bad = ~np.isfinite(x) | (x <= 0.0)
+    if bad.any():
+        raise ValueError(f"im = {_first_bad(x, bad)} is out of range; allowed range: 0 < im < inf (finite)")
+    return x
+
+
+def _check_counts(name: str, value, shape: tuple) -> np.ndarray:
+    arr = np.asarray(value)
+    if arr.shape != shape:
+        raise ValueError(f"{name} has {_shape_text(arr)}; allowed: the shape of im, {shape}")
+    if arr.dtype == bool or not np.issubdtype(arr.dtype, np.number):
+        raise ValueError(f"{name} has dtype {arr.dtype}; allowed: integer counts")
+    f = arr.astype(float)
+    bad = ~np.isfinite(f) | (f != np.round(f)) | (f < 0)
+    if bad.any():
+        raise ValueError(f"{name} = {_first_bad(arr, bad)} is out of range; allowed: integer counts >= 0")
+    return f
+
+
+def _prepare(im, exceeded, n) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Checked ``(x, z, n)`` as float arrays: IM levels, exceedances, analyses."""
+    x = _check_im(im)
+    if n is None:
+        e = np.asarray(exceeded)
+        if e.shape != x.shape:
+            raise ValueError(f"exceeded has {_shape_text(e)}; allowed: the shape of im, {x.shape}")
+        if e.dtype != bool:
+            ok = np.issubdtype(e.dtype, np.number) and bool(np.all((e == 0) | (e == 1)))
+            if not ok:
+                raise ValueError(f"exceeded = {e!r} is invalid; allowed with n=None: booleans (one outcome "
+                                 "per analysis), or pass the analyses per level as n")
+        z = e.astype(float)
+        nn = np.ones_like(x)
+    else:
+        z = _check_counts("exceeded", exceeded, x.shape)
+        nn = _check_counts("n", n, x.shape)
+        if (nn < 1).any():
+            raise ValueError(f"n = {_first_bad(nn.astype(int), nn < 1)} is out of range; allowed: "
+                             "integer counts >= 1 (analyses per IM level)")
+        over = z > nn
+        if over.any():
+            i = int(np.flatnonzero(over)[0])
+            raise ValueError(f"exceeded = {int(z[i])} > n = {int(nn[i])} at index {i}; allowed range: "
+                             "0 <= exceeded <= n")
+    return x, z, nn
+
+
+def _check_identifiable(x: np.ndarray, z: np.ndarray, n: np.ndarray) -> None:
+    """ValueError unless the data identify a finite ``theta`` and ``beta > 0``."""
+    total, hits = float(n.sum()), float(z.sum())
+    levels = np.unique(x)
+    if levels.size < 2:
+        raise ValueError(f"im has {levels.size} distinct level ({levels[0].item()!r}); allowed: at least 2 "
+                         "distinct IM levels (one level cannot identify both theta and beta)")
+    if hits == 0:
+        raise ValueError(f"exceeded = 0 of {int(total)} analyses; allowed: 0 < exceeded < analyses (no "
+                         "analysis exceeded the limit state: add higher IM levels or a lower limit)")
+    if hits == total:
+        raise ValueError(f"exceeded = {int(hits)} of {int(total)} analyses, all of them; allowed: 0 < exceeded "
+                         "< analyses (every analysis exceeded the limit state: add lower IM levels or a "
+                         "higher limit)")
+    survived = n - z > 0
+    hit = z > 0
+    lo_surv, hi_surv = float(x[survived].min()), float(x[survived].max())
+    lo_hit, hi_hit = float(x[hit].min()), float(x[hit].max())
+    if hi_surv <= lo_hit:
+        if hi_surv < lo_hit:
+            what = (f"every analysis at im <= {hi_surv:g} is below the limit state and every one at "
+                    f"im >= {lo_hit:g} exceeds it")
+            fix = f"analyses at IM levels between {hi_surv:g} and {lo_hit:g}"
+        else:
+            what = (f"every analysis at im < {hi_surv:g} is below the limit state, every one at im > "
+                    f"{hi_surv:g} exceeds it, and only im = {hi_surv:g} has both outcomes")
+            fix = f"analyses at IM levels on either side of {hi_surv:g}"
+        raise ValueError(
+            f"exceeded is perfectly separated by im: {what}, so the likelihood grows without bound as "
+            f"beta -> 0 (a step) and no lognormal curve is identified; allowed: outcomes that overlap in "
+            f"im. Fix: {fix} (more stripes there, or more records or friction draws whose outcomes "
+            f"differ at the same IM)")
+    if hi_hit <= lo_surv:
+        raise ValueError(
+            f"exceeded is separated by im the wrong way: every analysis at im <= {hi_hit:g} exceeds the limit "
+            f"state and every one at im >= {lo_surv:g} is below it; allowed: a fraction exceeded that grows "
+            f"with the IM (a fragility curve)")
+
+
+# ----------------------------------------------------------------------------------------------
+# the probit likelihood, its gradient and Hessian
+# ----------------------------------------------------------------------------------------------
+
+def _loglik_terms(eta: np.ndarray, z: np.ndarray, n: np.ndarray) -> float:
+    """``sum z ln Phi(eta) + (n - z) ln Phi(-eta)`` (no binomial coefficients); zero counts add 0."""
+    m = n - z
+    return float(np.sum(np.where(z > 0, z * log_ndtr(eta), 0.0) + np.where(m > 0, m * log_ndtr(-eta), 0.0)))
+
+
+def _derivatives(eta: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """First derivative and minus the second derivative of the log-likelihood terms w.r.t. ``eta``."""
+    log_pdf = -0.5 * eta * eta - _LOG_SQRT_2PI
+    r1 = np.exp(log_pdf - log_ndtr(eta))     # phi / Phi(eta)
+    r0 = np.exp(log_pdf - log_ndtr(-eta))    # phi / Phi(-eta)
+    m = n - z
+    d1 = z * r1 - m * r0
+    w = z * r1 * (eta + r1) + m * r0 * (r0 - eta)   # >= 0: the log-likelihood is concave in eta
+    return d1, w
+
+
+def _start(t: np.ndarray, z: np.ndarray, n: np.ndarray) -> np.ndarray:
+    """Moment estimate of the standardised probit ``(a, b)``.
+
+    A linear-probability fit ``z/n ~ c0 + c1 t`` (weights ``n``) linearised around the mean fraction,
+    ``Phi(a + b t) ~ Phi(a) + phi(a) b t``.
+    """
+    total = n.sum()
+    pbar = z.sum() / total
+    tm = (n * t).sum() / total
+    var = (n * (t - tm) ** 2).sum() / total
+    c1 = (n * (t - tm) * (z / n - pbar)).sum() / total / var
+    a0 = float(ndtri(np.clip(pbar, 1e-6, 1.0 - 1e-6)))
+    dens = math.exp(-0.5 * a0 * a0) / math.sqrt(2.0 * math.pi)
+    b0 = float(np.clip(c1 / dens, 0.05, 20.0))
+    return np.array([a0 - b0 * tm, b0])
+
+
+def _newton(t: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, float]:
+    """Maximise the probit log-likelihood in ``(a, b)``, ``eta = a + b t``.
+
+    Returns the maximiser and the maximum (binomial coefficients left out).
+    """
+    p = _start(t, z, n)
+    f = _loglik_terms(p[0] + p[1] * t, z, n)
+    for _ in range(_MAX_NEWTON):
+        eta = p[0] + p[1] * t
+        d1, w = _derivatives(eta, z, n)
+        g = np.array([d1.sum(), (d1 * t).sum()])
+        h = np.array([[w.sum(), (w * t).sum()], [(w * t).sum(), (w * t * t).sum()]])
+        step = np.linalg.solve(h, g)
+        scale = 1.0
+        while True:
+            q = p + scale * step
+            fq = _loglik_terms(q[0] + q[1] * t, z, n)
+            if fq >= f - 1e-12 * abs(f) or scale < 1e-10:
+                break
+            scale *= 0.5
+        p, f = q, fq
+        if np.max(np.abs(scale * step)) <= _STEP_TOL * (1.0 + np.max(np.abs(p))):
+            return p, f
+    raise RuntimeError(f"fit_lognormal: Newton's method did not converge in {_MAX_NEWTON} iterations "
+                       f"(last step {scale * step}, parameters {p})")
+
+
+# ----------------------------------------------------------------------------------------------
+# the public functions
+# ----------------------------------------------------------------------------------------------
+
+def fit_lognormal(im, exceeded, n=None) -> LognormalFit:
+    """Maximum-likelihood lognormal fragility curve (Baker 2015).
+
+    Parameters
+    ----------
+    im : array_like of float, shape (k,)
+        IM of each stripe (``n`` given) or of each analysis (``n=None``), > 0, finite, in any
+        unit; ``theta`` comes out in the same unit.  At least two distinct values.
+    exceeded : array_like, shape (k,)
+        Stripes: analyses that exceeded the limit state at each level, integers
+        ``0 <= exceeded <= n``.  Per analysis: booleans (or 0/1).
+    n : array_like of int, shape (k,), optional
+        Analyses at each level (>= 1).  ``None``: one analysis per entry of ``im``.
+
+    Returns
+    -------
+    LognormalFit
+
+    Raises
+    ------
+    ValueError
+        Shapes that differ, non-positive or non-finite IMs, counts that are negative, not
+        integers or above ``n``; data that identify no curve: fewer than two distinct IM
+        levels, none or every analysis exceeded, or outcomes perfectly separated by the IM
+        (the maximum likelihood is at ``beta -> 0``).
+    """
+    x, z, nn = _prepare(im, exceeded, n)
+    return _fit(x, z, nn)
+
+
+def _fit(x: np.ndarray, z: np.ndarray, nn: np.ndarray) -> LognormalFit:
+    """:func:`fit_lognormal` of checked float arrays (IM, exceedances, analyses)."""
+    _check_identifiable(x, z, nn)
+    lx = np.log(x)
+    centre, spread = float(np.mean(lx)), float(np.std(lx))
+    t = (lx - centre) / spread
+    (a, b), ll = _newton(t, z, nn)
+    if b <= 0.0:
+        raise ValueError(f"exceeded decreases with im (maximum-likelihood slope {b:.3g} <= 0 in ln im); "
+                         "allowed: a fraction exceeded that grows with the IM (a fragility curve)")
+    ll += float(np.sum(gammaln(nn + 1.0) - gammaln(z + 1.0) - gammaln(nn - z + 1.0)))
+    return LognormalFit(theta=float(math.exp(centre - a * spread / b)), beta=float(spread / b),
+                        n_analyses=int(nn.sum()), n_exceeded=int(z.sum()), log_likelihood=ll)
+
+
+def probability(x, theta, beta):
+    """Probability of exceedance ``Phi(ln(x / theta) / beta)`` of a lognormal fragility curve.
+
+    Parameters
+    ----------
+    x : array_like of float
+        IM values, >= 0 (0 gives 0; ``inf`` gives 1), in the units of ``theta``.
+    theta : array_like of float
+        Median capacity, > 0 (NaN propagates: a missing curve).
+    beta : array_like of float
+        Dispersion, > 0 (NaN propagates).
+
+    Returns
+    -------
+    numpy.ndarray or float
+        The broadcast probabilities.
+
+    Raises
+    ------
+    ValueError
+        ``x < 0``, ``theta <= 0`` or ``beta <= 0``.
+    """
+    x, theta, beta = (np.asarray(v, dtype=float) for v in (x, theta, beta))
+    for name, arr, bad, allowed in (("x", x, x < 0, "0 <= x"), ("theta", theta, theta <= 0, "0 < theta"),
+                                    ("beta", beta, beta <= 0, "0 < beta")):
+        if np.any(bad):
+            value = arr[bad].flat[0] if arr.ndim else arr
+            raise ValueError(f"{name} = {float(value)!r} is out of range; allowed range: {allowed}")
+    with np.errstate(divide="ignore"):
+        out = ndtr(np.log(x / theta) / beta)
+    return out if out.ndim else float(out)
+
+
+def bootstrap(im, exceeded, groups, n=None, *, n_boot: int, seed: int, level: float) -> BootstrapInterval:
+    """Percentile bootstrap interval of ``theta`` and ``beta``, resampling groups (records).
+
+    Each resample draws as many groups as there are, with replacement; all entries of a drawn
+    group go in together (as often as it is drawn), and :func:`fit_lognormal` is refitted.
+
+    Parameters
+    ----------
+    im, exceeded, n
+        As for :func:`fit_lognormal`.
+    groups : array_like, shape (k,)
+        Group (record) of each entry of ``im``; at least two distinct groups.
+    n_boot : int
+        Resamples, >= 1 (``fragility.bootstrap.n_boot`` in the configuration).
+    seed : int
+        Seed of ``numpy.random.default_rng``, >= 0: the same seed gives the same interval.
+    level : float
+        Two-sided confidence level, 0 < level < 1: the bounds are the ``(1 - level)/2`` and
+        ``(1 + level)/2`` percentiles (linear interpolation) of the refitted values.
+
+    Returns
+    -------
+    BootstrapInterval
+        ``n_failed`` counts the resamples that identified no curve; the percentiles are those of
+        the others.  Failed resamples are mostly separated ones (``beta -> 0``): when ``n_failed``
+        is not small against ``(1 - level)/2 * n_boot``, the lower bound of ``beta`` is too high.
+
+    Raises
+    ------
+    ValueError
+        Invalid data (as :func:`fit_lognormal`), ``groups`` of another shape or with fewer than two
+        groups, ``n_boot``, ``seed`` or ``level`` out of range, or no resample that identifies a
+        curve.
+    """
+    x, z, nn = _prepare(im, exceeded, n)
+    g = np.asarray(groups)
+    if g.shape != x.shape:
+        raise ValueError(f"groups has {_shape_text(g)}; allowed: the shape of im, {x.shape}")
+    labels, code = np.unique(g, return_inverse=True)
+    if labels.size < 2:
+        raise ValueError(f"groups has {labels.size} distinct value ({labels[0].item()!r}); allowed: at least 2 "
+                         "groups (records) to resample")
+    if isinstance(n_boot, bool) or not isinstance(n_boot, (int, np.integer)) or n_boot < 1:
+        raise ValueError(f"n_boot = {n_boot!r} is out of range; allowed: integers >= 1")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"seed = {seed!r} is out of range; allowed: integers >= 0")
+    if not (isinstance(level, (int, float, np.floating)) and 0.0 < float(level) < 1.0):
+        raise ValueError(f"level = {level!r} is out of range; allowed range: 0 < level < 1")
+    members = [np.flatnonzero(code == i) for i in range(labels.size)]
+    rng = np.random.default_rng(seed)
+    thetas, betas = [], []
+    n_failed = 0
+    for _ in range(int(n_boot)):
+        drawn = rng.integers(0, labels.size, size=labels.size)
+        idx = np.concatenate([members[i] for i in drawn])
+        try:
+            fit = _fit(x[idx], z[idx], nn[idx])
+        except ValueError:
+            n_failed += 1
+            continue
+        thetas.append(fit.theta)
+        betas.append(fit.beta)
+    if not thetas:
+        raise ValueError(f"n_boot = {n_boot}: none of the resamples identifies a curve (all {n_failed} failed); "
+                         "allowed: data whose record resamples overlap (more records or IM levels)")
+    q = [(1.0 - float(level)) / 2.0, (1.0 + float(level)) / 2.0]
+    tl, th = np.quantile(np.array(thetas), q)
+    bl, bh = np.quantile(np.array(betas), q)
+    return BootstrapInterval(theta_low=float(tl), theta_high=float(th), beta_low=float(bl), beta_high=float(bh),
+                             n_boot=int(n_boot), n_failed=int(n_failed))
