@@ -40,6 +40,7 @@ wildcard_constraints:
     fig=r"fig[1-8]",
     record="|".join(re.escape(r) for r in RECORDS),
     report="|".join(REPORTS),
+    frag="|".join(FRAGILITY_DATASETS),
 
 
 include: "workflow/rules/sweep.smk"
@@ -47,6 +48,7 @@ include: "workflow/rules/similarity.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/records.smk"
 include: "workflow/rules/accuracy.smk"
+include: "workflow/rules/fragility.smk"
 include: "workflow/rules/reports.smk"
 
 
@@ -60,6 +62,9 @@ rule all:
         RECORD_FIGURE_FILES,
         "results/datasets/accuracy.nc",
         "results/timings/accuracy_timings.nc",
+        expand("results/datasets/{frag}.nc", frag=FRAGILITY_DATASETS),
+        "results/fragility/pelicun_damage_db.csv",
+        FRAGILITY_FIGURE_FILES,
         expand("reports/{report}.html", report=REPORTS),
         "reports/index.html",
     default_target: True

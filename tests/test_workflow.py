@@ -33,7 +33,7 @@ from isoslide import datasets, provenance
 ROOT = Path(__file__).resolve().parents[1]
 TEST_CONFIG = ["--configfile", "config/test.yaml"]
 STUDIES = sorted(yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["studies"])
-REPORTS = ["accuracy", "figures", "records", "similarity"]
+REPORTS = ["accuracy", "figures", "fragility", "records", "similarity"]
 LAUNCHERS = ("snakemake", "papermill", "jupyter", "jupyter-nbconvert")
 
 
@@ -308,7 +308,7 @@ def test_dry_run_plans_the_whole_dag(wf):
     rules = {r for r, _ in jobs}
     assert {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure", "fig4_record",
             "record_compare", "records_dataset", "figure_records", "accuracy_part", "accuracy_dataset",
-            "report", "all"} <= rules
+            "fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report", "all"} <= rules
     assert sorted(w for r, w in jobs if r == "report") == [f"report={r}" for r in REPORTS]
     chunk_wildcards = [w for r, w in jobs if r == "solve_chunk"]
     assert all(re.fullmatch(r"study=\w+, chunk=\d+", w) for w in chunk_wildcards)
@@ -319,6 +319,10 @@ def test_dry_run_plans_the_whole_dag(wf):
     assert "study=fig3_newmark" not in several and len(several) >= 2
     assert {w.split(",")[0] for w in chunk_wildcards} == several
     assert {w for r, w in jobs if r == "merge_study"} == {f"study={s}" for s in STUDIES}
+    # the fragility study: 12 analyses per base in chunks of 5 (config/test.yaml) -> 3 chunk jobs each
+    assert sorted(w for r, w in jobs if r == "fragility_chunk") == [
+        f"frag={f}, chunk={c}" for f in ("fragility", "fragility_fixed_base") for c in range(3)]
+    assert {w for r, w in jobs if r == "fragility_dataset"} == {"frag=fragility", "frag=fragility_fixed_base"}
 
 
 @pytest.mark.parametrize("overlay, key", [
@@ -327,6 +331,9 @@ def test_dry_run_plans_the_whole_dag(wf):
     ({"studies": {"fig5_pi3": {"pulse": "sine"}}}, "studies.fig5_pi3.pulse"),
     ({"studies": {"fig8_pi8": {"dims": {"pi3": [1.0, 1.0]}}}}, "studies.fig8_pi8.dims.pi3"),
     ({"similarity": {"complete": {"pi5": {"study": "nope", "range": [0.7, 1.0]}}}}, "similarity.complete.pi5.study"),
+    ({"fragility": {"stripes": {"levels": [3.0, 2.0]}}}, "fragility.stripes.levels"),
+    ({"fragility": {"records": ["Northridge_1994_PAC-175", "no_such_record"]}}, "fragility.records[1]"),
+    ({"fragility": {"limit_states": [0.3, 0.2]}}, "fragility.limit_states"),
 ])
 def test_invalid_config_fails_before_any_job_naming_the_key(tmp_path, overlay, key):
     d = copy_workflow(tmp_path / "bad")
@@ -501,6 +508,39 @@ def test_changing_the_records_reruns_only_record_jobs(full_run):
     assert {w for r, w in jobs if r == "report"} == {"report=records", "report=figures"}
 
 
+@pytest.mark.slow
+def test_fragility_outputs(full_run):
+    """The fragility datasets, the pelicun CSV, the figure and the report of the tiny run."""
+    wf, _ = full_run
+    cfg = isoslide.config.load(ROOT / "config" / "config.yaml",
+                               yaml.safe_load((ROOT / "config" / "test.yaml").read_text()))["fragility"]
+    n = len(cfg["records"]) * len(cfg["stripes"]["levels"]) * cfg["friction_samples"]
+    for name in ("fragility", "fragility_fixed_base"):
+        ds = datasets.open_dataset(wf / "results" / "datasets" / f"{name}.nc")
+        assert ds.sizes["analysis"] == n and list(ds.limit_state.values) == cfg["limit_states"]
+        assert ds["theta"].dims == ("limit_state", "im") and list(ds.im.values) == ["pga", "pgv", "pfa", "pfv"]
+        assert ds.attrs["Conventions"].startswith("CF") and "isoslide_config" in ds.attrs
+        log = (wf / "logs" / "fragility_dataset" / f"{name}.log").read_text()
+        assert "merging 3 chunk files" in log and log.rstrip().endswith("done")
+    assert (wf / "results" / "fragility" / "pelicun_damage_db.csv").stat().st_size > 0
+    for ext in ("png", "pdf"):
+        assert (wf / "reports" / "figures" / f"fragility.{ext}").stat().st_size > 1000
+    html = (wf / "reports" / "fragility.html").read_text()
+    assert "Fragility of sliding contents" in html and "Traceback" not in html
+
+
+@pytest.mark.slow
+def test_changing_the_fragility_study_reruns_only_fragility_jobs(full_run):
+    wf, _ = full_run
+    (wf / "config" / "frag.yaml").write_text(yaml.safe_dump({"fragility": {"seed": 7}}))
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/frag.yaml", timeout=300)
+    rules = {r for r, _ in planned_jobs(out)}
+    assert {"fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report"} <= rules
+    assert rules <= {"fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report",
+                     "index_page", "all"}, rules
+    assert {w for r, w in planned_jobs(out) if r == "report"} == {"report=fragility"}
+
+
 def _digests(directory: Path) -> dict:
     return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted(directory.glob("*.nc"))}
 
@@ -545,6 +585,7 @@ def test_sigkill_then_unlock_and_restart_gives_the_same_bytes(full_run, tmp_path
         a = datasets.open_dataset(wf / "results" / "datasets" / name)
         b = datasets.open_dataset(d / "results" / "datasets" / name)
         datasets.assert_same_data(a, b)
+    assert {"fragility.nc", "fragility_fixed_base.nc"} <= set(first)
     assert first == second, f"not byte-identical: {differ}"
     timings = sorted(p.name for p in (d / "results" / "timings").glob("*.nc"))
     assert timings and all(t.endswith("_timings.nc") for t in timings)

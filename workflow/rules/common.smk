@@ -8,6 +8,7 @@ import sys
 
 from snakemake.exceptions import WorkflowError
 
+import isoslide.fragility_study as fragility_study
 import isoslide.sweep as sweep
 from isoslide.provenance import code_hash
 
@@ -50,6 +51,16 @@ CODE_MODULES = {
                  "peers", "piecewise", "progress", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
     # index_page (isoslide.index_page)
     "index": ["budget", "index_page", "provenance"],
+    # fragility_chunk, fragility_dataset (isoslide.fragility_study)
+    "fragility": ["budget", "datasets", "dop853", "fragility", "fragility_study", "groups", "history", "history_io",
+                  "intensity", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses",
+                  "record_study", "records", "scene", "solver", "validation"],
+    # fragility_figure; the fragility report (isoslide.fragility_plot, datasets.open_dataset)
+    "fragility_plot": ["budget", "datasets", "fragility", "fragility_plot", "groups", "models", "provenance",
+                       "validation"],
+    # fragility_pelicun (isoslide.pelicun_export)
+    "pelicun": ["budget", "datasets", "groups", "models", "pelicun_export", "provenance", "pulses", "scene",
+                "validation"],
 }
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
 
@@ -60,6 +71,20 @@ RECORDS_SETTINGS = sweep.jsonable(
 RECORDS = list(config["records"]["names"])
 FIG4_SETTINGS = {"records": {"fig4": config["records"]["fig4"]}}  # Fig. 4 depends on its record only
 RECORD_FIGURE_FILES = expand("reports/figures/records.{ext}", ext=FORMATS)
+
+# The fragility study (workflow/rules/fragility.smk): checked here, so a bad value or a record that
+# cannot be read stops the workflow before any job runs.
+FRAGILITY_SETTINGS = sweep.jsonable(fragility_study.fragility_settings(config))
+try:
+    FRAGILITY_STUDY = fragility_study.check_settings(FRAGILITY_SETTINGS)
+except ValueError as err:
+    raise WorkflowError(f"Invalid configuration: {err}")
+FRAGILITY_DATASETS = fragility_study.dataset_names(FRAGILITY_SETTINGS)
+FRAGILITY_RECORD_FILES = [r for r in FRAGILITY_SETTINGS["fragility"]["records"]
+                          if os.path.splitext(r)[1].lower() in (".at2", ".csv") and os.path.isfile(r)]
+FRAGILITY_FIGURE_FILES = expand("reports/figures/fragility.{ext}", ext=FORMATS)
+FRAGILITY_FIGURE_INPUT = {"isolated": "results/datasets/fragility.nc"} | (
+    {"fixed_base": "results/datasets/fragility_fixed_base.nc"} if len(FRAGILITY_DATASETS) > 1 else {})
 
 for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
     if _c["study"] not in SPECS:
@@ -96,6 +121,13 @@ REPORTS = {
                  "timings_path": "results/timings/accuracy_timings.nc"},
         "code": "accuracy",
     },
+    "fragility": {
+        "data": {"fragility_path": "results/datasets/fragility.nc"},
+        # the fixed-base comparison when the config asks for it ("" otherwise)
+        "parameters": {"fixed_base_path": FRAGILITY_FIGURE_INPUT.get("fixed_base", "")},
+        "needs": list(FRAGILITY_FIGURE_INPUT.values()) + ["results/fragility/pelicun_damage_db.csv"],
+        "code": "fragility_plot",
+    },
 }
 
 
@@ -104,9 +136,9 @@ REPORTS = {
 # and shows the complete configuration.
 INDEX = {
     "datasets": {name: f"results/datasets/{name}.nc"
-                 for name in STUDIES + ["similarity", "fig4_record", "records", "accuracy"]}
+                 for name in STUDIES + ["similarity", "fig4_record", "records", "accuracy"] + FRAGILITY_DATASETS}
                 | {"accuracy_timings": "results/timings/accuracy_timings.nc"},
-    "figures": expand("reports/figures/{fig}.png", fig=FIGURES + ["records"]),
+    "figures": expand("reports/figures/{fig}.png", fig=FIGURES + ["records", "fragility"]),
     "reports": expand("reports/{report}.html", report=REPORTS),
     "config": sweep.jsonable(config),
 }
@@ -122,6 +154,14 @@ def chunk_files(wildcards):
         study=wildcards.study,
         chunk=sweep.spec_chunks(spec),
     )
+
+
+def fragility_chunk_files(wildcards):
+    """Chunk files of a fragility dataset; none for one chunk (fragility_dataset solves it itself)."""
+    n = fragility_study.n_chunks(FRAGILITY_STUDY)
+    if n == 1:
+        return []
+    return expand("results/chunks/{frag}/{chunk}.nc", frag=wildcards.frag, chunk=range(n))
 
 
 def figure_datasets(wildcards):

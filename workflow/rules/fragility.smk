@@ -1,0 +1,95 @@
+# The fragility study (isoslide.fragility_study, `fragility:` in the config): records x stripes x
+# friction draws cut into chunks of `fragility.chunk_size` analyses, solved one job per chunk,
+# merged and fitted into results/datasets/fragility.nc (isolated slab) and, with
+# `building.fixed_base`, results/datasets/fragility_fixed_base.nc (the same contents on a fixed
+# base); a dataset of one chunk is solved by its fragility_dataset job (one job instead of two).
+# Then the pelicun damage-model CSV, the figure and reports/fragility.html (rule report).
+
+
+rule fragility_chunk:
+    input:
+        FRAGILITY_RECORD_FILES,
+    output:
+        "results/chunks/{frag}/{chunk}.nc",
+    params:
+        code=CODE["fragility"],
+        settings=FRAGILITY_SETTINGS,
+    log:
+        "logs/fragility_chunk/{frag}/{chunk}.log",
+    benchmark:
+        "results/benchmarks/fragility_chunk/{frag}/{chunk}.tsv"
+    threads: 1
+    resources:
+        mem_mb=600,  # measured: max_rss 287 MB (a 2,500-analysis chunk of config/fragility_large.yaml)
+        runtime=5,  # minutes; measured: 6.1 s for 2,500 analyses (fragility_large.yaml), 9.6 s at most (test config)
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/fragility_chunk.py"
+
+
+rule fragility_dataset:
+    input:
+        records=FRAGILITY_RECORD_FILES,
+        chunks=fragility_chunk_files,
+    output:
+        "results/datasets/{frag}.nc",
+    params:
+        code=CODE["fragility"],
+        settings=FRAGILITY_SETTINGS,
+    log:
+        "logs/fragility_dataset/{frag}.log",
+    benchmark:
+        "results/benchmarks/fragility_dataset/{frag}.tsv"
+    threads: 1
+    resources:
+        mem_mb=800,  # measured: max_rss 273 MB (default config, 240 analyses solved in the job)
+        runtime=30,  # minutes; measured: 17.9 s at most (default config)
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/fragility_dataset.py"
+
+
+rule fragility_pelicun:
+    input:
+        "results/datasets/fragility.nc",
+    output:
+        csv="results/fragility/pelicun_damage_db.csv",
+        json="results/fragility/pelicun_damage_db.json",
+    params:
+        code=CODE["pelicun"],
+    log:
+        "logs/fragility_pelicun/pelicun.log",
+    benchmark:
+        "results/benchmarks/fragility_pelicun/pelicun.tsv"
+    threads: 1
+    resources:
+        mem_mb=400,  # measured: max_rss 100 MB
+        runtime=2,  # minutes; measured: 0.6 s
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/fragility_pelicun.py"
+
+
+rule fragility_figure:
+    input:
+        **FRAGILITY_FIGURE_INPUT,
+    output:
+        FRAGILITY_FIGURE_FILES,
+    params:
+        code=CODE["fragility_plot"],
+        dpi=config["figures"]["dpi"],
+    log:
+        "logs/fragility_figure/fragility.log",
+    benchmark:
+        "results/benchmarks/fragility_figure/fragility.tsv"
+    threads: 1
+    resources:
+        mem_mb=600,  # measured: max_rss 208 MB
+        runtime=2,  # minutes; measured: 2.8 s
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/fragility_figure.py"
