@@ -295,8 +295,9 @@ def fit_lognormal(im, exceeded, n=None) -> LognormalFit:
     ValueError
         Shapes that differ, non-positive or non-finite IMs, counts that are negative, not
         integers or above ``n``; data that identify no curve: fewer than two distinct IM
-        levels, none or every analysis exceeded, or outcomes perfectly separated by the IM
-        (the maximum likelihood is at ``beta -> 0``).
+        levels, none or every analysis exceeded, outcomes perfectly separated by the IM (the
+        maximum likelihood is at ``beta -> 0``; the message names the IM range where more
+        analyses would identify the curve), or a fraction exceeded that decreases with the IM.
     """
     x, z, nn = _prepare(im, exceeded, n)
     return _fit(x, z, nn)
