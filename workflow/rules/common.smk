@@ -59,8 +59,7 @@ CODE_MODULES = {
     "fragility_plot": ["budget", "datasets", "fragility", "fragility_plot", "groups", "models", "provenance",
                        "validation"],
     # fragility_pelicun (isoslide.pelicun_export)
-    "pelicun": ["budget", "datasets", "groups", "models", "pelicun_export", "provenance", "pulses", "scene",
-                "validation"],
+    "pelicun": ["budget", "datasets", "groups", "models", "pelicun_export", "provenance", "validation"],
 }
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
 

@@ -43,8 +43,9 @@ rule fragility_dataset:
         "results/benchmarks/fragility_dataset/{frag}.tsv"
     threads: 1
     resources:
-        mem_mb=800,  # measured: max_rss 273 MB (default config, 240 analyses solved in the job)
-        runtime=30,  # minutes; measured: 17.9 s at most (default config)
+        mem_mb=2000,  # measured: max_rss 287 MB (default config, 240 analyses); the large config's not
+        runtime=60,  # minutes; measured: 6.8 s at most (default config), 269 s to fit 112,500 analyses
+        # (fragility_large.yaml, one base, outside a job; README "Fragility")
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -65,8 +66,8 @@ rule fragility_pelicun:
         "results/benchmarks/fragility_pelicun/pelicun.tsv"
     threads: 1
     resources:
-        mem_mb=400,  # measured: max_rss 100 MB
-        runtime=2,  # minutes; measured: 0.6 s
+        mem_mb=400,  # measured: max_rss 198 MB
+        runtime=2,  # minutes; measured: 2.6 s
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -87,8 +88,8 @@ rule fragility_figure:
         "results/benchmarks/fragility_figure/fragility.tsv"
     threads: 1
     resources:
-        mem_mb=600,  # measured: max_rss 208 MB
-        runtime=2,  # minutes; measured: 2.8 s
+        mem_mb=600,  # measured: max_rss 208 MB at most
+        runtime=2,  # minutes; measured: 4.5 s at most
     conda:
         "../envs/isoslide.yaml"
     script:
