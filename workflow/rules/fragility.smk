@@ -43,9 +43,8 @@ rule fragility_dataset:
         "results/benchmarks/fragility_dataset/{frag}.tsv"
     threads: 1
     resources:
-        mem_mb=2000,  # measured: max_rss 287 MB (default config, 240 analyses); the large config's not
-        runtime=60,  # minutes; measured: 6.8 s at most (default config), 269 s to fit 112,500 analyses
-        # (fragility_large.yaml, one base, outside a job; README "Fragility")
+        mem_mb=800,  # measured: max_rss 323 MB (fragility_large.yaml, 112,500 analyses), 287 MB (default)
+        runtime=30,  # minutes; measured: 281 s at most (fragility_large.yaml, one base), 6.8 s (default)
     conda:
         "../envs/isoslide.yaml"
     script:
