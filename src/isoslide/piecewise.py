@@ -48,7 +48,7 @@ from numba import njit
 
 from .kernel import (F_TEND, F_TPEAK, F_UMAX, F_URES, F_VMAX, F_AMAX, M_CW, M_FIXED, M_P8, M_THR, M_W2,
                      N_F, N_H, N_R, R_EVENTS, R_HIST, R_LOC_PEAK, R_LOC_SLIP, R_LOC_STICK, R_REJECTED,
-                     R_SETTLED, R_SLIPPED, R_STEPS, _demand_bound, _hermite_max, _record)
+                     R_SETTLED, R_SLIPPED, R_STEPS, _break_away, _demand_bound, _hermite_max, _record)
 
 N_TAYLOR = 22
 """Taylor terms of the exact solution over one substep."""
@@ -334,11 +334,7 @@ def run(m, params, tau_start, tau_end, tau_stop, track_max, hist_cap, settle, ma
             if track_max and abs(ar) > amax:
                 amax = abs(ar)
             if abs(ar) > thr and not track_max:
-                stick = False
-                s = -1.0 if ar > 0.0 else 1.0
-                just_started = True
-                slipped = True
-                events += 1
+                stick, s, just_started, slipped, events = _break_away(ar, events)
             elif t >= tau_end:
                 if fixed:
                     settled = True
