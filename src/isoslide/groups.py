@@ -3,7 +3,9 @@
 Buckingham's theorem with the repeating variables ``a_p`` (pulse acceleration
 amplitude, m/s^2), ``T_p`` (pulse period, s) and ``M_b`` (isolated mass, kg)
 turns the eleven physical parameters of the paper's model into one result
-group and seven input groups:
+group and seven input groups, and the five parameters of the general building
+(hysteretic isolator, flexible superstructure; see :mod:`isoslide.building`)
+into five more:
 
 ========  =====================  =========================================  =================
 group     definition             meaning                                    valid range
@@ -16,7 +18,18 @@ Pi5       mu_k / mu_s            kinetic-to-static friction ratio           0 < 
 Pi6       beta a_p T_p           Stribeck transition sharpness              0 <= Pi6 <= 1e12
 Pi7       gamma g T_p            viscous contact group                      0 <= Pi7 <= 1e6
 Pi8       m_EC / M_b             contents-to-isolated mass ratio            0 <= Pi8 <= 1e3
+Pi9       Q / (M_b a_p)          isolator strength; 0 = linear isolator     0 <= Pi9 <= 1e6
+Pi10      D_y / (a_p T_p^2)      isolator yield displacement; 0 = sliding   0 <= Pi10 <= 1e6
+Pi11      m_st / M_b             superstructure mass fraction               0 <= Pi11 < 1
+Pi12      T_s / T_p              superstructure period; 0 = rigid          0 <= Pi12 <= 1e4
+Pi13      xi_s                   superstructure damping ratio               0 <= Pi13 <= 1e3
 ========  =====================  =========================================  =================
+
+``M_b = m_b + m_st`` is the whole isolated mass (base slab and superstructure,
+the contents excluded) and ``T_b = 2 pi sqrt(M_b / k_d)`` the isolation
+period with the isolator's post-yield (or linear) stiffness ``k_d``.  Pi11 is
+read only with a flexible superstructure (``Pi12 > 0``), where ``0 < Pi11 < 1``
+(checked by :class:`isoslide.Scene`).
 
 Scene validation, dataset attributes, figure labels, the similarity check's
 definitions, study dimension names and the command-line help are all derived
@@ -140,6 +153,25 @@ INPUTS = (
                   "see isoslide.scene"),
     Group("pi8", "m_EC / M_b", "contents-to-isolated mass ratio", r"\Pi_8", r"m_{EC}/M_b", "Π₈",
           hi=1e3, default=1e-5, comment="mass of the sliding contents over the isolated mass"),
+    Group("pi9", "Q / (M_b a_p)", "isolator strength", r"\Pi_9", r"Q\,/\,(M_b a_p)", "Π₉",
+          hi=1e6, default=0.0,
+          comment="characteristic strength Q of a hysteretic isolator (bilinear bearing: yield force of "
+                  "its elastic-perfectly-plastic part; sliding bearing: friction force mu_b M_b g) over "
+                  "M_b a_p; 0 = the paper's linear isolator"),
+    Group("pi10", "D_y / (a_p T_p^2)", "isolator yield displacement", r"\Pi_{10}", r"D_y\,/\,(a_p T_p^2)",
+          "Π₁₀", hi=1e6, default=0.0,
+          comment="yield displacement of the bilinear bearing's elastic-perfectly-plastic part "
+                  "(initial stiffness k_d + Q/D_y); 0 with Pi9 > 0 = a sliding bearing with true stick"),
+    Group("pi11", "m_st / M_b", "superstructure mass fraction", r"\Pi_{11}", r"m_{st}/M_b", "Π₁₁",
+          hi=1.0, hi_in=False, default=0.0,
+          comment="superstructure mass over the whole isolated mass M_b = m_b + m_st; read only when "
+                  "Pi12 > 0, where 0 < Pi11 < 1"),
+    Group("pi12", "T_s / T_p", "superstructure-to-pulse period ratio", r"\Pi_{12}", r"T_s/T_p", "Π₁₂",
+          hi=1e4, default=0.0,
+          comment="T_s = 2 pi sqrt(m_st / k_s), the fixed-base period of the superstructure on the slab; "
+                  "0 = rigid superstructure (the paper's Fig. 1-b)"),
+    Group("pi13", "xi_s", "superstructure damping ratio", r"\Pi_{13}", r"\xi_s", "Π₁₃",
+          hi=1e3, default=0.0, comment="xi_s = c_s / (2 sqrt(k_s m_st))"),
 )
 """The input groups, in the order of :class:`isoslide.Scene`'s arguments."""
 
@@ -147,7 +179,13 @@ GROUPS = {g.name: g for g in (RESULT, *INPUTS)}
 """Every group by name, the result first."""
 
 INPUT_NAMES = tuple(g.name for g in INPUTS)
-"""Names of the input groups, in order (``("pi2", ..., "pi8")``)."""
+"""Names of the input groups, in order (``("pi2", ..., "pi13")``)."""
+
+PAPER_NAMES = INPUT_NAMES[:7]
+"""The paper's input groups ``("pi2", ..., "pi8")``: the model of its Fig. 1-b."""
+
+BUILDING_NAMES = INPUT_NAMES[7:]
+"""The general building's groups ``("pi9", ..., "pi13")``: zero in the paper's model."""
 
 
 def group(name: str) -> Group:

@@ -23,6 +23,16 @@ class History:
         Sliding displacement relative to the floor (``a_p T_p^2``) and velocity (``a_p T_p``).
     phase : ndarray of int8
         0 while stuck, +1 / -1 while sliding in the positive / negative direction.
+    xs, xsd : ndarray or None
+        Superstructure displacement relative to the slab (``a_p T_p^2``) and velocity
+        (``a_p T_p``); ``None`` for the paper's model (rigid superstructure).
+    fh : ndarray or None
+        Hysteretic isolator force over ``M_b a_p`` (bilinear bearing: its elastic-plastic
+        part; sliding bearing: the friction force, or the force holding it while stuck);
+        ``None`` for a linear isolator.
+    iso_phase : ndarray of int8 or None
+        Isolator mode: 0 stuck (sliding bearing) or elastic (bilinear bearing), +1 / -1
+        sliding or yielding in the positive / negative direction; ``None`` for a linear isolator.
     """
 
     tau: np.ndarray
@@ -31,6 +41,10 @@ class History:
     u: np.ndarray
     ud: np.ndarray
     phase: np.ndarray
+    xs: np.ndarray | None = None
+    xsd: np.ndarray | None = None
+    fh: np.ndarray | None = None
+    iso_phase: np.ndarray | None = None
 
 
 def phase_of(sliding, ud) -> np.ndarray:

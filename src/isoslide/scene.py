@@ -41,6 +41,13 @@ G_STANDARD = 9.80665
 PI_RANGES = {g.name: (g.lo, g.hi, g.lo_in, g.hi_in) for g in INPUTS}
 """Valid range of each input group: (low, high, low inclusive, high inclusive), from the registry."""
 
+FLOORS = ("base", "roof")
+"""Floors the contents can sit on: the isolated slab, or the superstructure's mass."""
+
+ISOLATORS = ("linear", "bilinear", "sliding")
+"""Isolator kinds (:attr:`Scene.isolator`): the paper's linear spring-dashpot (``Pi9 = 0``), a
+bilinear bearing (``Pi9 > 0, Pi10 > 0``), a sliding bearing with true stick (``Pi9 > 0, Pi10 = 0``)."""
+
 
 @dataclass(frozen=True)
 class PhysicalScale:
@@ -91,8 +98,26 @@ class Scene:
         ``m_EC / M_b``, contents-to-isolated mass ratio.
     pulse : str or Pulse, default "ricker"
         Excitation shape; see :mod:`isoslide.pulses`.
+    pi9 : float, default 0
+        ``Q / (M_b a_p)``, strength of a hysteretic isolator; 0 is the paper's linear isolator.
+    pi10 : float, default 0
+        ``D_y / (a_p T_p^2)``, yield displacement of a bilinear bearing; 0 (with ``pi9 > 0``) is a
+        sliding bearing (friction pendulum) with true stick.
+    pi11 : float, default 0
+        ``m_st / M_b``, superstructure mass fraction; read only when ``pi12 > 0``, where it must
+        lie in (0, 1).
+    pi12 : float, default 0
+        ``T_s / T_p``, superstructure period over pulse period; 0 is a rigid superstructure.
+    pi13 : float, default 0
+        ``xi_s``, superstructure damping ratio.
+    floor : {"base", "roof"}, default "base"
+        Floor carrying the contents: the isolated slab or the superstructure's mass (the same
+        floor when the superstructure is rigid).
     scale : PhysicalScale or None
         Set by :meth:`from_physical`, so results can be given in metres.
+
+    The model of the general building (``pi9 .. pi13``, ``floor``) is in
+    :mod:`isoslide.building`; with their defaults the scene is the paper's model.
     """
 
     pi2: float
@@ -103,16 +128,28 @@ class Scene:
     pi7: float = _DEFAULTS["pi7"]
     pi8: float = _DEFAULTS["pi8"]
     pulse: Pulse | str = "ricker"
+    pi9: float = _DEFAULTS["pi9"]
+    pi10: float = _DEFAULTS["pi10"]
+    pi11: float = _DEFAULTS["pi11"]
+    pi12: float = _DEFAULTS["pi12"]
+    pi13: float = _DEFAULTS["pi13"]
+    floor: str = FLOORS[0]
     scale: PhysicalScale | None = field(default=None, compare=False)
 
     def __post_init__(self):
         for g in INPUTS:
             object.__setattr__(self, g.name, g.check(getattr(self, g.name)))
+        if self.pi12 > 0.0 and not 0.0 < self.pi11 < 1.0:
+            raise ValueError(f"pi11 = {self.pi11!r} is out of range with a flexible superstructure "
+                             f"(pi12 = {self.pi12!r} > 0); allowed range: 0 < value < 1")
+        if self.floor not in FLOORS:
+            raise ValueError(f"floor = {self.floor!r} is invalid; allowed: {', '.join(map(repr, FLOORS))}")
         object.__setattr__(self, "pulse", _resolve_pulse(self.pulse))
 
     @classmethod
     def from_physical(cls, a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0,
-                      g=G_STANDARD, pulse="ricker") -> "Scene":
+                      g=G_STANDARD, pulse="ricker", Q_d=0.0, D_y=0.0, m_st=0.0, T_s=0.0, xi_s=0.0,
+                      floor="base") -> "Scene":
         """Build a scene from physical parameters in SI units.
 
         Parameters
@@ -122,9 +159,10 @@ class Scene:
         T_p : float
             Pulse period, s (> 0).
         M_b : float
-            Isolated mass (base + superstructure), kg (> 0).
+            Whole isolated mass ``m_b + m_st`` (base slab + superstructure), kg (> 0).
         T_b : float
-            Nominal isolation period ``2 pi sqrt(M_b/k_b)``, s; 0 = fixed base.
+            Isolation period ``2 pi sqrt(M_b/k_d)`` with the isolator's post-yield (or linear)
+            stiffness ``k_d``, s; 0 = fixed base.
         xi_b : float
             Isolation damping ratio ``c_b / (2 sqrt(k_b M_b))``.
         m_ec : float
@@ -139,6 +177,19 @@ class Scene:
             Gravitational acceleration, m/s^2.
         pulse : str or Pulse
             Excitation shape.
+        Q_d : float
+            Characteristic strength of a hysteretic isolator, N (0 = linear isolator); for a
+            friction pendulum ``mu_b M_b g`` (see :func:`friction_pendulum`).
+        D_y : float
+            Yield displacement of a bilinear bearing, m (0 with ``Q_d > 0`` = sliding bearing).
+        m_st : float
+            Superstructure mass, kg, part of ``M_b`` (``0 < m_st < M_b`` when ``T_s > 0``).
+        T_s : float
+            Superstructure period on a fixed slab ``2 pi sqrt(m_st/k_s)``, s (0 = rigid).
+        xi_s : float
+            Superstructure damping ratio ``c_s / (2 sqrt(k_s m_st))``.
+        floor : {"base", "roof"}
+            Floor carrying the contents.
         """
         a_p = check_range("a_p", a_p, 0.0, math.inf, False, False)
         T_p = check_range("T_p", T_p, 0.0, math.inf, False, False)
@@ -151,11 +202,17 @@ class Scene:
         beta = check_range("beta", beta, 0.0, math.inf, True, False)
         gamma = check_range("gamma", gamma, 0.0, math.inf, True, False)
         g = check_range("g", g, 0.0, math.inf, False, False)
+        Q_d = check_range("Q_d", Q_d, 0.0, math.inf, True, False)
+        D_y = check_range("D_y", D_y, 0.0, math.inf, True, False)
+        T_s = check_range("T_s", T_s, 0.0, math.inf, True, False)
+        xi_s = check_range("xi_s", xi_s, 0.0, math.inf, True, False)
+        m_st = check_range("m_st", m_st, 0.0, M_b, T_s == 0.0, False)
         return cls(
             pi2=mu_k * g / a_p, pi3=T_b / T_p, pi4=xi_b, pi5=mu_k / mu_s,
             pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b,
             pulse=_resolve_pulse(pulse, a_p=a_p, T_p=T_p),
-            scale=PhysicalScale(a_p, T_p, M_b, g),
+            pi9=Q_d / (M_b * a_p), pi10=D_y / (a_p * T_p**2), pi11=m_st / M_b, pi12=T_s / T_p,
+            pi13=xi_s, floor=floor, scale=PhysicalScale(a_p, T_p, M_b, g),
         )
 
     @property
@@ -173,9 +230,61 @@ class Scene:
         """True when friction does not depend on sliding speed (plain Coulomb)."""
         return self.pi7 == 0.0 and (self.pi5 == 1.0 or self.pi6 == 0.0)
 
+    @property
+    def isolator(self) -> str:
+        """Isolator kind, one of :data:`ISOLATORS`.
+
+        ``"linear"`` (``Pi9 = 0``), ``"bilinear"`` (``Pi9 > 0, Pi10 > 0``) or ``"sliding"``
+        (``Pi9 > 0, Pi10 = 0``); with a fixed base (``Pi3 = 0``) the isolator has no effect.
+        """
+        if self.pi9 == 0.0:
+            return ISOLATORS[0]
+        return ISOLATORS[1] if self.pi10 > 0.0 else ISOLATORS[2]
+
+    @property
+    def flexible(self) -> bool:
+        """True for a flexible superstructure (``Pi12 > 0``)."""
+        return self.pi12 > 0.0
+
+    @property
+    def paper_model(self) -> bool:
+        """True when the scene is the paper's model (Fig. 1-b).
+
+        A linear isolator (``Pi9 = 0``) and a rigid superstructure (``Pi12 = 0``); the contents'
+        floor then makes no difference.
+        """
+        return self.pi9 == 0.0 and self.pi12 == 0.0
+
     def pis(self) -> dict:
-        """The input groups as a dict ``{"pi2": ..., ..., "pi8": ...}``."""
+        """The input groups as a dict ``{"pi2": ..., ..., "pi13": ...}``."""
         return {k: getattr(self, k) for k in INPUT_NAMES}
+
+
+def friction_pendulum(R, mu, M_b, g=G_STANDARD) -> dict:
+    """Isolator parameters of a friction pendulum (single concave sliding surface).
+
+    Parameters
+    ----------
+    R : float
+        Radius of curvature of the sliding surface, m (> 0).
+    mu : float
+        Friction coefficient of the slider (> 0).
+    M_b : float
+        Whole isolated mass carried, kg (> 0).
+    g : float
+        Gravitational acceleration, m/s^2.
+
+    Returns
+    -------
+    dict
+        ``T_b = 2 pi sqrt(R/g)`` (s; the pendulum's stiffness ``k_d = M_b g / R``), ``Q_d = mu M_b g``
+        (N) and ``D_y = 0`` (true stick): keyword arguments for :meth:`Scene.from_physical`.
+    """
+    R = check_range("R", R, 0.0, math.inf, False, False)
+    mu = check_range("mu", mu, 0.0, math.inf, False, False)
+    M_b = check_range("M_b", M_b, 0.0, math.inf, False, False)
+    g = check_range("g", g, 0.0, math.inf, False, False)
+    return {"T_b": 2.0 * math.pi * math.sqrt(R / g), "Q_d": mu * M_b * g, "D_y": 0.0}
 
 
 def _resolve_pulse(pulse, a_p=None, T_p=None) -> Pulse:

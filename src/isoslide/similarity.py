@@ -28,7 +28,7 @@ import xarray as xr
 
 from . import claims
 from .datasets import global_attrs, open_dataset, pi_attrs
-from .groups import INPUT_NAMES, INPUTS
+from .groups import BUILDING_NAMES, INPUT_NAMES, INPUTS
 from .peers.si import simulate_si
 from .scene import G_STANDARD
 
@@ -54,7 +54,7 @@ def physical_parameters(pis: dict, a_p: float, T_p: float, M_b: float, conventio
     Parameters
     ----------
     pis : dict
-        ``pi2 .. pi8``.
+        ``pi2 .. pi8``, and optionally the building's ``pi9 .. pi13`` (absent: 0).
     a_p, T_p, M_b : float
         Pulse amplitude (m/s^2), pulse period (s), isolated mass (kg).
     convention : {"isoslide", "paper"}
@@ -64,14 +64,18 @@ def physical_parameters(pis: dict, a_p: float, T_p: float, M_b: float, conventio
     Returns
     -------
     dict
-        ``a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g``.
+        ``a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g`` and the building's
+        ``Q_d, D_y, m_st, T_s, xi_s`` (keywords of :meth:`isoslide.Scene.from_physical`).
     """
     if convention not in CONVENTIONS:
         raise ValueError(f"convention = {convention!r} is invalid; allowed: {CONVENTIONS}")
     mu_k = pis["pi2"] * a_p / g
     gamma = pis["pi7"] / ((g if convention == "isoslide" else a_p) * T_p)
+    building = {k: pis[k] if k in pis else 0.0 for k in BUILDING_NAMES}
     return dict(a_p=a_p, T_p=T_p, M_b=M_b, T_b=pis["pi3"] * T_p, xi_b=pis["pi4"], m_ec=pis["pi8"] * M_b,
-                mu_s=mu_k / pis["pi5"], mu_k=mu_k, beta=pis["pi6"] / (a_p * T_p), gamma=gamma, g=g)
+                mu_s=mu_k / pis["pi5"], mu_k=mu_k, beta=pis["pi6"] / (a_p * T_p), gamma=gamma, g=g,
+                Q_d=building["pi9"] * M_b * a_p, D_y=building["pi10"] * a_p * T_p**2,
+                m_st=building["pi11"] * M_b, T_s=building["pi12"] * T_p, xi_s=building["pi13"])
 
 
 # ----------------------------------------------------------------------------------------------
