@@ -25,6 +25,18 @@ scene, as parts joined by ``+``:
 ``regularized``, ``reference``
     A peer solver ran instead (``solve(..., method=...)``).
 
+The general building (:mod:`isoslide.building`) adds, in front of the friction part:
+
+``bilinear``, ``sliding-bearing``, ``linear``
+    The isolator integrated (``fixed-base`` for ``Pi3 = 0``).
+``flexible``
+    The superstructure is flexible (``Pi12 > 0``) and integrated; ``roof``: the contents
+    sit on it.
+``bearing-stuck``, ``bearing-elastic``
+    A reduction proved the sliding bearing never slips (the scene ran as the paper's fixed
+    base) or the bilinear bearing never yields (the paper's linear isolator of its initial
+    stiffness); followed by the paper model's label, e.g. ``bearing-stuck+fixed-base+coulomb``.
+
 The position of a label in :data:`MODEL_LABELS` is its code in the ``model``
 flag variable of every dataset; codes never change, new labels are appended.
 """
@@ -99,6 +111,72 @@ def _piecewise_labels() -> tuple:
 PIECEWISE_LABELS = _piecewise_labels()
 """Labels of the exact piecewise propagation (appended after the integrator's and the peers')."""
 
+ISOLATOR_PARTS = ("linear", "bilinear", "sliding-bearing", "fixed-base")
+"""Isolator parts of a general building's label (the last for ``Pi3 = 0``)."""
+
+BEARING_REDUCTIONS = ("bearing-stuck", "bearing-elastic")
+"""Reductions of a bearing to the paper's model (see :mod:`isoslide.building`)."""
+
+
+def building_label(isolator: str, flexible: bool, roof: bool, noslide: bool, friction: str,
+                   oneway: bool) -> str:
+    """The model label of a general building integrated by :mod:`isoslide.building_kernel`.
+
+    Parameters
+    ----------
+    isolator : {"linear", "bilinear", "sliding-bearing", "fixed-base"}
+        The isolator integrated.
+    flexible : bool
+        A flexible superstructure was integrated.
+    roof : bool
+        The contents sit on the superstructure (ignored unless ``flexible``).
+    noslide, friction, oneway
+        As for :func:`label`.
+    """
+    if isolator not in ISOLATOR_PARTS:
+        raise ValueError(f"isolator = {isolator!r} is invalid; allowed: {ISOLATOR_PARTS}")
+    if friction not in FRICTION_MODELS:
+        raise ValueError(f"friction = {friction!r} is invalid; allowed: {FRICTION_MODELS}")
+    parts = [isolator]
+    if flexible:
+        parts.append("flexible")
+        if roof:
+            parts.append("roof")
+    if noslide:
+        parts.append("no-slide")
+    else:
+        parts.append(friction)
+        if oneway:
+            parts.append("one-way")
+    return "+".join(parts)
+
+
+def _building_labels() -> tuple:
+    out = []
+    for iso in ISOLATOR_PARTS:
+        for flexible, roof in ((False, False), (True, False), (True, True)):
+            if iso == "linear" and not flexible:
+                continue   # the paper's model
+            if iso == "fixed-base" and not flexible:
+                continue   # the paper's fixed base
+            for noslide in (True, False):
+                for friction in FRICTION_MODELS:
+                    for oneway in (False, True):
+                        name = building_label(iso, flexible, roof, noslide, friction, oneway)
+                        if name not in out:
+                            out.append(name)
+    paper = _STABLE[:8] + tuple(n for n in _exact_labels() + PIECEWISE_LABELS if n not in _STABLE)
+    for red in BEARING_REDUCTIONS:
+        for name in paper:
+            if name not in PEER_LABELS:
+                out.append(f"{red}+{name}")
+    return tuple(out)
+
+
+BUILDING_LABELS = _building_labels()
+"""Labels of the general building (appended after every other; codes never change)."""
+
 MODEL_LABELS = (_STABLE + tuple(n for n in _exact_labels() + PEER_LABELS if n not in _STABLE)
                 + PIECEWISE_LABELS)
+MODEL_LABELS = MODEL_LABELS + tuple(n for n in BUILDING_LABELS if n not in MODEL_LABELS)
 """Every label :func:`isoslide.solve` can produce, in flag-code order (codes never change)."""

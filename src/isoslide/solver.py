@@ -52,14 +52,16 @@ Models (``Solution.model``, joined by ``+``)
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import kernel, piecewise
+from . import building, building_kernel, kernel, piecewise
 from .history import History
+from .models import building_label
 from .models import label as model_label
 from .peers import SCENE_SOLVERS, PeerResult
 from .pulses import SAMPLED, sampled
@@ -373,6 +375,8 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     if not (max_step > 0):
         raise ValueError(f"max_step = {max_step!r} is out of range; allowed range: 0 < max_step <= inf")
     rtol = _check_rtol(rtol)
+    if not scene.paper_model:
+        return _solve_building(scene, rtol, history, horizon, model, max_step, settle, piecewise_path)
     pl = plan(scene)
     fixed = pl["fixed"]
     if model == "static-kinetic":
@@ -445,6 +449,92 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     law = "static-kinetic" if model == "static-kinetic" else ("coulomb" if coulomb else "stribeck")
     label = model_label(fixed, noslide, law, oneway)
     return _solution(scene, ints, floats, label, _history(hist) if history else None)
+
+
+def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
+                    settle: bool, piecewise_path: bool) -> Solution:
+    """:func:`solve` for a general building (:mod:`isoslide.building`): its smallest exact model.
+
+    With ``model="auto"`` a reduction to the paper's model runs that model (the label gets the
+    reduction's name in front); otherwise :func:`isoslide.building_kernel.run` integrates it,
+    with the Stribeck terms only where the friction depends on speed and the back-reaction
+    dropped for ``Pi8 = 0``.  The tolerance rules are the paper model's (see the module
+    docstring), with the refinement passes over many transitions counting those of both
+    interfaces.
+    """
+    name, paper = building.reduction(scene) if model == "auto" else ("general", None)
+    if paper is not None:
+        sol = solve(paper, rtol=rtol, history=history, horizon=horizon, model=model, max_step=max_step,
+                    settle=settle, piecewise_path=piecewise_path)
+        label = sol.model if name in ("paper", "fixed-base") else f"{name}+{sol.model}"
+        return dataclasses.replace(sol, model=label)
+    coulomb = (scene.rate_independent and model == "auto") or model == "static-kinetic"
+    if model == "static-kinetic":
+        raise ValueError("model = 'static-kinetic' is available for the paper's model only "
+                         "(pi9 = 0 and pi12 = 0)")
+    pi8 = scene.pi8
+    P = building.parameters(scene, pi8=pi8, coulomb=coulomb)
+    pulse = scene.pulse
+    hist_cap = 200_000 if history else 0
+    stop = _horizon(scene, horizon)
+    budget = step_budget(scene, horizon)
+    h_free = min(building.free_step(scene), max_step)
+
+    def run(irtol):
+        res = building_kernel.run(P, pulse.code, pulse.param_array, pulse.breakpoint_array, pulse.tau_start,
+                                  pulse.tau_end, stop, min(H_MAX_PULSE, max_step), h_free, irtol,
+                                  base_atol(scene, irtol), hist_cap, min(H_RESTART, max_step), settle, budget)
+        if res[1][building_kernel.F_TEND] < stop and not res[0][building_kernel.R_SETTLED] \
+                and res[0][building_kernel.R_STEPS] > budget:
+            raise StepBudgetError(
+                f"the step budget ({budget} Runge-Kutta steps) ran out at tau = "
+                f"{res[1][building_kernel.F_TEND]:.6g} with rtol = {rtol:g}; the answer would be truncated. "
+                f"Loosen rtol (allowed range: 1e-13 <= rtol <= 0.1) or shorten the horizon "
+                f"(horizon = {horizon:g}) for {scene}")
+        return res
+
+    used = integrator_rtol(scene, rtol, horizon)
+    out = run(used)
+    pi1 = out[1][building_kernel.F_UMAX]
+    nev = out[0][building_kernel.R_EVENTS] + out[0][building_kernel.R_ISO_EVENTS]
+    if pi1 > 0.0:
+        need = min(used * min(1.0, MANY_EVENTS / max(nev, 1)), near_threshold_rtol(scene, rtol, pi1))
+        if need < used:
+            out = run(max(need, MIN_INTEGRATOR_RTOL))
+        if nev > MANY_EVENTS:
+            need = min(need, used)
+            for _ in range(CONVERGENCE_PASSES):
+                if need <= MIN_INTEGRATOR_RTOL:
+                    break
+                need = max(need / 10.0, MIN_INTEGRATOR_RTOL)
+                finer = run(need)
+                a, b = out[1][building_kernel.F_UMAX], finer[1][building_kernel.F_UMAX]
+                same = (out[0][building_kernel.R_EVENTS] == finer[0][building_kernel.R_EVENTS]
+                        and out[0][building_kernel.R_ISO_EVENTS] == finer[0][building_kernel.R_ISO_EVENTS])
+                out = finer
+                if abs(b - a) <= 0.1 * rtol * abs(b) and same:
+                    break
+    ints, floats, hist = out
+    isolator = "fixed-base" if scene.pi3 == 0.0 else {"sliding": "sliding-bearing"}.get(scene.isolator,
+                                                                                           scene.isolator)
+    law = "coulomb" if coulomb else "stribeck"
+    label = building_label(isolator, scene.flexible, scene.floor == "roof",
+                           ints[building_kernel.R_SLIPPED] == 0, law, pi8 == 0.0)
+    sol = _solution(scene, ints, floats, label)
+    if history:
+        sol = dataclasses.replace(sol, history=_building_history(hist, scene))
+    return sol
+
+
+def _building_history(h: np.ndarray, scene: Scene) -> History:
+    """The general kernel's history rows as a :class:`History` (building states included)."""
+    bk = building_kernel
+    return History(tau=h[:, bk.H_TAU].copy(), x=h[:, bk.H_X].copy(), xd=h[:, bk.H_XD].copy(),
+                   u=h[:, bk.H_U].copy(), ud=h[:, bk.H_UD].copy(), phase=h[:, bk.H_PHASE].astype(np.int8),
+                   xs=h[:, bk.H_XS].copy() if scene.flexible else None,
+                   xsd=h[:, bk.H_XSD].copy() if scene.flexible else None,
+                   fh=h[:, bk.H_FH].copy() if scene.pi9 > 0.0 else None,
+                   iso_phase=h[:, bk.H_IPHASE].astype(np.int8) if scene.pi9 > 0.0 else None)
 
 
 def _solution(scene, ints, floats, label, hist=None) -> Solution:

@@ -1,0 +1,186 @@
+"""The general building (the paper's Fig. 1-a) and the smallest exact model a scene requires.
+
+Physics (dimensional; ground acceleration ``a_g(t) = a_p p(t/T_p)``, displacements
+relative to the ground):
+
+* **Isolated mass** ``M_b = m_b + m_st`` (slab and superstructure; the contents
+  excluded), on an isolator ``F_iso = k_d x_b + c_b x_b' + f_h`` with
+  ``T_b = 2 pi sqrt(M_b/k_d)`` and ``xi_b = c_b / (2 sqrt(k_d M_b))`` (``M_b``
+  alone, as in the paper).  The hysteretic part ``f_h`` of strength ``Q``
+  and yield displacement ``D_y``:
+
+  - ``Q = 0``: ``f_h = 0``, the paper's linear isolator;
+  - ``Q > 0, D_y > 0``, a **bilinear bearing** (lead-rubber): an
+    elastic-perfectly-plastic spring of stiffness ``k_e = Q / D_y`` and yield
+    force ``Q`` (initial stiffness ``k_d + k_e``, post-yield ``k_d``);
+  - ``Q > 0, D_y = 0``, a **sliding bearing** (friction pendulum of radius
+    ``R`` and friction ``mu_b``: ``k_d = M_b g / R``, ``Q = mu_b M_b g``, see
+    :func:`isoslide.friction_pendulum`), rigid-plastic with true stick: the
+    slab stays still while the force that holds it is within ``Q``.
+
+* **Superstructure**: rigid, or a mass ``m_st`` on the slab through ``k_s`` and
+  ``c_s`` (``T_s = 2 pi sqrt(m_st/k_s)``, ``xi_s = c_s / (2 sqrt(k_s m_st))``).
+* **Contents** on the slab ("base") or on the superstructure ("roof"), with the
+  paper's Eq. 1 friction and true stick; the friction acts back on that floor.
+
+Equations: slab ``m_b (a_g + x_b'') = -F_iso + (k_s x_s + c_s x_s') + [R on
+the base]``; superstructure ``m_st (a_g + x_b'' + x_s'') = -(k_s x_s + c_s
+x_s') + [R on the roof]``; block ``m (a_F + u'') = -F_f`` with ``R = F_f``.
+The groups ``Pi9 = Q/(M_b a_p)``, ``Pi10 = D_y/(a_p T_p^2)``, ``Pi11 =
+m_st/M_b``, ``Pi12 = T_s/T_p``, ``Pi13 = xi_s`` join the paper's ``Pi2 ..
+Pi8`` (:mod:`isoslide.groups`); the compiled solver is
+:mod:`isoslide.building_kernel`.
+
+The smallest exact model (:func:`reduction`)
+--------------------------------------------
+``paper``
+    ``Pi9 = 0`` and ``Pi12 = 0``: the paper's model, solved by
+    :mod:`isoslide.kernel` (the contents' floor makes no difference).
+``fixed-base``
+    ``Pi3 = 0`` with a rigid superstructure: the isolator has no effect.
+``bearing-stuck``
+    A sliding bearing under a rigid superstructure that provably never slips:
+    the force holding the slab is ``-(p + R)`` with ``|R| <= Pi8 max|p|`` for
+    speed-independent contact (``Pi7 = 0``; a stuck block needs ``Pi8 |p|``,
+    a sliding one ``Pi8 phi <= Pi8 mu_s g/a_p < Pi8 max|p|``), so
+    ``(1 + Pi8) max|p| <= Pi9`` proves it; the scene runs as the paper's fixed
+    base.
+``bearing-elastic``
+    A bilinear bearing under a rigid superstructure that provably never
+    yields: the slab obeys ``x'' + c_b x' + (k_d + k_e) x = -p + R`` with
+    ``|R| <= Pi8 max|p|`` (as above), so ``|x| <= ||h||_1 (1 + Pi8) max|p|``
+    with ``h`` the impulse response of that oscillator; when ``k_e`` times this
+    is within ``Q`` the scene runs as the paper's linear isolator of stiffness
+    ``k_d + k_e`` (``Pi3' = Pi3 sqrt(k_d/(k_d + k_e))``, ``Pi4' = Pi4
+    sqrt(k_d/(k_d + k_e))``).
+``general``
+    Anything else: :func:`isoslide.building_kernel.run`, with the superstructure
+    integrated only when flexible (``Pi12 > 0``) and the back-reaction dropped
+    when ``Pi8 = 0``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from . import building_kernel as bk
+from .pulses import SAMPLED
+from .scene import Scene
+
+REDUCTIONS = ("paper", "fixed-base", "bearing-stuck", "bearing-elastic", "general")
+"""The models :func:`reduction` can choose, smallest first (see the module docstring)."""
+
+
+def peak_accel(scene: Scene) -> float:
+    """``max |p|`` of the scene's excitation (units of a_p).
+
+    The analytic pulses of :mod:`isoslide.pulses` are normalised to a peak of 1; a sampled
+    record is linear between samples, so its peak is the largest sample.
+    """
+    pulse = scene.pulse
+    if pulse.code == SAMPLED:
+        return float(np.max(np.abs(pulse.param_array[2:])))
+    return 1.0
+
+
+def impulse_l1(stiffness: float, damping: float) -> float:
+    """``int_0^inf |h(t)| dt`` of a unit-mass oscillator ``x'' + c x' + k x = delta``.
+
+    Under-damped: ``coth(pi a / (2 w_d)) / k`` with ``a = c/2``, ``w_d = sqrt(k - a^2)``;
+    critically or over-damped (``h >= 0``): ``1 / k``; undamped: ``inf``.
+    """
+    if damping <= 0.0:
+        return math.inf
+    a = 0.5 * damping
+    if a * a >= stiffness:
+        return 1.0 / stiffness
+    wd = math.sqrt(stiffness - a * a)
+    return 1.0 / (math.tanh(math.pi * a / (2.0 * wd)) * stiffness)
+
+
+def reduction(scene: Scene) -> tuple[str, Scene | None]:
+    """The smallest exact model for ``scene`` and, where it is the paper's, the paper scene to solve.
+
+    Returns
+    -------
+    (str, Scene or None)
+        A name from :data:`REDUCTIONS` and the equivalent paper-model scene (``None`` for
+        ``"general"``).
+    """
+    paper_keys = {"pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "floor": "base"}
+    if scene.paper_model:
+        return "paper", replace(scene, **paper_keys)
+    if scene.flexible:
+        return "general", None
+    if scene.pi3 == 0.0:
+        return "fixed-base", replace(scene, **paper_keys)
+    if scene.pi7 == 0.0:
+        demand = (1.0 + scene.pi8) * peak_accel(scene)
+        w = 2.0 * math.pi / scene.pi3
+        kd = w * w
+        if scene.isolator == "sliding" and demand <= scene.pi9:
+            return "bearing-stuck", replace(scene, pi3=0.0, pi4=0.0, **paper_keys)
+        if scene.isolator == "bilinear":
+            ke = scene.pi9 / scene.pi10
+            k = kd + ke
+            if ke * impulse_l1(k, 2.0 * scene.pi4 * w) * demand <= scene.pi9:
+                f = math.sqrt(kd / k)
+                return "bearing-elastic", replace(scene, pi3=scene.pi3 * f, pi4=scene.pi4 * f, **paper_keys)
+    return "general", None
+
+
+def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) -> np.ndarray:
+    """Model parameters of :func:`isoslide.building_kernel.run` for a general scene.
+
+    ``pi8`` overrides the scene's (0: one-way coupling); ``coulomb`` skips the Stribeck terms
+    (friction at the static level ``Pi2/Pi5`` at every speed).
+    """
+    P = np.zeros(bk.N_P)
+    flex = scene.flexible
+    mst = scene.pi11 if flex else 0.0
+    P[bk.P_MB] = 1.0 - mst
+    P[bk.P_MST] = mst
+    P[bk.P_M] = scene.pi8 if pi8 is None else pi8
+    if scene.pi3 > 0.0:
+        w = 2.0 * math.pi / scene.pi3
+        P[bk.P_KD] = w * w
+        P[bk.P_CB] = 2.0 * scene.pi4 * w
+        kind = {"linear": bk.KIND_LINEAR, "bilinear": bk.KIND_BILINEAR, "sliding": bk.KIND_SLIDING}[scene.isolator]
+    else:
+        kind = bk.KIND_FIXED
+    if flex:
+        ws = 2.0 * math.pi / scene.pi12
+        P[bk.P_KS] = mst * ws * ws
+        P[bk.P_CS] = 2.0 * scene.pi13 * ws * mst
+    P[bk.P_Q] = scene.pi9 if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else 0.0
+    P[bk.P_KE] = scene.pi9 / scene.pi10 if kind == bk.KIND_BILINEAR else 0.0
+    P[bk.P_THR] = scene.static_level
+    P[bk.P_PI2] = scene.pi2
+    P[bk.P_PI6] = scene.pi6
+    P[bk.P_PI7] = scene.pi7
+    P[bk.P_COULOMB] = 1.0 if coulomb else 0.0
+    P[bk.P_ROOF] = 1.0 if (flex and scene.floor == "roof") else 0.0
+    P[bk.P_KIND] = float(kind)
+    P[bk.P_FLEX] = 1.0 if flex else 0.0
+    return P
+
+
+def free_step(scene: Scene) -> float:
+    """Longest step after the pulse (units of T_p): an eighth of the shortest period followed.
+
+    The periods are the isolation period (the bilinear bearing's elastic one,
+    ``Pi3 sqrt(k_d / (k_d + k_e))``, when shorter) and the superstructure's; a pulse period
+    when there is none.
+    """
+    periods = [1.0]
+    if scene.pi3 > 0.0:
+        periods.append(scene.pi3)
+        if scene.isolator == "bilinear":
+            kd = (2.0 * math.pi / scene.pi3) ** 2
+            periods.append(scene.pi3 * math.sqrt(kd / (kd + scene.pi9 / scene.pi10)))
+    if scene.flexible:
+        periods.append(scene.pi12)
+    return min(periods) / 8.0

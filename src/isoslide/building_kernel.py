@@ -1,0 +1,829 @@
+"""Compiled event-driven kernel of the general building (numba).
+
+The general building of :mod:`isoslide.building` (the paper's Fig. 1-a): a slab
+on a hysteretic isolator, a rigid or flexible superstructure, and sliding
+contents on the slab ("base") or on the superstructure ("roof").  Units: time
+``T_p``, lengths ``a_p T_p^2``, accelerations ``a_p``, masses ``M_b``, forces
+``M_b a_p``; primes are ``d/dtau``.
+
+State ``y = [x, x', xs, xs', u, u', fh]``: slab displacement relative to the
+ground, superstructure displacement relative to the slab, block displacement
+relative to its floor, and the hysteretic isolator force (a state of the
+bilinear bearing only).  Two modes: the block's ``bm`` (0 stuck, +-1 sliding
+in that direction) and the isolator's ``im`` (0 stuck sliding bearing or
+elastic bilinear bearing, +-1 sliding or yielding).  Model parameters ``P``
+(indices ``P_*``) are set by :func:`isoslide.building.parameters`.
+
+Forces: isolator ``F = kd x + cb x' + fh``, superstructure ``S = ks xs + cs
+xs'``, friction of the block on its floor ``R`` (the block gets ``-R``)::
+
+    slab            mb Ab = -F + S + [R on the base]
+    superstructure  mst As = -S + [R on the roof]
+    block           m (A_F + u'') = -R
+
+with absolute accelerations ``Ab = p + x''``, ``As = Ab + xs''`` and the floor's
+``A_F``.  Every mode gives the accelerations explicitly (:func:`_accels`).  A
+stuck block has ``R = -m A_F`` and stays stuck while ``|A_F| <= thr``; a
+sliding one ``R = m s phi(|u'|)``.  A stuck sliding bearing holds the slab
+(``x' = x'' = 0``) with the force ``fh = -mb p - kd x + S + [R on the base]``
+while ``|fh| <= q``, and slides with ``fh = q sgn(x')``.  A bilinear bearing's
+``fh`` follows ``fh' = ke x'`` until ``|fh| = q`` and stays at ``+-q`` until
+``x'`` changes sign.
+
+Transitions (every one located to ~1e-13 T_p by safeguarded Newton on the step
+length, re-stepping from the accepted point): a stuck interface breaks away
+when its demand reaches its limit (the demand's interior peaks are found as
+roots of its rate); a sliding one stops when its speed returns to zero; a
+bilinear bearing yields at ``|fh| = q`` and unloads when ``x'`` changes sign.
+Breakaways and yielding keep every force continuous.  When a sliding interface
+stops, the force on the other jumps, so the modes of the interfaces at rest are
+chosen together (:func:`_select_modes`): the first consistent combination in
+the order all stuck, block stuck, bearing stuck, none stuck, where consistent
+means every stuck interface's needed force is within its limit and every
+sliding one accelerates in its own direction.
+
+Settlement (:func:`_settled`): after the pulse, with the block stuck and the
+isolator stuck or elastic, the free system is linear and its energy ``E``
+about its equilibrium cannot grow; every demand ``d = d0 + c.y`` obeys
+``|d| <= |d0| + sqrt(2 E c' P^-1 c)`` (``P`` the energy's quadratic form).
+Once every bound is within its limit nothing can slip or yield again.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .kernel import (ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
+                     _step_factor, hermite_root)
+from .pulses import accel_at, jerk_at
+
+NY = 7
+"""Length of the state vector."""
+Y_X, Y_XD, Y_XS, Y_XSD, Y_U, Y_UD, Y_FH = range(NY)
+
+(P_MB, P_MST, P_M, P_KD, P_CB, P_KS, P_CS, P_Q, P_KE, P_THR, P_PI2, P_PI6, P_PI7, P_COULOMB, P_ROOF,
+ P_KIND, P_FLEX) = range(17)
+N_P = 17
+"""Length of the model-parameter array."""
+
+KIND_LINEAR, KIND_BILINEAR, KIND_SLIDING, KIND_FIXED = range(4)
+"""Isolator kinds (``P[P_KIND]``): linear, bilinear bearing, sliding bearing, fixed base."""
+
+# integer results
+(R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_ISO_EVENTS, R_ISO_MOVED, R_REJECTED) = range(8)
+N_R = 8
+# float results
+F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX = range(6)
+N_F = 6
+# history columns
+H_TAU, H_X, H_XD, H_XS, H_XSD, H_U, H_UD, H_FH, H_PHASE, H_IPHASE = range(10)
+N_H = 10
+
+# event kinds
+EV_BLOCK, EV_BEAR, EV_YIELD, EV_BSPEED, EV_ISPEED, EV_BPEAK, EV_IPEAK, EV_XD = range(8)
+
+
+@njit(cache=True)
+def friction(v, P):
+    """Friction level ``phi(|v|)`` (units of a_p) and its derivative ``d phi / d|v|``."""
+    thr = P[P_THR]
+    if P[P_COULOMB] == 1.0:
+        return thr, 0.0
+    av = abs(v)
+    e = math.exp(-P[P_PI6] * av)
+    sech = 2.0 * e / (1.0 + e * e)
+    tanh = (1.0 - e * e) / (1.0 + e * e)
+    pi2 = P[P_PI2]
+    return (thr * sech + pi2 * (1.0 - sech) + P[P_PI7] * av,
+            -(thr - pi2) * P[P_PI6] * sech * tanh + P[P_PI7])
+
+
+@njit(cache=True)
+def _held(im, P):
+    """True while the slab is held to the ground (stuck sliding bearing, or a fixed base)."""
+    kind = P[P_KIND]
+    return kind == KIND_FIXED or (kind == KIND_SLIDING and im == 0.0)
+
+
+@njit(cache=True)
+def _hysteretic(im, y, P):
+    """Hysteretic isolator force of a moving slab (bilinear: the state; sliding: ``q im``)."""
+    kind = P[P_KIND]
+    if kind == KIND_BILINEAR:
+        return y[Y_FH]
+    if kind == KIND_SLIDING:
+        return P[P_Q] * im
+    return 0.0
+
+
+@njit(cache=True)
+def _accels(bm, im, p, y, P):
+    """Accelerations of a mode: ``(Ab, As, A_F, u'', fh, R)``.
+
+    ``Ab, As`` absolute slab and superstructure accelerations, ``A_F`` the
+    contents' floor's, ``u''`` the block's relative acceleration, ``fh`` the
+    hysteretic isolator force (for a held slab, the force that holds it) and
+    ``R`` the friction force of the block on its floor.
+    """
+    m = P[P_M]
+    mb = P[P_MB]
+    mst = P[P_MST]
+    roof = P[P_ROOF] != 0.0
+    flex = P[P_FLEX] != 0.0
+    S = P[P_KS] * y[Y_XS] + P[P_CS] * y[Y_XSD]
+    ph = 0.0
+    if bm != 0.0:
+        ph, _ = friction(y[Y_UD], P)
+    rs = m * bm * ph
+    if _held(im, P):
+        Ab = p
+        if roof:
+            As = -S / (mst + m) if bm == 0.0 else (-S + rs) / mst
+        else:
+            As = -S / mst if flex else Ab
+        AF = As if roof else Ab
+        R = rs if bm != 0.0 else -m * AF
+        fh = -mb * p - P[P_KD] * y[Y_X] + S + (0.0 if roof else R)
+    else:
+        fh = _hysteretic(im, y, P)
+        F = P[P_KD] * y[Y_X] + P[P_CB] * y[Y_XD] + fh
+        if roof:
+            Ab = (-F + S) / mb
+            As = -S / (mst + m) if bm == 0.0 else (-S + rs) / mst
+            AF = As
+        else:
+            Ab = (-F + S) / (mb + m) if bm == 0.0 else (-F + S + rs) / mb
+            As = -S / mst if flex else Ab
+            AF = Ab
+        R = rs if bm != 0.0 else -m * AF
+    udd = 0.0 if bm == 0.0 else -AF - bm * ph
+    return Ab, As, AF, udd, fh, R
+
+
+@njit(cache=True)
+def deriv(bm, im, tau, y, P, code, params, out):
+    """Right-hand side of the mode ``(bm, im)`` at ``(tau, y)``, written into ``out``."""
+    p = accel_at(code, params, tau)
+    Ab, As, AF, udd, fh, R = _accels(bm, im, p, y, P)
+    if _held(im, P):
+        out[Y_X] = 0.0
+        out[Y_XD] = 0.0
+    else:
+        out[Y_X] = y[Y_XD]
+        out[Y_XD] = Ab - p
+    out[Y_XS] = y[Y_XSD]
+    out[Y_XSD] = As - Ab
+    out[Y_U] = y[Y_UD]
+    out[Y_UD] = udd
+    out[Y_FH] = P[P_KE] * y[Y_XD] if (P[P_KIND] == KIND_BILINEAR and im == 0.0) else 0.0
+
+
+@njit(cache=True)
+def _floor_stuck(im, x, xd, xs, xsd, fh, p, P):
+    """Floor acceleration ``A_F`` of a stuck block (units of a_p).
+
+    Linear and homogeneous in ``(x, x', xs, xs', fh, p)``: given their rates it returns the rate.
+    """
+    m = P[P_M]
+    S = P[P_KS] * xs + P[P_CS] * xsd
+    if P[P_ROOF] != 0.0:
+        return -S / (P[P_MST] + m)
+    if _held(im, P):
+        return p
+    return (-(P[P_KD] * x + P[P_CB] * xd + fh) + S) / (P[P_MB] + m)
+
+
+@njit(cache=True)
+def _bearing_need(bm, x, xs, xsd, p, rs, P):
+    """Force (units of M_b a_p) that holds a stuck sliding bearing's slab to the ground.
+
+    ``rs = m bm phi`` is the sliding block's friction force; linear and homogeneous in
+    ``(x, xs, xs', p, rs)``: given their rates it returns the rate.
+    """
+    S = P[P_KS] * xs + P[P_CS] * xsd
+    r = 0.0
+    if P[P_ROOF] == 0.0:
+        r = rs if bm != 0.0 else -P[P_M] * p
+    return -P[P_MB] * p - P[P_KD] * x + S + r
+
+
+@njit(cache=True)
+def _event(kind, sig, bm, im, tau, y, P, code, params, work):
+    """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)``.
+
+    EV_BLOCK  ``sig A_F - thr`` (stuck block)      EV_BEAR  ``sig fh_need - q`` (stuck bearing)
+    EV_YIELD  ``sig fh - q`` (elastic bilinear)    EV_BSPEED ``bm u'``   EV_ISPEED ``im x'``
+    EV_BPEAK, EV_IPEAK: the rates of EV_BLOCK and EV_BEAR (derivative not given: NaN).
+    EV_XD     ``sig x'`` (the rate of an elastic bilinear bearing's ``sig fh``, over ``ke``)
+    """
+    deriv(bm, im, tau, y, P, code, params, work)
+    if kind == EV_XD:
+        return sig * y[Y_XD], sig * work[Y_XD]
+    if kind == EV_BSPEED:
+        return bm * y[Y_UD], bm * work[Y_UD]
+    if kind == EV_ISPEED:
+        return im * y[Y_XD], im * work[Y_XD]
+    if kind == EV_YIELD:
+        return sig * y[Y_FH] - P[P_Q], sig * P[P_KE] * y[Y_XD]
+    p = accel_at(code, params, tau)
+    pd = jerk_at(code, params, tau)
+    if kind == EV_BLOCK or kind == EV_BPEAK:
+        fh = _hysteretic(im, y, P)
+        g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], y[Y_XS], y[Y_XSD], fh, p, P) - P[P_THR]
+        dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], y[Y_XSD], work[Y_XSD], work[Y_FH], pd, P)
+        if kind == EV_BPEAK:
+            return dg, math.nan
+        return g, dg
+    # EV_BEAR / EV_IPEAK
+    rs = 0.0
+    rsd = 0.0
+    if bm != 0.0:
+        ph, dph = friction(y[Y_UD], P)
+        rs = P[P_M] * bm * ph
+        rsd = P[P_M] * dph * work[Y_UD]
+    g = sig * _bearing_need(bm, y[Y_X], y[Y_XS], y[Y_XSD], p, rs, P) - P[P_Q]
+    dg = sig * _bearing_need(bm, 0.0, y[Y_XSD], work[Y_XSD], pd, rsd, P)
+    if kind == EV_IPEAK:
+        return dg, math.nan
+    return g, dg
+
+
+# --- one Runge-Kutta step ---------------------------------------------------
+
+
+@njit(cache=True)
+def _error_scale(i, a, b, atol, rtol):
+    """Tolerance of state component ``i`` (the block's ``u, u'`` get ``atol * ATOL_SLIDE``)."""
+    return (atol * ATOL_SLIDE if (i == Y_U or i == Y_UD) else atol) + rtol * max(abs(a), abs(b))
+
+
+@njit(cache=True)
+def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
+    """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
+
+    ``K`` (``(NS + 1, NY)``) receives the stages, row ``NS`` the right-hand side at the step end;
+    stages at the step end see the pulse's left limit.
+    """
+    t_left = _left_limit(tau + h)
+    ys = np.empty(NY)
+    deriv(bm, im, tau, y, P, code, params, K[0])
+    for st in range(1, NS):
+        for i in range(NY):
+            acc = 0.0
+            for j in range(st):
+                acc += A[st, j] * K[j, i]
+            ys[i] = y[i] + h * acc
+        ts = t_left if C[st] == 1.0 else tau + C[st] * h
+        deriv(bm, im, ts, ys, P, code, params, K[st])
+    for i in range(NY):
+        acc = 0.0
+        for j in range(NS):
+            acc += B[j] * K[j, i]
+        ynew[i] = y[i] + h * acc
+    deriv(bm, im, t_left, ynew, P, code, params, K[NS])
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(NY):
+        sc = _error_scale(i, y[i], ynew[i], atol, rtol)
+        a5 = 0.0
+        a3 = 0.0
+        for j in range(NS + 1):
+            a5 += E5[j] * K[j, i]
+            a3 += E3[j] * K[j, i]
+        e5 += (a5 / sc) ** 2
+        e3 += (a3 / sc) ** 2
+    den = e5 + 0.01 * e3
+    if den == 0.0:
+        return 0.0
+    return abs(h) * e5 / math.sqrt(den * 4.0)
+
+
+@njit(cache=True)
+def verify(bm, im, tau, y, h, ycand, P, code, params, atol, rtol, K):
+    """Richardson check of one step: scaled error of ``ycand`` against two half steps."""
+    ya = np.empty(NY)
+    yb = np.empty(NY)
+    rk_step(bm, im, tau, y, 0.5 * h, P, code, params, atol, rtol, K, ya)
+    rk_step(bm, im, tau + 0.5 * h, ya, 0.5 * h, P, code, params, atol, rtol, K, yb)
+    e = 0.0
+    for i in range(NY):
+        e = max(e, abs(yb[i] - ycand[i]) / _error_scale(i, y[i], ycand[i], atol, rtol))
+    return e
+
+
+# --- events -------------------------------------------------------------------
+
+
+@njit(cache=True)
+def locate(kind, sig, bm, im, tau, y, ha, ga, hb, gb, h0, check, P, code, params, atol, rtol, K, yout, work,
+           cnt):
+    """Find ``h`` in ``(ha, hb]`` where the event ``kind`` vanishes (``ga``, ``gb`` of opposite sign).
+
+    Safeguarded Newton from ``h0`` (Illinois regula falsi without a derivative), each trial
+    re-stepping from the accepted point; stops when the correction is below 1e-13 (relative to
+    ``max(1, |tau|)``).  ``yout`` receives the state at the root; returns the step length and the
+    error estimate of that step (step doubling added when ``check``).
+    """
+    lo, glo, hi, ghi = ha, ga, hb, gb
+    side = 0
+    tol = 1e-13 * max(1.0, abs(tau))
+    h = h0
+    if not (lo < h < hi):
+        h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    res = hi
+    err = 0.0
+    on_res = False
+    for _it in range(100):
+        if not (lo < h < hi):
+            h = 0.5 * (lo + hi)
+        err = rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, yout)
+        cnt[0] += 1
+        g, dg = _event(kind, sig, bm, im, tau + h, yout, P, code, params, work)
+        if g == 0.0:
+            res, on_res = h, True
+            break
+        if (g > 0.0) == (glo > 0.0):
+            lo, glo = h, g
+            if side == -1:
+                ghi *= 0.5
+            side = -1
+        else:
+            hi, ghi = h, g
+            if side == 1:
+                glo *= 0.5
+            side = 1
+        if not math.isnan(dg) and dg != 0.0 and abs(g / dg) <= tol:
+            res, on_res = h, True
+            break
+        res = hi
+        if hi - lo <= tol:
+            break
+        if not math.isnan(dg) and dg != 0.0 and lo < h - g / dg < hi:
+            h = h - g / dg
+        else:
+            h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    if not on_res:
+        err = rk_step(bm, im, tau, y, res, P, code, params, atol, rtol, K, yout)
+        cnt[0] += 1
+    if check and err <= 1.0:
+        err = max(err, verify(bm, im, tau, y, res, yout, P, code, params, atol, rtol, K))
+        cnt[0] += 2
+    return res, err
+
+
+@njit(cache=True)
+def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code, params, atol, rtol, check, K, ye,
+                  work, cnt):
+    """First root of a demand event ``kind`` (EV_BLOCK or EV_BEAR, sign ``sig``) in the accepted step.
+
+    Found directly when the step ends above the limit, or past an interior peak of the demand
+    (a root of its rate, ``peak`` the kind that evaluates it) whose cubic Hermite estimate comes
+    within 1 % of the limit.  Returns ``(found, hs, herr)``; ``ye`` holds the state there.
+    """
+    g0, r0 = _event(kind, sig, bm, im, tau, y, P, code, params, work)
+    g1, r1 = _event(kind, sig, bm, im, t_end, y1, P, code, params, work)
+    if g1 > 0.0:
+        if g0 >= 0.0:
+            for i in range(NY):
+                ye[i] = y[i]
+            return True, 0.0, 0.0
+        h0 = hermite_root(g0, r0, g1, r1, h)
+        hs, herr = locate(kind, sig, bm, im, tau, y, 0.0, g0, h, g1, h0, check, P, code, params, atol, rtol,
+                          K, ye, work, cnt)
+        return True, hs, herr
+    if not (r0 > 0.0 and r1 < 0.0):
+        return False, 0.0, 0.0
+    if _hermite_max(g0, r0, g1, r1, h) < -1e-2 * limit:
+        return False, 0.0, 0.0
+    hm, herr = locate(peak, sig, bm, im, tau, y, 0.0, r0, h, r1, -1.0, False, P, code, params, atol, rtol,
+                      K, ye, work, cnt)
+    gm, _ = _event(kind, sig, bm, im, tau + hm, ye, P, code, params, work)
+    if gm <= 0.0:
+        return False, 0.0, 0.0
+    hs, herr = locate(kind, sig, bm, im, tau, y, 0.0, g0, hm, gm, -1.0, check, P, code, params, atol, rtol,
+                      K, ye, work, cnt)
+    return True, hs, herr
+
+
+@njit(cache=True)
+def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, params, atol, rtol, K, ye, work,
+                 cnt):
+    """End of a sliding (or yielding) phase inside the accepted step: ``g1 <= 0`` (rate ``r1``) at its end.
+
+    When the phase began at the step's start (``just_started``, speed 0) an interior point of
+    positive speed is found first by halving; without one the phase ends at once.
+    Returns ``(hs, herr)``; ``ye`` holds the state there.
+    """
+    g0, r0 = _event(kind, 0.0, bm, im, tau, y, P, code, params, work)
+    if just_started or g0 <= 0.0:
+        hp = h
+        gp = g1
+        for _k in range(200):
+            hp *= 0.5
+            rk_step(bm, im, tau, y, hp, P, code, params, atol, rtol, K, ye)
+            cnt[0] += 1
+            gp, _ = _event(kind, 0.0, bm, im, tau + hp, ye, P, code, params, work)
+            if gp > 0.0 or hp < 1e-300:
+                break
+        if gp > 0.0:
+            return locate(kind, 0.0, bm, im, tau, y, hp, gp, h, g1, -1.0, check, P, code, params, atol, rtol,
+                          K, ye, work, cnt)
+        for i in range(NY):
+            ye[i] = y[i]
+        return 0.0, 0.0
+    h0 = hermite_root(g0, r0, g1, r1, h)
+    return locate(kind, 0.0, bm, im, tau, y, 0.0, g0, h, g1, h0, check, P, code, params, atol, rtol, K, ye,
+                  work, cnt)
+
+
+# --- modes ----------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _consistent(b, i, free_b, free_i, p, y, P):
+    """Whether the modes ``(b, i)`` are consistent at a state where the free interfaces are at rest."""
+    Ab, As, AF, udd, fh, R = _accels(b, i, p, y, P)
+    if free_b:
+        if b == 0.0:
+            if abs(AF) > P[P_THR]:
+                return False
+        elif not b * udd > 0.0:
+            return False
+    if free_i:
+        if i == 0.0:
+            if abs(fh) > P[P_Q]:
+                return False
+        elif not i * (Ab - p) > 0.0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _select_modes(bm, im, free_b, free_i, tau, y, P, code, params):
+    """Modes of the interfaces at rest (``free_b``: the block, ``free_i``: a sliding bearing).
+
+    The first consistent combination with the fewest sliding interfaces, in the order stuck,
+    +1, -1 (see the module docstring); if none is (round-off at a limit), each free interface
+    slides in the direction its stuck demand pushes it.
+    """
+    p = accel_at(code, params, tau)
+    cands = (0.0, 1.0, -1.0)
+    for nslide in range(3):
+        for b in cands:
+            if not free_b and b != bm:
+                continue
+            for i in cands:
+                if not free_i and i != im:
+                    continue
+                n = (1 if (free_b and b != 0.0) else 0) + (1 if (free_i and i != 0.0) else 0)
+                if n != nslide:
+                    continue
+                if _consistent(b, i, free_b, free_i, p, y, P):
+                    return b, i
+    b = bm
+    i = im
+    if free_b:
+        AF = _accels(0.0, im if not free_i else 0.0, p, y, P)[2]
+        b = -1.0 if AF > 0.0 else 1.0
+    if free_i:
+        fh = _accels(bm if not free_b else 0.0, 0.0, p, y, P)[4]
+        i = 1.0 if fh > 0.0 else -1.0
+    return b, i
+
+
+@njit(cache=True)
+def _settled(bm, im, y, P):
+    """True when, after the pulse, nothing can slip or yield again (see the module docstring)."""
+    if bm != 0.0:
+        return False
+    kind = P[P_KIND]
+    if kind == KIND_SLIDING and im != 0.0:
+        return False
+    if kind == KIND_BILINEAR and im != 0.0:
+        return False
+    m = P[P_M]
+    roof = P[P_ROOF] != 0.0
+    flex = P[P_FLEX] != 0.0
+    ks = P[P_KS]
+    cs = P[P_CS]
+    thr = P[P_THR]
+    xs = y[Y_XS]
+    xsd = y[Y_XSD]
+    if _held(im, P):
+        if not flex:
+            return True
+        mst = P[P_MST] + (m if roof else 0.0)
+        energy = 0.5 * mst * xsd * xsd + 0.5 * ks * xs * xs
+        smax = math.sqrt(2.0 * energy * (ks + cs * cs / mst))
+        if roof and smax / mst > thr:
+            return False
+        if kind == KIND_SLIDING and abs(P[P_KD] * y[Y_X]) + smax > P[P_Q]:
+            return False
+        return True
+    kd = P[P_KD]
+    ke = P[P_KE] if kind == KIND_BILINEAR else 0.0
+    kk = kd + ke
+    x = y[Y_X]
+    xd = y[Y_XD]
+    d0 = 0.0
+    xstar = 0.0
+    if kind == KIND_BILINEAR:
+        xp = x - y[Y_FH] / ke
+        xstar = ke * xp / kk
+        d0 = ke * (xstar - xp)
+    dx = x - xstar
+    mslab = P[P_MB] + (0.0 if roof else m)
+    mst = P[P_MST] + (m if roof else 0.0)
+    energy = 0.5 * kk * dx * dx + 0.5 * mslab * xd * xd
+    if flex:
+        energy += 0.5 * ks * xs * xs + 0.5 * mst * (xd + xsd) ** 2
+    # c' P^-1 c for c = (c_dx, c_xs, c_xd, c_xsd): positions diag(kk, ks), velocities
+    # [[mslab + mst, mst], [mst, mst]] with inverse [[1, -1], [-1, (mslab + mst) / mst]] / mslab
+    if roof:
+        c = (0.0, -ks / mst, 0.0, -cs / mst)
+    else:
+        den = P[P_MB] + m
+        c = (-kk / den, ks / den, -P[P_CB] / den, cs / den)
+    q = c[0] * c[0] / kk + c[2] * c[2] / mslab
+    if flex:
+        q += c[1] * c[1] / ks + (-2.0 * c[2] * c[3] + c[3] * c[3] * (mslab + mst) / mst) / mslab
+    if math.sqrt(2.0 * energy * q) > thr:
+        return False
+    if kind == KIND_BILINEAR and abs(d0) + math.sqrt(2.0 * energy * ke * ke / kk) > P[P_Q]:
+        return False
+    return True
+
+
+# --- one scene ------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params):
+    """Append ``[tau, x, x', xs, xs', u, u', fh, bm, im]`` to the history while it has room."""
+    if nh < hist_cap:
+        hist[nh, H_TAU] = tau
+        for i in range(Y_FH):
+            hist[nh, H_X + i] = y[i]
+        hist[nh, H_FH] = _accels(bm, im, accel_at(code, params, tau), y, P)[4]
+        hist[nh, H_PHASE] = bm
+        hist[nh, H_IPHASE] = im
+        return nh + 1
+    return nh
+
+
+@njit(cache=True)
+def _copy(dst, src):
+    for i in range(NY):
+        dst[i] = src[i]
+
+
+@njit(cache=True)
+def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol,
+        hist_cap, h_restart, settle, max_steps):
+    """Integrate one general scene from rest at ``tau_start`` (see the module docstring).
+
+    Arguments as :func:`isoslide.kernel.run` (without ``track_max``), with the model parameters
+    ``P`` of :func:`isoslide.building.parameters`.
+
+    Returns
+    -------
+    ints : ndarray of int64, shape (N_R,)
+        ``R_STEPS`` Runge-Kutta steps of every kind, ``R_EVENTS`` block transitions,
+        ``R_SETTLED``, ``R_SLIPPED`` (the block slid), ``R_HIST`` history rows,
+        ``R_ISO_EVENTS`` isolator transitions, ``R_ISO_MOVED`` (the bearing slid or yielded),
+        ``R_REJECTED`` rejected steps.
+    floats : ndarray of float64, shape (N_F,)
+        ``F_UMAX`` (= Pi1), ``F_TPEAK``, ``F_URES`` (final u), ``F_TEND``, ``F_XMAX`` largest
+        ``|x|`` at step ends and transitions, ``F_VMAX`` largest ``|u'|`` at step ends.
+    hist : ndarray, shape (ints[R_HIST], N_H)
+        Rows ``[tau, x, x', xs, xs', u, u', fh, bm, im]``.
+    """
+    thr = P[P_THR]
+    q = P[P_Q]
+    kind = P[P_KIND]
+    y = np.zeros(NY)
+    y1 = np.empty(NY)
+    ye = np.empty(NY)
+    yb = np.empty(NY)
+    K = np.empty((NS + 1, NY))
+    work = np.empty(NY)
+    cnt = np.zeros(1, dtype=np.int64)
+    hist = np.empty((hist_cap if hist_cap > 0 else 1, N_H))
+    tau = tau_start
+    bm = 0.0
+    im = 0.0
+    b_just = False
+    i_just = False
+    umax = 0.0
+    tpeak = tau_start
+    xmax = 0.0
+    vmax = 0.0
+    steps = 0
+    rejected = 0
+    events = 0
+    iso_events = 0
+    settled = False
+    slipped = False
+    moved = False
+    h = h_restart
+    hlast = h_restart
+    ib = 0
+    nb = breakpoints.shape[0]
+    nh = _record(hist, 0, hist_cap, tau, y, bm, im, P, code, params)
+    zone = 0.0
+    if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < thr:
+        zone = 30.0 / P[P_PI6]
+    check = zone > 0.0
+    while True:
+        # --- mode checks at the accepted point (round-off past a limit) ---------
+        p_now = accel_at(code, params, tau)
+        if bm == 0.0 or (kind == KIND_SLIDING and im == 0.0):
+            Ab, As, AF, udd, fh, R = _accels(bm, im, p_now, y, P)
+            free_b = bm == 0.0 and abs(AF) > thr
+            free_i = kind == KIND_SLIDING and im == 0.0 and abs(fh) > q
+            if free_b or free_i:
+                nb_, ni_ = _select_modes(bm, im, free_b, free_i, tau, y, P, code, params)
+                if nb_ != bm:
+                    bm, b_just, slipped = nb_, True, True
+                    events += 1
+                if ni_ != im:
+                    im, i_just, moved = ni_, True, True
+                    iso_events += 1
+        if kind == KIND_BILINEAR and im == 0.0 and abs(y[Y_FH]) > q:
+            im = 1.0 if y[Y_FH] > 0.0 else -1.0
+            y[Y_FH] = im * q
+            moved = True
+            iso_events += 1
+        if tau >= tau_end and _settled(bm, im, y, P):
+            settled = True
+            if settle:
+                break
+        if tau >= tau_stop or steps + cnt[0] > max_steps:
+            break
+        # --- step length ---------------------------------------------------------
+        while ib < nb and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
+            ib += 1
+        hmax = h_max_pulse if tau < tau_end else h_max_free
+        h = min(h, hmax)
+        target = tau_stop
+        if ib < nb and breakpoints[ib] < target:
+            target = breakpoints[ib]
+        hit_target = False
+        if tau + h >= target:
+            h = target - tau
+            hit_target = True
+        # --- attempt until accepted ------------------------------------------------
+        while True:
+            err = rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, y1)
+            steps += 1
+            if err <= 1.0 and bm != 0.0 and zone > 0.0 and (
+                    min(abs(y[Y_UD]), abs(y1[Y_UD])) < zone or y[Y_UD] * y1[Y_UD] <= 0.0):
+                err = max(err, verify(bm, im, tau, y, h, y1, P, code, params, atol, rtol, K))
+                steps += 2
+            if err <= 1.0:
+                break
+            rejected += 1
+            h *= _step_factor(err)
+            hit_target = False
+        hnext = _next_step(h, err)
+        tnew = target if hit_target else tau + h
+        t_end_step = _left_limit(tnew)
+        # --- events inside the step: the earliest --------------------------------
+        best = -1
+        best_sig = 0.0
+        hbest = math.inf
+        herr_best = 0.0
+        if bm == 0.0:
+            for sig in (1.0, -1.0):
+                found, hs, herr = _demand_event(EV_BLOCK, EV_BPEAK, thr, sig, bm, im, tau, y, y1, h, t_end_step,
+                                                P, code, params, atol, rtol, check, K, ye, work, cnt)
+                if found and hs < hbest:
+                    best, best_sig, hbest, herr_best = EV_BLOCK, sig, hs, herr
+                    _copy(yb, ye)
+        else:
+            g1, r1 = _event(EV_BSPEED, 0.0, bm, im, t_end_step, y1, P, code, params, work)
+            if g1 <= 0.0:
+                hs, herr = _speed_event(EV_BSPEED, bm, im, tau, y, h, g1, r1, b_just, check, P, code, params,
+                                        atol, rtol, K, ye, work, cnt)
+                if hs < hbest:
+                    best, hbest, herr_best = EV_BSPEED, hs, herr
+                    _copy(yb, ye)
+        if kind == KIND_SLIDING and im == 0.0:
+            for sig in (1.0, -1.0):
+                found, hs, herr = _demand_event(EV_BEAR, EV_IPEAK, q, sig, bm, im, tau, y, y1, h, t_end_step,
+                                                P, code, params, atol, rtol, check, K, ye, work, cnt)
+                if found and hs < hbest:
+                    best, best_sig, hbest, herr_best = EV_BEAR, sig, hs, herr
+                    _copy(yb, ye)
+        elif kind == KIND_BILINEAR and im == 0.0:
+            for sig in (1.0, -1.0):
+                g0, r0 = _event(EV_YIELD, sig, bm, im, tau, y, P, code, params, work)
+                g1, r1 = _event(EV_YIELD, sig, bm, im, t_end_step, y1, P, code, params, work)
+                if g1 > 0.0:
+                    if g0 >= 0.0:
+                        hs, herr = 0.0, 0.0
+                        _copy(ye, y)
+                    else:
+                        hs, herr = locate(EV_YIELD, sig, bm, im, tau, y, 0.0, g0, h, g1,
+                                          hermite_root(g0, r0, g1, r1, h), check, P, code, params, atol, rtol,
+                                          K, ye, work, cnt)
+                    if hs < hbest:
+                        best, best_sig, hbest, herr_best = EV_YIELD, sig, hs, herr
+                        _copy(yb, ye)
+                elif r0 > 0.0 and r1 < 0.0 and _hermite_max(g0, r0, g1, r1, h) >= -1e-2 * q:
+                    # an interior peak of sig fh: where x' = 0
+                    hm, herr = locate(EV_XD, sig, bm, im, tau, y, 0.0, sig * y[Y_XD], h,
+                                      sig * y1[Y_XD], -1.0, False, P, code, params, atol, rtol, K, ye, work, cnt)
+                    gm = sig * ye[Y_FH] - q
+                    if gm > 0.0:
+                        hs, herr = locate(EV_YIELD, sig, bm, im, tau, y, 0.0, g0, hm, gm, -1.0, check, P, code,
+                                          params, atol, rtol, K, ye, work, cnt)
+                        if hs < hbest:
+                            best, best_sig, hbest, herr_best = EV_YIELD, sig, hs, herr
+                            _copy(yb, ye)
+        elif kind == KIND_SLIDING or kind == KIND_BILINEAR:
+            g1, r1 = _event(EV_ISPEED, 0.0, bm, im, t_end_step, y1, P, code, params, work)
+            if g1 <= 0.0:
+                hs, herr = _speed_event(EV_ISPEED, bm, im, tau, y, h, g1, r1, i_just, check, P, code, params,
+                                        atol, rtol, K, ye, work, cnt)
+                if hs < hbest:
+                    best, hbest, herr_best = EV_ISPEED, hs, herr
+                    _copy(yb, ye)
+        if best >= 0:
+            if herr_best > 1.0:
+                h = 0.5 * hbest
+                continue
+            tau = tau + hbest
+            _copy(y, yb)
+            xmax = max(xmax, abs(y[Y_X]))
+            short = check
+            if best == EV_BLOCK:
+                bm, b_just, slipped = -best_sig, True, True
+                events += 1
+            elif best == EV_BEAR:
+                im, i_just, moved = best_sig, True, True
+                y[Y_XD] = 0.0
+                iso_events += 1
+            elif best == EV_YIELD:
+                im, moved = best_sig, True
+                y[Y_FH] = best_sig * q
+                i_just = False
+                iso_events += 1
+            elif best == EV_BSPEED:
+                y[Y_UD] = 0.0
+                events += 1
+                if abs(y[Y_U]) > umax:
+                    umax, tpeak = abs(y[Y_U]), tau
+                free_i = kind == KIND_SLIDING and im == 0.0
+                bm, ni_ = _select_modes(bm, im, True, free_i, tau, y, P, code, params)
+                b_just = bm != 0.0
+                if ni_ != im:
+                    im, i_just, moved = ni_, True, True
+                    iso_events += 1
+                short = check and bm != 0.0
+            else:  # EV_ISPEED
+                y[Y_XD] = 0.0
+                iso_events += 1
+                if kind == KIND_SLIDING:
+                    free_b = bm == 0.0
+                    nb_, im = _select_modes(bm, im, free_b, True, tau, y, P, code, params)
+                    i_just = im != 0.0
+                    if nb_ != bm:
+                        bm, b_just, slipped = nb_, True, True
+                        events += 1
+                else:
+                    # a yielding bilinear bearing unloads unless x' only touches zero
+                    Ab, As, AF, udd, fh, R = _accels(bm, im, accel_at(code, params, tau), y, P)
+                    if im * (Ab - accel_at(code, params, tau)) > 0.0:
+                        i_just = True
+                    else:
+                        im, i_just = 0.0, False
+            h = h_restart if short else max(h_restart, 0.5 * hlast)
+            nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+            continue
+        if bm != 0.0:
+            b_just = False
+            if abs(y1[Y_UD]) > vmax:
+                vmax = abs(y1[Y_UD])
+        if im != 0.0:
+            i_just = False
+        # --- accept -----------------------------------------------------------------
+        tau = tnew
+        _copy(y, y1)
+        if bm == 0.0:
+            y[Y_UD] = 0.0
+        if _held(im, P):
+            y[Y_XD] = 0.0
+        xmax = max(xmax, abs(y[Y_X]))
+        hlast = h
+        h = hnext
+        nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+    if not settled and bm != 0.0 and abs(y[Y_U]) > umax:
+        umax, tpeak = abs(y[Y_U]), tau
+    ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh, iso_events,
+                     1 if moved else 0, rejected], dtype=np.int64)
+    floats = np.array([umax, tpeak, y[Y_U], tau, xmax, vmax])
+    return ints, floats, hist[:nh]
