@@ -37,7 +37,8 @@ The smallest exact model (:func:`reduction`)
     ``Pi9 = 0`` and ``Pi12 = 0``: the paper's model, solved by
     :mod:`isoslide.kernel` (the contents' floor makes no difference).
 ``fixed-base``
-    ``Pi3 = 0`` with a rigid superstructure: the isolator has no effect.
+    ``Pi3 = 0`` with the contents on the slab (or a rigid superstructure): the slab moves with
+    the ground, so neither the isolator nor the superstructure acts on the contents.
 ``bearing-stuck``
     A sliding bearing under a rigid superstructure that provably never slips:
     the force holding the slab is ``-(p + R)`` with ``|R| <= Pi8 max|p|`` for
@@ -113,10 +114,10 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
     paper_keys = {"pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "floor": "base"}
     if scene.paper_model:
         return "paper", replace(scene, **paper_keys)
+    if scene.pi3 == 0.0 and not (scene.flexible and scene.floor == "roof"):
+        return "fixed-base", replace(scene, **paper_keys)
     if scene.flexible:
         return "general", None
-    if scene.pi3 == 0.0:
-        return "fixed-base", replace(scene, **paper_keys)
     if scene.pi7 == 0.0:
         demand = (1.0 + scene.pi8) * peak_accel(scene)
         w = 2.0 * math.pi / scene.pi3

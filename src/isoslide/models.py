@@ -37,6 +37,10 @@ The general building (:mod:`isoslide.building`) adds, in front of the friction p
     base) or the bilinear bearing never yields (the paper's linear isolator of its initial
     stiffness); followed by the paper model's label, e.g. ``bearing-stuck+fixed-base+coulomb``.
 
+A general building runs Coulomb or Stribeck friction (``static-kinetic`` is the paper model's
+limit only); a fixed base (``Pi3 = 0``) is a general building only with the contents on a
+flexible superstructure's roof.
+
 The position of a label in :data:`MODEL_LABELS` is its code in the ``model``
 flag variable of every dataset; codes never change, new labels are appended.
 """
@@ -153,23 +157,21 @@ def building_label(isolator: str, flexible: bool, roof: bool, noslide: bool, fri
 
 def _building_labels() -> tuple:
     out = []
+    supers = ((False, False), (True, False), (True, True))
     for iso in ISOLATOR_PARTS:
-        for flexible, roof in ((False, False), (True, False), (True, True)):
-            if iso == "linear" and not flexible:
+        for flexible, roof in supers:
+            if (iso == "linear" and not flexible) or (iso == "fixed-base" and not roof):
                 continue   # the paper's model
-            if iso == "fixed-base" and not flexible:
-                continue   # the paper's fixed base
             for noslide in (True, False):
-                for friction in FRICTION_MODELS:
+                for friction in FRICTION_MODELS[:2]:
                     for oneway in (False, True):
                         name = building_label(iso, flexible, roof, noslide, friction, oneway)
                         if name not in out:
                             out.append(name)
-    paper = _STABLE[:8] + tuple(n for n in _exact_labels() + PIECEWISE_LABELS if n not in _STABLE)
+    paper = [n for n in _exact_labels() + PIECEWISE_LABELS if "static-kinetic" not in n]
     for red in BEARING_REDUCTIONS:
-        for name in paper:
-            if name not in PEER_LABELS:
-                out.append(f"{red}+{name}")
+        fixed = red == "bearing-stuck"
+        out += [f"{red}+{n}" for n in paper if n.startswith("fixed-base") == fixed]
     return tuple(out)
 
 

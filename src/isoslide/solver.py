@@ -271,11 +271,14 @@ def step_budget(scene: Scene, horizon: float = DEFAULT_HORIZON) -> int:
     """Most Runge-Kutta steps one run of a scene may take.
 
     ``STEPS_PER_PERIOD`` per isolation period followed (a stiff undamped base is followed for up to
-    ``horizon / Pi3`` periods, each with its own breakaways), and never fewer than
+    ``horizon / Pi3`` periods, each with its own breakaways; the superstructure's period ``Pi12``
+    counts when it is shorter), and never fewer than
     :data:`isoslide.kernel.MAX_STEPS`.  A run that needs more raises :class:`StepBudgetError`.
     """
     span = _horizon(scene, horizon) - scene.pulse.tau_start
     periods = span / scene.pi3 if scene.pi3 > 0.0 else span
+    if scene.flexible:
+        periods = max(periods, span / scene.pi12)
     return int(max(kernel.MAX_STEPS, min(STEPS_PER_PERIOD * periods, 1e12)))
 
 
@@ -583,7 +586,7 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
                model: str = "auto") -> Batch:
     """Solve many scenes (the parameter sweeps use this).
 
-    Scenes that share a base (``Pi3, Pi4, Pi8`` and pulse) share one
+    Scenes of the paper's model that share a base (``Pi3, Pi4, Pi8`` and pulse) share one
     computation of the stuck system's peak demand; every scene whose static
     threshold ``Pi2/Pi5`` exceeds it is answered ``Pi1 = 0`` (model
     ``no-slide``) without integrating anything.  Progress (scenes done, rate,
@@ -612,7 +615,7 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
         if not isinstance(sc, Scene):
             raise TypeError(f"scenes[{i}] must be an isoslide.Scene, got {type(sc).__name__}")
         key = (sc.pi3, sc.pi4, 0.0 if sc.pi3 == 0 else sc.pi8, sc.pulse)
-        if model == "auto":
+        if model == "auto" and sc.paper_model:
             if key not in demand:
                 demand[key] = peak_stuck_demand(sc, rtol, horizon)
             if sc.static_level > demand[key] * (1.0 + 1e-9):

@@ -35,26 +35,30 @@ FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 # import closure of its scripts.
 CODE_MODULES = {
     # solve_chunk, merge_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
-    "solve": ["budget", "config", "datasets", "dop853", "groups", "history", "kernel", "models", "peers", "piecewise",
-              "progress", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
+    "solve": ["budget", "building", "building_kernel", "config", "datasets", "dop853", "groups", "history",
+              "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene", "solver",
+              "sweep", "validation"],
     # similarity_study, similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
     "similarity": ["budget", "claims", "datasets", "groups", "history", "models", "peers", "provenance", "pulses",
                    "scene", "similarity", "validation"],
     # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
-    "records": ["budget", "datasets", "dop853", "groups", "history", "kernel", "models", "peers", "piecewise", "progress",
-                "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
+    "records": ["budget", "building", "building_kernel", "datasets", "dop853", "groups", "history", "kernel",
+                "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study", "records",
+                "scene", "solver", "validation"],
     # figure, figure_records (isoslide.figures)
-    "figures": ["budget", "datasets", "dop853", "figures", "groups", "history", "kernel", "models", "peers", "piecewise",
-                "progress", "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
+    "figures": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups", "history",
+                "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study",
+                "records", "scene", "solver", "validation"],
     # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
-    "accuracy": ["accuracy", "budget", "config", "datasets", "dop853", "groups", "history", "kernel", "models",
-                 "peers", "piecewise", "progress", "provenance", "pulses", "scene", "solver", "sweep", "validation"],
+    "accuracy": ["accuracy", "budget", "building", "building_kernel", "config", "datasets", "dop853", "groups",
+                 "history", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene",
+                 "solver", "sweep", "validation"],
     # index_page (isoslide.index_page)
     "index": ["budget", "index_page", "provenance"],
     # fragility_chunk, fragility_dataset (isoslide.fragility_study)
-    "fragility": ["budget", "datasets", "dop853", "fragility", "fragility_study", "groups", "history", "history_io",
-                  "intensity", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses",
-                  "record_study", "records", "scene", "solver", "validation"],
+    "fragility": ["budget", "building", "building_kernel", "datasets", "dop853", "fragility", "fragility_study",
+                  "groups", "history", "history_io", "intensity", "kernel", "models", "peers", "piecewise",
+                  "progress", "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
     # fragility_figure; the fragility report (isoslide.fragility_plot, datasets.open_dataset)
     "fragility_plot": ["budget", "datasets", "fragility", "fragility_plot", "groups", "models", "provenance",
                        "validation"],

@@ -22,13 +22,25 @@ DOMAIN = {
     "pi6": (0.0, 1e7, "0 (Coulomb with mu_s) to 1e7 (practically a jump from mu_s to mu_k)"),
     "pi7": (0.0, 100.0, "0 to 100 (friction dominated by the viscous term)"),
     "pi8": (0.0, 10.0, "0 (one-way coupling) to 10 (contents ten times the isolated mass)"),
+    "pi9": (0.0, 10.0, "0 (linear isolator) to 10 (a bearing ten times as strong as the pulse's force)"),
+    "pi10": (0.0, 1.0, "0 (sliding bearing, true stick) to 1 (yield displacement of the pulse's length)"),
+    "pi11": (0.01, 0.95, "0.01 (light superstructure) to 0.95 (nearly all the isolated mass)"),
+    "pi12": (0.0, 10.0, "0 (rigid superstructure), 0.01 (very stiff) to 10 (very flexible)"),
+    "pi13": (0.0, 1.0, "0 (undamped superstructure) to 1 (critically damped)"),
 }
 """The domain over which isoslide is tested (``tests/test_extremes.py``) and mapped
 (:func:`domain_map`): (low, high, meaning).  The valid range of each group in
 :data:`isoslide.groups.GROUPS` is the (wider) domain a Scene accepts."""
 
-MAP_BASE = {"pi2": 0.1, "pi3": 1.0, "pi4": 0.1, "pi5": 0.7, "pi6": 1000.0, "pi7": 0.0, "pi8": 1e-3}
-"""Base scene of the 1-D sweeps of :func:`domain_map` (Stribeck friction, resonance)."""
+MAP_BASE = {"pi2": 0.1, "pi3": 1.0, "pi4": 0.1, "pi5": 0.7, "pi6": 1000.0, "pi7": 0.0, "pi8": 1e-3,
+            "pi11": 0.5}
+"""Base scene of the 1-D sweeps of :func:`domain_map` (Stribeck friction, resonance; the paper's
+model: ``pi11`` is read only with a flexible superstructure)."""
+
+MAP_COMPANIONS = {"pi10": {"pi9": 0.1}, "pi11": {"pi12": 0.2, "pi13": 0.02},
+                  "pi12": {"pi13": 0.02}, "pi13": {"pi12": 0.2}}
+"""Groups set beside a swept one so that it acts: a bearing for ``pi10``, a flexible
+superstructure for ``pi11`` and ``pi13``."""
 
 
 def map_values(group: str, npts: int = 9) -> np.ndarray:
@@ -40,6 +52,8 @@ def map_values(group: str, npts: int = 9) -> np.ndarray:
         return np.concatenate([[0.0], np.logspace(-3, 1, npts - 1)])
     if group == "pi3":
         return np.concatenate([[0.0], np.logspace(-3, 2, npts - 1)])
+    if group == "pi12":
+        return np.concatenate([[0.0], np.logspace(-2, 1, npts - 1)])
     if lo == 0.0:
         return np.concatenate([[0.0], np.logspace(-3 if group != "pi6" else -1, math.log10(hi), npts - 1)])
     return np.logspace(math.log10(lo), math.log10(hi), npts)
@@ -67,6 +81,7 @@ def domain_map(settings: dict, base: dict | None = None) -> xr.Dataset:
     for g, name in enumerate(groups):
         for k, v in enumerate(map_values(name, npts)):
             kw = dict(base)
+            kw.update(MAP_COMPANIONS[name] if name in MAP_COMPANIONS else {})
             kw[name] = float(v)
             if kw["pi3"] == 0.0:
                 kw["pi4"] = 0.0

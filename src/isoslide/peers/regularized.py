@@ -133,6 +133,9 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
         counts elastic -> plastic switches between accepted steps (an estimate of the
         number of slip phases; no events are located); cost in ``nfev``, ``njev``, ``n_steps``.
     """
+    if not scene.paper_model:
+        raise ValueError(f"method = 'regularized' solves the paper's model only (pi9 = 0 and pi12 = 0); "
+                         f"got pi9 = {scene.pi9!r}, pi12 = {scene.pi12!r}")
     if method not in ("Radau", "BDF"):
         raise ValueError(f"method = {method!r} is invalid; allowed: 'Radau' or 'BDF' "
                          "(LSODA stalls at slip onsets)")
