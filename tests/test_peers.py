@@ -14,6 +14,8 @@ from isoslide.similarity import physical_parameters
 SCENE = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1)   # resonance, Coulomb: every peer can run it
 HORIZON = 10.0                                       # T_p after the pulse
 SOLVER_FIELDS = ["tau", "x", "xd", "u", "ud", "phase"]
+BUILDING_FIELDS = ["xs", "xsd", "fh", "iso_phase"]
+"""Optional states of a general building (None for the paper's model)."""
 
 
 def _run(name, history=True):
@@ -46,7 +48,8 @@ def test_every_peer_returns_a_peer_result_with_the_solvers_history(name, exact):
     assert isinstance(res, PeerResult) and res.method == name
     h = res.history
     assert isinstance(h, History) and History is solver.History
-    assert [f.name for f in dataclasses.fields(h)] == SOLVER_FIELDS
+    assert [f.name for f in dataclasses.fields(h)] == SOLVER_FIELDS + BUILDING_FIELDS
+    assert all(getattr(h, f) is None for f in BUILDING_FIELDS)
     assert all(getattr(h, f).shape == h.tau.shape for f in SOLVER_FIELDS)
     assert h.phase.dtype == np.int8 and set(np.unique(h.phase)) == {-1, 0, 1}
     assert np.all(np.diff(h.tau) >= 0.0)

@@ -50,7 +50,7 @@ import xarray as xr
 from . import solver
 from .config import ConfigError
 from .datasets import chunk_dataset, merge_chunks, open_dataset
-from .groups import INPUT_NAMES, group
+from .groups import BUILDING_NAMES, INPUT_NAMES, group
 from .progress import Progress
 from .pulses import get_pulse
 from .scene import Scene
@@ -256,8 +256,19 @@ def normalise_study(name: str, study: dict, config: dict) -> dict:
     for i, v in enumerate(dims.get("pi6", [])):
         _pi_value(f"{where}.dims.pi6[{i}]", "pi6", v)
 
+    values = {k: list(dims[k]) if k in dims else [fixed[k]] for k in BUILDING_NAMES if k in dims or k in fixed}
+    if any(v > 0.0 for v in values.get("pi12", [])):
+        bad = [v for v in values.get("pi11", [0.0]) if not 0.0 < v < 1.0]
+        if bad:
+            key = f"{where}.dims.pi11" if "pi11" in dims else f"{where}.fixed.pi11"
+            raise ConfigError(f"{key} = {bad[0]!r} is out of range with a flexible superstructure (pi12 > 0); "
+                              f"allowed range: 0 < value < 1")
+    building = any(v != 0.0 for vs in values.values() for v in vs)
     pi2 = dict(config["pi2"])
     pi2.update(study.get("pi2") or {})
+    if building and pi2["stop"] == "auto":
+        raise ConfigError(f"{where}.pi2.stop = 'auto' needs the paper's model (pi9 .. pi13 = 0); "
+                          f"give a number for a general building")
     pi2["start"] = _pi_value(f"{where}.pi2.start", "pi2", pi2["start"])
     pi2["num"] = int(_num(f"{where}.pi2.num", pi2["num"], 2))
     pi2["margin"] = _num(f"{where}.pi2.margin", pi2["margin"], 1.0)
