@@ -35,7 +35,7 @@ from .pulses import PULSE_NAMES
 from .quicklook import check_plot_path, plot_fit, plot_history
 from .records import load_record, sample, samples
 from .records import PULSE_LIKE_SAMPLES as _PULSE_LIKE
-from .scene import G_STANDARD, Scene
+from .scene import FLOORS, G_STANDARD, Scene, friction_pendulum
 from .solver import DEFAULT_RTOL, solve
 
 EXIT_USAGE = 2
@@ -61,6 +61,9 @@ def _common(p: argparse.ArgumentParser) -> None:
                    help="write the time history (ground, floor, block) to FILE: .csv, .h5 or .hdf5")
     p.add_argument("--plot", metavar="FILE",
                    help="plot accelerations and sliding (stick/slip shaded) to FILE: .png, .pdf or .svg")
+    p.add_argument("--floor", choices=FLOORS, default=FLOORS[0],
+                   help="floor carrying the contents: the isolated slab or the superstructure's roof "
+                        f"(default {FLOORS[0]}; the same floor with a rigid superstructure)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
 
 
@@ -80,8 +83,15 @@ def _parser() -> argparse.ArgumentParser:
                                 ("M-b", "kg", None),
                                 ("T-b", "s, 0 = fixed base", None), ("xi-b", "-", None),
                                 ("m-ec", "kg", None), ("mu-s", "-", None), ("mu-k", "-", None),
-                                ("beta", "s/m", 0.0), ("gamma", "s/m", 0.0), ("g", "m/s^2", G_STANDARD)]:
-        required = default is None and name not in ("a-p", "T-p")
+                                ("beta", "s/m", 0.0), ("gamma", "s/m", 0.0), ("g", "m/s^2", G_STANDARD),
+                                ("Q-d", "N, isolator strength; 0 = linear isolator", 0.0),
+                                ("D-y", "m, bilinear bearing's yield displacement; 0 = sliding bearing", 0.0),
+                                ("m-st", "kg, superstructure mass (part of M_b)", 0.0),
+                                ("T-s", "s, superstructure period; 0 = rigid", 0.0),
+                                ("xi-s", "-, superstructure damping ratio", 0.0),
+                                ("R", "m, friction pendulum radius: sets T_b and, with --mu-b, Q_d", None),
+                                ("mu-b", "-, friction pendulum's friction coefficient", None)]:
+        required = default is None and name not in ("a-p", "T-p", "T-b", "R", "mu-b")
         q.add_argument(f"--{name}", type=float, required=required, default=default,
                        help=f"{name.replace('-', '_')} [{unit}]")
     _common(q)
@@ -130,7 +140,7 @@ def _scene(args):
     excitation = rec if rec is not None else (args.pulse or "ricker")
     info = None if rec is None else {"record": _record_dict(rec)}
     if args.command == "solve":
-        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=excitation)
+        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=excitation, floor=args.floor)
         if rec is not None:
             info["fitted_pulse"] = _fit_dict(rec.fit())
         return scene, info
@@ -145,8 +155,19 @@ def _scene(args):
         info["fitted_pulse"] = _fit_dict(fit)
         a_p = fit.a_p if a_p is None else a_p
         T_p = fit.T_p if T_p is None else T_p
-    scene = Scene.from_physical(a_p, T_p, args.M_b, args.T_b, args.xi_b, args.m_ec, args.mu_s, args.mu_k,
-                                args.beta, args.gamma, args.g, excitation)
+    T_b, Q_d, D_y = args.T_b, args.Q_d, args.D_y
+    if (args.R is None) != (args.mu_b is None):
+        raise ValueError("a friction pendulum needs both --R and --mu-b; allowed: both or neither")
+    if args.R is not None:
+        if T_b is not None or Q_d != 0.0 or D_y != 0.0:
+            raise ValueError("--R/--mu-b set T_b, Q_d and D_y; allowed: either --R/--mu-b or --T-b/--Q-d/--D-y")
+        fp = friction_pendulum(args.R, args.mu_b, args.M_b, args.g)
+        T_b, Q_d, D_y = fp["T_b"], fp["Q_d"], fp["D_y"]
+    if T_b is None:
+        raise ValueError("the following arguments are required: --T-b (or --R and --mu-b for a friction pendulum)")
+    scene = Scene.from_physical(a_p, T_p, args.M_b, T_b, args.xi_b, args.m_ec, args.mu_s, args.mu_k,
+                                args.beta, args.gamma, args.g, excitation, Q_d=Q_d, D_y=D_y, m_st=args.m_st,
+                                T_s=args.T_s, xi_s=args.xi_s, floor=args.floor)
     return scene, info
 
 
@@ -164,7 +185,7 @@ def _solve(args) -> int:
     sol = solve(scene, rtol=args.rtol, history=want_history)
     out = {"pi1": sol.pi1, "pi1_residual": sol.pi1_residual, "tau_peak": sol.tau_peak,
            "settled": sol.settled, "model": sol.model, "n_steps": sol.n_steps, "n_events": sol.n_events,
-           "scene": {**scene.pis(), "pulse": scene.pulse.name}}
+           "scene": {**scene.pis(), "floor": scene.floor, "pulse": scene.pulse.name}}
     if scene.scale is not None:
         out.update({"u_max_m": sol.u_max, "u_residual_m": sol.u_residual, "t_peak_s": sol.t_peak})
         out["scene"].update({"a_p": scene.scale.a_p, "T_p": scene.scale.T_p} if info else {})

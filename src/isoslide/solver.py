@@ -632,12 +632,13 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
                  tau_end=tend, n_steps=nsteps, n_events=nev)
 
 
-def warm_up(records: bool = False) -> None:
+def warm_up(records: bool = False, building: bool = False) -> None:
     """Have the compiled kernel ready: load it from numba's cache, or compile it (once per install).
 
     Solves three tiny scenes (isolated Coulomb, fixed-base Stribeck, viscous contact) and their
     stuck demand, so that the first timed or logged solve measures solving, not compilation.
-    ``records=True`` also readies the piecewise-exact path of record-driven scenes.
+    ``records=True`` also readies the piecewise-exact path of record-driven scenes, ``building=True``
+    the general building's kernel (:mod:`isoslide.building_kernel`).
     """
     scenes = [Scene(pi2=0.2, pi3=1.0, pi4=0.1), Scene(pi2=0.2, pi3=0.0, pi5=0.5, pi6=10.0),
               Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi7=1.0)]
@@ -646,3 +647,6 @@ def warm_up(records: bool = False) -> None:
     for sc in scenes:
         solve(sc)
         peak_stuck_demand(sc)
+    if building:
+        solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi9=0.05, pi11=0.5, pi12=0.2, floor="roof"))
+        solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.7, pi6=1e3, pi9=0.05, pi10=0.01))
