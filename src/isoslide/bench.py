@@ -277,6 +277,66 @@ def report_records(res: dict, summ: dict, file=sys.stdout) -> None:
       f"model='full')")
 
 
+BUILDING_POINTS = [dict(pi2=pi2, pi3=pi3, pi4=0.05, pi8=0.01) for pi2 in (0.05, 0.1, 0.2, 0.3) for pi3 in (2.0, 3.0)]
+"""Pi points of the buildings section: the paper's model at each, and every building beside it."""
+BUILDINGS = {
+    "paper model (linear isolator, rigid)": {},
+    "friction pendulum (pi9 = 0.05)": dict(pi9=0.05),
+    "lead-rubber bearing (pi9 = 0.05, pi10 = 0.005)": dict(pi9=0.05, pi10=0.005),
+    "flexible superstructure, contents on the base": dict(pi11=0.6, pi12=0.2, pi13=0.02),
+    "flexible superstructure, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
+    "friction pendulum, flexible, roof": dict(pi9=0.05, pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
+}
+"""Buildings timed side by side on :data:`BUILDING_POINTS` (keyword arguments of :class:`isoslide.Scene`)."""
+TARGET_BUILDING_RATIO = 3.0
+"""Aim: a general building costs at most this many times the paper model's scene."""
+
+
+def run_buildings(repeats: int = 7) -> dict:
+    """Time every building of :data:`BUILDINGS` on the same Pi points, interleaved; errors against rtol 1e-12."""
+    scenes = {name: [Scene(**pt, **kw) for pt in BUILDING_POINTS] for name, kw in BUILDINGS.items()}
+    for sc in scenes.values():   # compile or load every path before timing
+        solve(sc[0])
+    out = {}
+    for name, scs in scenes.items():
+        conv = [solve(sc, rtol=1e-12).pi1 for sc in scs]
+        out[name] = {"conv": conv, "times": [[] for _ in scs], "pi1": [0.0] * len(scs), "models": [""] * len(scs)}
+    for _ in range(repeats):
+        for k in range(len(BUILDING_POINTS)):
+            for name, scs in scenes.items():
+                t0 = time.perf_counter()
+                sol = solve(scs[k])
+                out[name]["times"][k].append(time.perf_counter() - t0)
+                out[name]["pi1"][k], out[name]["models"][k] = sol.pi1, sol.model
+    return {"rows": out, "points": BUILDING_POINTS, "repeats": repeats}
+
+
+def report_buildings(res: dict, file=sys.stdout) -> dict:
+    """Print the buildings section: median cost per scene, ratio to the paper model, errors; returns them."""
+    p = lambda *a: print(*a, file=file)  # noqa: E731
+    rows = res["rows"]
+    paper = next(iter(rows))
+    base = np.array([_median(t) for t in rows[paper]["times"]])
+    p(f"buildings: {len(res['points'])} Pi points (pi2 0.05-0.3, pi3 2-3, pi4 0.05, pi8 0.01) per building; median "
+      f"of {res['repeats']} interleaved runs; errors relative to solve(rtol=1e-12)")
+    hdr = f"{'building':48s} {'us/scene':>9s} {'x paper':>8s} {'med err':>9s} {'max err':>9s}  models"
+    p(hdr)
+    p("-" * len(hdr))
+    summ = {}
+    for name, r in rows.items():
+        t = np.array([_median(x) for x in r["times"]])
+        err = np.array([_rel(a, c) for a, c in zip(r["pi1"], r["conv"], strict=True)])
+        ratio = float(np.median(t / base))
+        summ[name] = {"us": float(1e6 * np.median(t)), "ratio": ratio, "err_median": float(np.median(err)),
+                      "err_max": float(err.max())}
+        p(f"{name:48s} {1e6 * np.median(t):9.1f} {ratio:8.2f} {np.median(err):9.1e} {err.max():9.1e}  "
+          f"{', '.join(sorted(set(r['models'])))}")
+    worst = max(v["ratio"] for v in summ.values())
+    p(f"aim: a general building at most {TARGET_BUILDING_RATIO:g}x the paper model's cost per scene -> "
+      f"{'MET' if worst <= TARGET_BUILDING_RATIO else 'NOT MET'} (largest median ratio {worst:.2f})")
+    return summ
+
+
 def main(argv=None) -> int:
     """Command line: measure, then print the report (or JSON); returns the exit status."""
     ap = argparse.ArgumentParser(prog="python -m isoslide.bench", description=__doc__.split("\n\n")[0])
@@ -297,7 +357,16 @@ def main(argv=None) -> int:
     ap.add_argument("--records-only", action="store_true",
                     help="only the records section (both exact paths on the bundled records, about 15 s)")
     ap.add_argument("--no-records", action="store_true", help="leave out the records section")
+    ap.add_argument("--buildings-only", action="store_true",
+                    help="only the buildings section (bearings and flexible superstructures beside the paper "
+                         "model, about 20 s)")
     a = ap.parse_args(argv)
+    if a.buildings_only:
+        out = {"buildings": report_buildings(run_buildings(repeats=3 if a.quick else 7))}
+        if a.json:
+            with open(a.json, "w") as f:
+                json.dump(out, f, indent=1, default=float)
+        return 0
     if a.quick:
         a.per_study, a.repeats, a.peer_repeats, a.regularized_scenes = 1, 5, 1, 2
     out = {}
@@ -318,6 +387,8 @@ def main(argv=None) -> int:
               log=print if a.verbose else None)
     summ = summarize(res)
     report(res, summ)
+    print("")
+    out["buildings"] = report_buildings(run_buildings(repeats=3 if a.quick else 7))
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"result": res, "summary": summ, **out}, f, indent=1, default=float)
