@@ -32,7 +32,8 @@ def run_kernel(sc: Scene, rtol: float = 1e-6):
     pu = sc.pulse
     irt = integrator_rtol(sc, rtol)
     return bk.run(P, pu.code, pu.param_array, pu.breakpoint_array, pu.tau_start, pu.tau_end, _horizon(sc, 200.0),
-                  0.15, building.free_step(sc), irt, base_atol(sc, irt), 0, 1e-4, True, 10 ** 7)
+                  0.15, building.free_step(sc), irt, base_atol(sc, irt), 0, 1e-4, True, 10 ** 7,
+                  *building.modal_data(sc, P))
 
 
 @pytest.mark.parametrize("sc", PAPER_SCENES, ids=lambda s: f"pi3={s.pi3:g}-pi6={s.pi6:g}")
@@ -42,8 +43,8 @@ def test_the_building_kernel_on_a_paper_scene_is_the_paper_kernel(sc):
     ref = solve(sc, model="full")
     assert floats[bk.F_UMAX] == pytest.approx(ref.pi1, rel=1e-8)
     assert ints[bk.R_EVENTS] == ref.n_events and bool(ints[bk.R_SETTLED]) == ref.settled
-    # settlement is tested at step ends, so its time follows the step sequence (the paper solve may refine)
-    assert floats[bk.F_TEND] == pytest.approx(ref.tau_end, rel=1e-6)
+    # the building kernel's modal bound is sharper than the paper kernel's energy bound: it settles no later
+    assert floats[bk.F_TEND] <= ref.tau_end * (1.0 + 1e-9)
 
 
 def test_the_new_groups_at_zero_are_the_paper_model():

@@ -185,3 +185,75 @@ def free_step(scene: Scene) -> float:
     if scene.flexible:
         periods.append(scene.pi12)
     return min(periods) / 8.0
+
+
+def _empty_modal() -> tuple:
+    return np.zeros((0, bk.NY), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128)
+
+
+def _free_system(P: np.ndarray, code: int, params: np.ndarray, held: bool) -> tuple:
+    """``(A, idx)``: the free linear system ``z' = A z`` of the moving states ``y[idx]`` after the pulse.
+
+    The block is stuck and the isolator stuck (``held``) or elastic; built column by column from
+    :func:`isoslide.building_kernel.deriv` (affine in ``y``) at a time after any pulse.
+    """
+    kind = int(P[bk.P_KIND])
+    idx = [] if held else [bk.Y_X, bk.Y_XD]
+    if P[bk.P_FLEX] != 0.0:
+        idx += [bk.Y_XS, bk.Y_XSD]
+    if kind == bk.KIND_BILINEAR and not held:
+        idx.append(bk.Y_FH)
+    n = len(idx)
+    late = 1e30   # after every pulse and record: p = 0
+    out = np.zeros(bk.NY)
+    A = np.zeros((n, n))
+    for j, col in enumerate(idx):
+        y = np.zeros(bk.NY)
+        y[col] = 1.0
+        bk.deriv(0.0, 0.0, late, y, P, code, params, out)
+        A[:, j] = out[idx]
+    return A, idx
+
+
+def modal_data(scene: Scene, P: np.ndarray) -> tuple:
+    """Modal data of the settlement test of :func:`isoslide.building_kernel.run`.
+
+    For the free linear system after the pulse (block stuck; the isolator elastic, ``Wm, Cm``, or
+    holding the slab, ``Wh, Ch``): ``W`` maps the state ``y`` to modal coordinates (rows: modes,
+    columns: the seven states) and ``C[j, k] = c_j . v_k`` gives demand ``j`` (0: the block's floor
+    acceleration; 1: the bilinear bearing's force, or the force holding a sliding bearing) per unit
+    of mode ``k``.  Empty where the configuration cannot occur, has no moving state, or its
+    eigenvectors are too ill-conditioned (condition number above 1e8) for a trustworthy bound.
+    """
+    kind = int(P[bk.P_KIND])
+    code, params = scene.pulse.code, scene.pulse.param_array
+    out = []
+    for held in (False, True):
+        if held != (kind in (bk.KIND_SLIDING, bk.KIND_FIXED)):
+            out.extend(_empty_modal())
+            continue
+        A, idx = _free_system(P, code, params, held)
+        if not idx:
+            out.extend(_empty_modal())
+            continue
+        lam, V = np.linalg.eig(A)
+        if np.max(lam.real) > 1e-12 * max(1.0, np.max(np.abs(lam))) or np.linalg.cond(V) > 1e8:
+            out.extend(_empty_modal())
+            continue
+        Winv = np.linalg.inv(V)
+        W = np.zeros((len(idx), bk.NY), dtype=np.complex128)
+        W[:, idx] = Winv
+        demand_rows = [0] + ([1] if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else [])
+        c = np.zeros((len(demand_rows), len(idx)))
+        for k, col in enumerate(idx):
+            y = np.zeros(bk.NY)
+            y[col] = 1.0
+            im = 0.0
+            fh = y[bk.Y_FH] if kind == bk.KIND_BILINEAR else 0.0
+            c[0, k] = bk._floor_stuck(im, y[bk.Y_X], y[bk.Y_XD], y[bk.Y_XS], y[bk.Y_XSD], fh, 0.0, P)
+            if len(demand_rows) > 1:
+                c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, y[bk.Y_XS], y[bk.Y_XSD], 0.0, 0.0, P)
+        # a relative margin for the round-off of the eigen-decomposition
+        margin = 1.0 + 1e-12 + 1e-14 * np.linalg.cond(V)
+        out.extend([W, (margin * (c @ V)).astype(np.complex128)])
+    return tuple(out)

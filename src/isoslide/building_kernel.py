@@ -46,7 +46,11 @@ Settlement (:func:`_settled`): after the pulse, with the block stuck and the
 isolator stuck or elastic, the free system is linear and its energy ``E``
 about its equilibrium cannot grow; every demand ``d = d0 + c.y`` obeys
 ``|d| <= |d0| + sqrt(2 E c' P^-1 c)`` (``P`` the energy's quadratic form).
-Once every bound is within its limit nothing can slip or yield again.
+Its modes give a second bound, ``|d| <= |d0| + sum_k |c.v_k| |a_k|`` (modal
+coordinates ``a_k``, eigenvalues with ``Re lambda_k <= 0``), much sharper when
+one mode dominates (a stiff superstructure's energy makes the first bound
+large while hardly moving the floor).  Once either bound puts every demand
+within its limit nothing can slip or yield again.
 """
 
 from __future__ import annotations
@@ -495,8 +499,38 @@ def _select_modes(bm, im, free_b, free_i, tau, y, P, code, params):
 
 
 @njit(cache=True)
-def _settled(bm, im, y, P):
-    """True when, after the pulse, nothing can slip or yield again (see the module docstring)."""
+def _modal_within(W, Cm, y, limits, offsets):
+    """Whether every demand's modal bound is within its limit.
+
+    Demand ``j`` of the free linear system is ``sum_k Cm[j, k] a_k exp(lambda_k t)`` with the modal
+    coordinates ``a = W y``; as ``Re lambda_k <= 0``, ``|d_j| <= |offsets[j]| + sum_k |Cm[j, k] a_k|``.
+    """
+    n = W.shape[0]
+    if n == 0:
+        return False
+    a = np.zeros(n, dtype=np.complex128)
+    for k in range(n):
+        acc = 0.0 + 0.0j
+        for i in range(NY):
+            acc += W[k, i] * y[i]
+        a[k] = acc
+    for j in range(Cm.shape[0]):
+        bound = abs(offsets[j])
+        for k in range(n):
+            bound += abs(Cm[j, k] * a[k])
+        if bound > limits[j]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
+    """True when, after the pulse, nothing can slip or yield again (see the module docstring).
+
+    Either bound proves it: the energy bound, or the modal bound of the free linear system
+    (``Wm, Cm`` with the slab moving, ``Wh, Ch`` with it held; see
+    :func:`isoslide.building.modal_data`), which is much sharper when one mode dominates.
+    """
     if bm != 0.0:
         return False
     kind = P[P_KIND]
@@ -504,6 +538,20 @@ def _settled(bm, im, y, P):
         return False
     if kind == KIND_BILINEAR and im != 0.0:
         return False
+    limits = np.array([P[P_THR], P[P_Q]])
+    if _held(im, P):
+        if _energy_settled(im, y, P):
+            return True
+        return _modal_within(Wh, Ch, y, limits, np.array([0.0, P[P_KD] * y[Y_X]]))
+    if _energy_settled(im, y, P):
+        return True
+    return _modal_within(Wm, Cm, y, limits, np.zeros(2))
+
+
+@njit(cache=True)
+def _energy_settled(im, y, P):
+    """The energy bound of :func:`_settled` (the block stuck, the isolator stuck or elastic)."""
+    kind = P[P_KIND]
     m = P[P_M]
     roof = P[P_ROOF] != 0.0
     flex = P[P_FLEX] != 0.0
@@ -582,11 +630,12 @@ def _copy(dst, src):
 
 @njit(cache=True)
 def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol,
-        hist_cap, h_restart, settle, max_steps):
+        hist_cap, h_restart, settle, max_steps, Wm, Cm, Wh, Ch):
     """Integrate one general scene from rest at ``tau_start`` (see the module docstring).
 
     Arguments as :func:`isoslide.kernel.run` (without ``track_max``), with the model parameters
-    ``P`` of :func:`isoslide.building.parameters`.
+    ``P`` of :func:`isoslide.building.parameters` and the modal data ``Wm, Cm, Wh, Ch`` of
+    :func:`isoslide.building.modal_data` for the settlement test.
 
     Returns
     -------
@@ -657,7 +706,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             y[Y_FH] = im * q
             moved = True
             iso_events += 1
-        if tau >= tau_end and _settled(bm, im, y, P):
+        if tau >= tau_end and _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
             settled = True
             if settle:
                 break

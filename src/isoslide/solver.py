@@ -477,6 +477,7 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
                          "(pi9 = 0 and pi12 = 0)")
     pi8 = scene.pi8
     P = building.parameters(scene, pi8=pi8, coulomb=coulomb)
+    modal = building.modal_data(scene, P)
     pulse = scene.pulse
     hist_cap = 200_000 if history else 0
     stop = _horizon(scene, horizon)
@@ -486,7 +487,8 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     def run(irtol):
         res = building_kernel.run(P, pulse.code, pulse.param_array, pulse.breakpoint_array, pulse.tau_start,
                                   pulse.tau_end, stop, min(H_MAX_PULSE, max_step), h_free, irtol,
-                                  base_atol(scene, irtol), hist_cap, min(H_RESTART, max_step), settle, budget)
+                                  base_atol(scene, irtol), hist_cap, min(H_RESTART, max_step), settle, budget,
+                                  *modal)
         if res[1][building_kernel.F_TEND] < stop and not res[0][building_kernel.R_SETTLED] \
                 and res[0][building_kernel.R_STEPS] > budget:
             raise StepBudgetError(
