@@ -174,6 +174,15 @@ def hard_scenes() -> list[Entry]:
     add("pulses", pi2=0.1, pi3=1.0, pi4=0.1, pulse="antisymmetric_ricker")
     add("pulses", pi2=0.1, pi3=1.5, pi4=0.1, pulse="makris_cn")
     add("pulses", pi2=0.1, pi3=1.0, pi4=0.1, pi5=0.7, pi6=300.0, pulse="mavroeidis_papageorgiou")
+    # the general building: bearings, flexible superstructures, contents on the roof
+    add("friction-pendulum", pi2=0.1, pi3=3.0, pi4=0.0, pi8=0.01, pi9=0.05)
+    add("friction-pendulum", pi2=0.05, pi3=2.5, pi4=0.0, pi8=0.1, pi9=0.1, pi5=0.7, pi6=1000.0)
+    add("lead-rubber", pi2=0.1, pi3=2.5, pi4=0.05, pi8=0.01, pi9=0.05, pi10=0.005)
+    add("flexible", pi2=0.1, pi3=2.0, pi4=0.05, pi8=0.01, pi11=0.6, pi12=0.2, pi13=0.02)
+    add("flexible", pi2=0.1, pi3=2.0, pi4=0.05, pi8=0.01, pi11=0.6, pi12=0.2, pi13=0.02, floor="roof")
+    add("flexible", pi2=0.08, pi3=3.0, pi4=0.0, pi8=0.01, pi9=0.05, pi11=0.6, pi12=0.3, pi13=0.02, floor="roof")
+    add("strong-bearing", pi2=0.2, pi3=2.0, pi4=0.0, pi8=0.01, pi9=3.0)
+    add("strong-bearing", pi2=0.2, pi3=1.0, pi4=2.0, pi8=0.1, pi9=1.0, pi10=0.01)
     return E
 
 

@@ -90,7 +90,8 @@ def measure_trade(entries, settings: dict, part: str | None = None) -> xr.Datase
     work = np.full((m, n), -1, dtype=np.int64)
     status = np.full((m, n), STATUS["not-run"], dtype=np.int8)
     ref_idx = entries.subset(settings["reference_scenes"])
-    reg_idx = entries.subset(settings["regularized_scenes"])
+    paper = [i for i, e in enumerate(entries) if e.scene.paper_model]   # the regularized peer's model
+    reg_idx = [paper[k] for k in SceneSet(tuple(entries[i] for i in paper)).subset(settings["regularized_scenes"])]
     coulomb = [i for i, e in enumerate(entries) if e.scene.rate_independent]
     os_idx = [coulomb[k] for k in SceneSet(tuple(entries[i] for i in coulomb)).subset(settings["opensees_scenes"])]
     warm_up()
