@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import isoslide
+from isoslide import Scene
 from isoslide.history_io import COLUMNS, history_table, read_history, write_history
 
 
@@ -97,3 +98,24 @@ def test_unknown_extension_and_missing_history_are_refused(tmp_path):
         write_history(isoslide.solve(scene, history=True), scene, tmp_path / "h.txt")
     with pytest.raises(ValueError, match="history=True"):
         write_history(isoslide.solve(scene), scene, tmp_path / "h.csv")
+
+
+@pytest.mark.parametrize("floor", ["base", "roof"])
+def test_building_history_floor_acceleration_is_the_rate_of_the_floor_velocity(floor, tmp_path):
+    """General building: floor_accel = ground_accel + d(floor_vel)/dt, and the extra columns round-trip."""
+    from isoslide.history_io import BUILDING_COLUMNS
+    sc = Scene(pi2=0.1, pi3=3.0, pi4=0.05, pi8=0.1, pi9=0.05, pi11=0.6, pi12=0.3, pi13=0.02, floor=floor)
+    sol = isoslide.solve(sc, history=True, max_step=1e-3)
+    t = history_table(sol, sc)
+    time_, v = t.columns["time"], t.columns["floor_vel"]
+    mid = 0.5 * (time_[1:] + time_[:-1])
+    same = lambda c: t.columns[c][1:] == t.columns[c][:-1]  # noqa: E731
+    ok = (np.diff(time_) > 1e-6) & same("phase") & same("isolator_phase")   # no mode change inside
+    rate = np.diff(v)[ok] / np.diff(time_)[ok]
+    expect = np.interp(mid[ok], time_, t.columns["floor_accel"] - t.columns["ground_accel"])
+    assert np.max(np.abs(rate - expect)) <= 1e-3 * np.max(np.abs(t.columns["floor_accel"]))
+    if floor == "roof":
+        assert np.allclose(t.columns["floor_disp"], t.columns["slab_disp"] + t.columns["super_disp"])
+    back = read_history(write_history(sol, sc, tmp_path / "h.h5"))
+    for name, *_ in BUILDING_COLUMNS:
+        np.testing.assert_array_equal(back.columns[name], t.columns[name])

@@ -28,6 +28,12 @@ The floor acceleration follows from the equations of motion of
 ``-(2 Pi4 w x' + w^2 x) / (1 + Pi8)``; sliding, ``-(2 Pi4 w x' + w^2 x) +
 Pi8 s phi(|u'|)`` (``Pi8 = 0`` for the ``one-way`` model); the ground's for a
 fixed base.
+
+A general building (:mod:`isoslide.building`) has its contents' floor (the slab,
+or the superstructure's roof) in ``floor_*``, its floor acceleration from
+:mod:`isoslide.building_kernel`'s equations, and six more columns
+(:data:`BUILDING_COLUMNS`): the slab's and the superstructure's motion, the
+hysteretic isolator force and the isolator's phase.
 """
 
 from __future__ import annotations
@@ -41,10 +47,12 @@ from pathlib import Path
 import h5py
 import numpy as np
 
+from . import building
+from . import building_kernel as bk
 from .history import History
 from .scene import Scene
 
-__all__ = ["COLUMNS", "FORMATS", "HistoryTable", "history_format", "history_table", "read_history",
+__all__ = ["BUILDING_COLUMNS", "COLUMNS", "FORMATS", "HistoryTable", "history_format", "history_table", "read_history",
            "write_history"]
 
 COLUMNS = (
@@ -59,10 +67,23 @@ COLUMNS = (
 )
 """``(name, long name, SI unit, dimensionless scale)`` of every column, in file order."""
 
+BUILDING_COLUMNS = (
+    ("slab_disp", "isolated slab displacement relative to the ground", "m", "a_p T_p^2"),
+    ("slab_vel", "isolated slab velocity relative to the ground", "m s-1", "a_p T_p"),
+    ("super_disp", "superstructure displacement relative to the slab", "m", "a_p T_p^2"),
+    ("super_vel", "superstructure velocity relative to the slab", "m s-1", "a_p T_p"),
+    ("isolator_force", "hysteretic isolator force (a stuck sliding bearing: the force holding it)", "N",
+     "M_b a_p"),
+    ("isolator_phase", "isolator phase: 0 stuck or elastic, +1/-1 sliding or yielding in the +/- direction",
+     "1", "1"),
+)
+"""Columns added after :data:`COLUMNS` for a general building (not the paper's model)."""
+
 FORMATS = {".csv": "csv", ".h5": "hdf5", ".hdf5": "hdf5"}
 """File extensions :func:`write_history` and :func:`read_history` understand."""
 
 _NAMES = tuple(c[0] for c in COLUMNS)
+_BUILDING_NAMES = tuple(c[0] for c in BUILDING_COLUMNS)
 
 
 @dataclass(frozen=True)
@@ -125,6 +146,23 @@ def _floor_accel(h: History, scene: Scene, model: str, ground: np.ndarray) -> np
     return np.where(h.phase == 0, -F / (1.0 + p8), -F + p8 * s * _friction(h.ud, scene, model))
 
 
+def _building_floor(h: History, scene: Scene, model: str, ground: np.ndarray) -> tuple:
+    """Floor acceleration (units of a_p), displacement and velocity of a general building's contents."""
+    P = building.parameters(scene, pi8=0.0 if "one-way" in model else None, coulomb="coulomb" in model)
+    n = h.tau.size
+    y = np.zeros(bk.NY)
+    acc = np.empty(n)
+    xs = h.xs if h.xs is not None else np.zeros(n)
+    xsd = h.xsd if h.xsd is not None else np.zeros(n)
+    fh = h.fh if h.fh is not None else np.zeros(n)
+    iso = h.iso_phase if h.iso_phase is not None else np.zeros(n, dtype=np.int8)
+    for i in range(n):
+        y[:] = (h.x[i], h.xd[i], xs[i], xsd[i], h.u[i], h.ud[i], fh[i])
+        acc[i] = bk._accels(float(h.phase[i]), float(iso[i]), ground[i], y, P)[2]
+    roof = scene.flexible and scene.floor == "roof"
+    return acc, h.x + xs if roof else h.x, h.xd + xsd if roof else h.xd
+
+
 def history_table(solution, scene: Scene) -> HistoryTable:
     """Ground, floor and block motion of a solve with ``history=True``.
 
@@ -144,16 +182,31 @@ def history_table(solution, scene: Scene) -> HistoryTable:
     if h is None:
         raise ValueError("solution has no history; solve with isoslide.solve(scene, history=True)")
     ground = np.asarray(scene.pulse.accel(h.tau), dtype=float)
-    floor = _floor_accel(h, scene, solution.model, ground)
+    general = h.xs is not None or h.fh is not None
+    if general:
+        floor, fdisp, fvel = _building_floor(h, scene, solution.model, ground)
+    else:
+        floor, fdisp, fvel = _floor_accel(h, scene, solution.model, ground), h.x, h.xd
     sc = scene.scale
     T, A = (sc.T_p, sc.a_p) if sc is not None else (1.0, 1.0)
     L, V = A * T * T, A * T
     cols = {"time": h.tau * T, "ground_accel": ground * A, "floor_accel": floor * A,
-            "floor_disp": h.x * L, "floor_vel": h.xd * V, "slide_disp": h.u * L, "slide_vel": h.ud * V,
+            "floor_disp": fdisp * L, "floor_vel": fvel * V, "slide_disp": h.u * L, "slide_vel": h.ud * V,
             "phase": h.phase.astype(np.int8)}
-    units = {name: (unit if sc is not None else "1") for name, _, unit, _ in COLUMNS}
+    columns = COLUMNS
+    if general:
+        zeros = np.zeros_like(h.tau)
+        F = sc.M_b * sc.a_p if sc is not None else 1.0
+        cols.update({"slab_disp": h.x * L, "slab_vel": h.xd * V,
+                     "super_disp": (h.xs if h.xs is not None else zeros) * L,
+                     "super_vel": (h.xsd if h.xsd is not None else zeros) * V,
+                     "isolator_force": (h.fh if h.fh is not None else zeros) * F,
+                     "isolator_phase": (h.iso_phase if h.iso_phase is not None
+                                        else zeros.astype(np.int8)).astype(np.int8)})
+        columns = COLUMNS + BUILDING_COLUMNS
+    units = {name: (unit if sc is not None else "1") for name, _, unit, _ in columns}
     attrs = {"physical": sc is not None, "pulse": scene.pulse.name, "model": solution.model,
-             **scene.pis(), "pi1": solution.pi1, "pi1_residual": solution.pi1_residual}
+             **scene.pis(), "floor": scene.floor, "pi1": solution.pi1, "pi1_residual": solution.pi1_residual}
     if sc is not None:
         attrs.update({"a_p": sc.a_p, "T_p": sc.T_p, "M_b": sc.M_b, "g": sc.g,
                       "u_max": solution.u_max, "u_residual": solution.u_residual})
@@ -185,7 +238,9 @@ def write_history(solution, scene: Scene, path) -> Path:
     table = history_table(solution, scene)
     if fmt == "hdf5":
         with h5py.File(path, "w") as f:
-            for name, long_name, _, scale in COLUMNS:
+            for name, long_name, _, scale in COLUMNS + BUILDING_COLUMNS:
+                if name not in table.columns:
+                    continue
                 d = f.create_dataset(name, data=table.columns[name])
                 d.attrs["units"] = table.units[name]
                 d.attrs["long_name"] = long_name
@@ -199,10 +254,12 @@ def write_history(solution, scene: Scene, path) -> Path:
         for k, v in table.attrs.items():
             fh.write(f"# {k}: {json.dumps(v)}\n")
         w = csv.writer(fh)
-        w.writerow([f"{name} [{table.units[name]}]" for name in _NAMES])
-        data = [table.columns[name] for name in _NAMES]
+        names = tuple(table.columns)
+        w.writerow([f"{name} [{table.units[name]}]" for name in names])
+        data = [table.columns[name] for name in names]
         for i in range(len(table)):
-            w.writerow([repr(float(c[i])) if name != "phase" else int(c[i]) for name, c in zip(_NAMES, data, strict=True)])
+            w.writerow([int(c[i]) if name.endswith("phase") else repr(float(c[i]))
+                        for name, c in zip(names, data, strict=True)])
     return path
 
 
@@ -222,8 +279,9 @@ def read_history(path) -> HistoryTable:
     path = Path(path)
     if fmt == "hdf5":
         with h5py.File(path, "r") as f:
-            cols = {name: f[name][()] for name in _NAMES}
-            units = {name: str(f[name].attrs["units"]) for name in _NAMES}
+            names = _NAMES + (_BUILDING_NAMES if _BUILDING_NAMES[0] in f else ())
+            cols = {name: f[name][()] for name in names}
+            units = {name: str(f[name].attrs["units"]) for name in names}
             attrs = {k: _plain(v) for k, v in f.attrs.items()}
         return HistoryTable(columns=cols, units=units, attrs=attrs)
     attrs, header, rows = {}, None, []
@@ -243,12 +301,15 @@ def read_history(path) -> HistoryTable:
         raise ValueError(f"path = {str(path)!r} has no header row; expected: "
                          + ", ".join(f"{n} [unit]" for n in _NAMES))
     names = [h.split(" [")[0] for h in header]
-    if tuple(names) != _NAMES:
-        raise ValueError(f"path = {str(path)!r} has columns {names}; expected {list(_NAMES)}")
+    if tuple(names) not in (_NAMES, _NAMES + _BUILDING_NAMES):
+        raise ValueError(f"path = {str(path)!r} has columns {names}; expected {list(_NAMES)}, "
+                         f"optionally followed by {list(_BUILDING_NAMES)}")
     units = {n: h.split(" [", 1)[1].rstrip("]") for n, h in zip(names, header, strict=True)}
-    data = np.array([[float(x) for x in r] for r in csv.reader(rows)], dtype=float).reshape(-1, len(_NAMES))
+    data = np.array([[float(x) for x in r] for r in csv.reader(rows)], dtype=float).reshape(-1, len(names))
     cols = {n: data[:, i] for i, n in enumerate(names)}
-    cols["phase"] = cols["phase"].astype(np.int8)
+    for n in names:
+        if n.endswith("phase"):
+            cols[n] = cols[n].astype(np.int8)
     return HistoryTable(columns=cols, units=units, attrs=attrs)
 
 
