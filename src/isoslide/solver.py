@@ -271,14 +271,14 @@ def step_budget(scene: Scene, horizon: float = DEFAULT_HORIZON) -> int:
     """Most Runge-Kutta steps one run of a scene may take.
 
     ``STEPS_PER_PERIOD`` per isolation period followed (a stiff undamped base is followed for up to
-    ``horizon / Pi3`` periods, each with its own breakaways; the superstructure's period ``Pi12``
-    counts when it is shorter), and never fewer than
+    ``horizon / Pi3`` periods, each with its own breakaways; for a general building the shortest
+    period it integrates counts, see :func:`isoslide.building.free_step`), and never fewer than
     :data:`isoslide.kernel.MAX_STEPS`.  A run that needs more raises :class:`StepBudgetError`.
     """
     span = _horizon(scene, horizon) - scene.pulse.tau_start
     periods = span / scene.pi3 if scene.pi3 > 0.0 else span
-    if scene.flexible:
-        periods = max(periods, span / scene.pi12)
+    if not scene.paper_model:
+        periods = max(periods, span / (8.0 * building.free_step(scene)))
     return int(max(kernel.MAX_STEPS, min(STEPS_PER_PERIOD * periods, 1e12)))
 
 
