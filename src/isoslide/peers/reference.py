@@ -77,6 +77,7 @@ from scipy.integrate import solve_ivp
 from ..history import History
 from ..pulses import accel_at
 from ..scene import Scene
+from .reference_building import solve_reference_building
 from .result import PeerResult, counted
 
 __all__ = ["solve_reference", "friction_level", "stuck_supremum", "energy_bound"]
@@ -224,6 +225,10 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
                     max_events: int = 100_000, max_work: int | None = None) -> PeerResult:
     """Solve one scene with the event-driven DOP853 reference integrator.
 
+    A general building (``not scene.paper_model``: a hysteretic isolator or a flexible
+    superstructure) goes to :func:`isoslide.peers.reference_building.solve_reference_building`
+    with the same arguments and result type.
+
     Parameters
     ----------
     scene : Scene
@@ -248,6 +253,9 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
     PeerResult
         ``method = "reference"``, ``integrator = "DOP853"``; cost in ``nfev``.
     """
+    if not scene.paper_model:
+        return solve_reference_building(scene, rtol=rtol, history=history, atol=atol, tau_max=tau_max,
+                                        max_events=max_events, max_work=max_work)
     pulse = scene.pulse
     code = int(pulse.code)
     params = pulse.param_array
