@@ -516,7 +516,7 @@ def solve_reference_building(scene: Scene, rtol: float = 1e-12, history: bool = 
 
 def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol: float = 1e-15,
                  tau_max: float | None = None, max_events: int = 100_000, max_work: int | None = None,
-                 ledger: bool = False) -> BuildingRun:
+                 ledger: bool = False, settle: bool = True) -> BuildingRun:
     """:func:`solve_reference_building`, optionally with the energy ledger.
 
     Parameters
@@ -526,6 +526,9 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
     ledger : bool
         Integrate the input work and the dissipations along with the state and return them
         (implies ``history=True``); see :class:`BuildingRun`.
+    settle : bool
+        Stop at settlement (default); ``False`` follows the scene to the horizon (``settled``
+        stays False), to check the settlement bound.
 
     Returns
     -------
@@ -587,7 +590,7 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
             y[XD] = 0.0
         free = tau >= tau_end and sb == 0 and si == 0
         settle_g = None
-        if free:
+        if free and settle:
             settle_g = _settle_margin_fn(B, y, si)
             if settle_g is None or settle_g(tau, y) >= 0.0:
                 settled = True
