@@ -195,3 +195,15 @@ def test_stick_constraints_hold_through_coupled_transitions():
     a_floor = -(w * w * h.x + 2.0 * sc.pi4 * w * h.xd + h.fh) / (1.0 + m)
     assert np.all(np.abs(a_floor[stuck_moving]) <= thr * (1 + 1e-12))
     assert res.pi1 == pytest.approx(isoslide.solve(sc, rtol=1e-10).pi1, rel=1e-8)
+
+
+def test_undamped_building_with_a_brief_reversal_runs_to_the_horizon():
+    """Undamped isolator and superstructure (Pi4 = Pi13 = 0), contents on the roof: at tau ~ 3.156 the
+    block stops and reverses with a floor demand 1e-3 above its limit, a slip far shorter than a
+    step, which is located; the free system keeps its energy, so the run ends unsettled at the
+    horizon ``tau_end + 50 max(1, Pi3, Pi12)``; Pi1 as the compiled solver's."""
+    sc = Scene(pi2=0.2, pi3=2.0, pi4=0.0, pi8=0.1, pi11=0.5, pi12=0.3, pi13=0.0, floor="roof", pi9=0.05,
+               pi10=0.01)
+    res = solve_reference_building(sc)
+    assert not res.settled and res.tau_end == pytest.approx(sc.pulse.tau_end + 50.0 * sc.pi3)
+    assert res.pi1 == pytest.approx(isoslide.solve(sc, rtol=1e-10).pi1, rel=1e-8)

@@ -306,6 +306,24 @@ def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, force
     raise RuntimeError(f"no consistent stick/slip mode at the state {list(y[:N_STATE])!r}, p = {p!r}")
 
 
+def _stop_event(s: int, k: int, t0: float, y0, acc0: float):
+    """Event function of the velocity ``y[k]`` (moving in direction ``s``) returning to zero.
+
+    ``s y[k] / (t - t0)``: the sign of ``s y[k]`` for ``t > t0`` but, for a phase that starts at
+    rest, without the trivial root at ``t0`` itself (there it is ``s`` times the acceleration
+    ``acc0``), so a slip that starts with a tiny acceleration and ends soon is still located.
+    """
+    v0 = s * y0[k]
+
+    def g(t, yy):
+        dt = t - t0
+        if dt > 0.0:
+            return s * yy[k] / dt
+        return v0 if v0 != 0.0 else s * acc0
+
+    return g
+
+
 def _bilinear_mode(B: Building, p: float, y, sb: int, si: int) -> int:
     """Elastic (0) or yielding (+-1) mode of a bilinear bearing at a phase start (not an event)."""
     fh, xd = y[FH], y[XD]
@@ -413,7 +431,9 @@ def _slowest_rate(B: Building) -> float:
         if n == 0:
             continue
         A = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(M, K), -np.linalg.solve(M, C)]])
-        rates.append(float(np.min(np.abs(np.linalg.eigvals(A).real))))
+        lam = np.linalg.eigvals(A)
+        rate = float(np.min(np.abs(lam.real)))
+        rates.append(0.0 if rate <= 1e-9 * float(np.max(np.abs(lam))) else rate)   # round-off of 0
     return min(rates) if rates else math.inf
 
 
@@ -621,6 +641,7 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
             return np.array(d)
 
         specs = []          # (event function, what it marks, direction of the zero crossing)
+        xdd0, _, udd0 = _dynamics(B, p0, y, sb, si)[:3]
 
         def add(fn, kind, direction=-1.0, specs=specs):
             specs.append((fn, kind, direction))
@@ -631,7 +652,7 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
             add(lambda t, yy: ev_b(t, yy, 1.0), "block_break")
             add(lambda t, yy: ev_b(t, yy, -1.0), "block_break")
         else:
-            add(lambda t, yy, s=sb: s * yy[UD], "block_stop")
+            add(_stop_event(sb, UD, t0, y, udd0), "block_stop")
         if B.kind == "sliding":
             if si == 0:
                 def ev_i(t, yy, sgn, mb_=mb_):
@@ -639,13 +660,13 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
                 add(lambda t, yy: ev_i(t, yy, 1.0), "iso_break")
                 add(lambda t, yy: ev_i(t, yy, -1.0), "iso_break")
             else:
-                add(lambda t, yy, s=si: s * yy[XD], "iso_stop")
+                add(_stop_event(si, XD, t0, y, xdd0), "iso_stop")
         elif B.kind == "bilinear":
             if si == 0:
                 add(lambda t, yy: B.q - yy[FH], "yield")
                 add(lambda t, yy: B.q + yy[FH], "yield")
             else:
-                add(lambda t, yy, s=si: s * yy[XD], "unload")
+                add(_stop_event(si, XD, t0, y, xdd0), "unload")
         if settle_g is not None:
             add(settle_g, "settle", 1.0)
         for fn, _, direction in specs:
