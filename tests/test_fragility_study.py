@@ -9,6 +9,7 @@ import xarray as xr
 import isoslide.config
 from isoslide import fragility_study as fs
 from isoslide import solver
+from isoslide import datasets
 from isoslide.datasets import write_netcdf
 from isoslide.fragility import fit_lognormal
 from isoslide.history_io import history_table
@@ -220,6 +221,7 @@ def test_scatter_shares_of_constructed_outcomes(study):
     ({"records": ["Northridge_1994_PAC-175", "no_such_record"]}, r"fragility\.records\[1\] = 'no_such_record'"),
     ({"records": ["Northridge_1994_PAC-175", "PAC-175"]}, r"fragility\.records = .*distinct records"),
     ({"contents": {"mass": 2e9}}, r"fragility\.contents\.mass = 2000000000\.0 .*mass / building\.M_b <= 1000"),
+    ({"building": {"T_s": 0.5}}, r"fragility\.building\.m_st = 0\.0 .*0 < m_st < M_b"),
 ])
 def test_bad_settings_name_the_key_value_and_range(override, match):
     with pytest.raises(ValueError, match=match):
@@ -235,3 +237,17 @@ def test_bad_settings_name_the_key_value_and_range(override, match):
 def test_the_schema_rejects_out_of_range_values_naming_the_key(override, key):
     with pytest.raises(isoslide.config.ConfigError, match=key.replace(".", r"\.")):
         _settings(**override)
+
+
+def test_a_friction_pendulum_building_runs_through_the_building_solver():
+    """The building section takes a friction pendulum under a flexible superstructure, contents on the roof."""
+    fp = isoslide.friction_pendulum(R=2.5, mu=0.05, M_b=1e6)
+    cfg = _settings(building={"T_b": fp["T_b"], "Q_d": fp["Q_d"], "m_st": 6e5, "T_s": 0.5, "xi_s": 0.02,
+                              "floor": "roof", "fixed_base": False},
+                    stripes={"im": "pga", "levels": [3.0, 6.0]}, friction_samples=1)
+    st = fs.check_settings(cfg)
+    out = fs.solve_analyses(st, [0, 1], "isolated")
+    models = set(datasets.decode_models(out["model"]).values.tolist()) if "model" in out else set()
+    assert models and all(m.startswith("sliding-bearing+flexible+roof") for m in models), models
+    sc = fs._scene(st, sample("Northridge_1994_PAC-175").as_pulse(), 3.0, 0.2, "isolated")
+    assert (sc.isolator, sc.flexible, sc.floor) == ("sliding", True, "roof")

@@ -45,7 +45,7 @@ from .intensity import IM_NAMES, IM_UNITS, floor_peaks, ground_peaks
 from .pulses import sampled
 from .record_study import resolve_record
 from .records import G
-from .scene import Scene
+from .scene import FLOORS, Scene
 from . import solver
 
 __all__ = ["BASES", "FIT_STATUS", "Study", "analysis_table", "base_of", "check_settings", "chunk_indices",
@@ -168,6 +168,15 @@ def check_settings(settings: dict) -> Study:
         if not math.isfinite(v) or v > hi or v < lo or (strict_lo and v == lo):
             op = "<" if strict_lo else "<="
             raise ValueError(f"fragility.{key} = {value!r} is out of range; allowed range: {lo:g} {op} {key.split('.')[-1]} <= {hi:g}")
+    for key in ("Q_d", "D_y", "m_st", "T_s", "xi_s"):
+        v = float(b[key])
+        if not (math.isfinite(v) and v >= 0.0):
+            raise ValueError(f"fragility.building.{key} = {b[key]!r} is out of range; allowed range: 0 <= {key} < inf")
+    if float(b["T_s"]) > 0.0 and not 0.0 < float(b["m_st"]) < float(b["M_b"]):
+        raise ValueError(f"fragility.building.m_st = {b['m_st']!r} is out of range with a flexible superstructure "
+                         f"(T_s > 0); allowed range: 0 < m_st < M_b = {b['M_b']!r}")
+    if b["floor"] not in FLOORS:
+        raise ValueError(f"fragility.building.floor = {b['floor']!r} is invalid; allowed: {', '.join(map(repr, FLOORS))}")
     if c["mass"] / b["M_b"] > 1000.0:
         raise ValueError(f"fragility.contents.mass = {c['mass']!r} is out of range; allowed range: "
                          f"mass / building.M_b <= 1000 (Pi8)")
@@ -264,7 +273,8 @@ def _scene(study: Study, pulse, pga: float, mu_k: float, base: str) -> Scene:
     b, c = study.building, study.contents
     return Scene.from_physical(a_p=pga, T_p=T_SCALE, M_b=b["M_b"], T_b=0.0 if base == "fixed_base" else b["T_b"],
                                xi_b=b["xi_b"], m_ec=c["mass"], mu_s=mu_k * c["mu_s_over_mu_k"], mu_k=mu_k,
-                               beta=c["beta"], gamma=c["gamma"], pulse=pulse)
+                               beta=c["beta"], gamma=c["gamma"], pulse=pulse, Q_d=b["Q_d"], D_y=b["D_y"],
+                               m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], floor=b["floor"])
 
 
 def solve_chunk(study: Study, chunk: int, base: str) -> xr.Dataset:
@@ -535,7 +545,8 @@ def fragility_dataset(analyses: xr.Dataset, study: Study, settings: dict, base: 
         references_fragility=("Baker, J. W. (2015): Efficient analytical fragility function fitting using "
                               "dynamic structural analysis, Earthquake Spectra 31(1), 579-599"),
         base=base, scaling_im=study.im, T_b=0.0 if base == "fixed_base" else float(b["T_b"]),
-        xi_b=float(b["xi_b"]), M_b=float(b["M_b"]), m_ec=float(c["mass"]),
+        xi_b=float(b["xi_b"]), M_b=float(b["M_b"]), m_ec=float(c["mass"]), Q_d=float(b["Q_d"]),
+        D_y=float(b["D_y"]), m_st=float(b["m_st"]), T_s=float(b["T_s"]), xi_s=float(b["xi_s"]), floor=b["floor"],
         mu_k_median=float(c["mu_k"]["median"]), mu_k_log_std=float(c["mu_k"]["log_std"]),
         mu_s_over_mu_k=float(c["mu_s_over_mu_k"]), beta_stribeck=float(c["beta"]), gamma=float(c["gamma"]),
         seed=study.seed, n_boot=study.n_boot, confidence_level=study.level,
