@@ -50,6 +50,9 @@ event) slides in the direction of its needed force; breakaways are force-continu
 (``phi(0) = thr``), so the other interface keeps its mode unless it is inconsistent by itself.
 The bilinear bearing's yield (``|fh| = q``) and unloading (``x' = 0``) are force-continuous too.
 ``Pi1 = max |u|``, taken at the block's stops and at the end (``|u|`` peaks only there).
+A stop (a sliding velocity ``v`` back to zero) is located as the root of ``s v / (t - t0)``, which
+has the sign of ``s v`` but not its trivial root at a phase start ``t0`` from rest: a reversal
+that starts with a tiny acceleration and ends within one step is still found.
 
 Settlement bound
 ----------------
@@ -63,7 +66,7 @@ acceleration ``A_F``, the bilinear force ``fh``, the held bearing's ``fh_needed`
 (``settled = True``) at the first moment every bound is within its limit: this is a terminal
 event of the free phase, and changes only where the run stops, never ``Pi1``.  A run that has not
 settled by the horizon (default ``tau_end + max(50 max(1, Pi3, Pi12), 50/rate)``, ``rate`` the
-slowest decay rate of the free system) ends with ``settled = False``.
+slowest decay rate of the free system, 0 for an undamped one) ends with ``settled = False``.
 """
 
 from __future__ import annotations
