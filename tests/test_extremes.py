@@ -97,7 +97,7 @@ def test_domain_is_inside_the_scene_ranges():
         assert (lo > plo or (lo == plo and lo_in)) and (hi < phi or (hi == phi and hi_in)), k
         assert text
         for v in (lo, hi):
-            kw = {"pi2": 1.0, "pi3": 0.0}
+            kw = {"pi2": 1.0, "pi3": 0.0, "pi11": 0.5}   # pi11 is read with a flexible superstructure
             kw[k] = v
             assert getattr(Scene(**kw), k) == v
 
@@ -123,6 +123,37 @@ def test_corners_of_the_base(pi2, pi3, pi4):
 # ----------------------------------------------------------------------------------------------
 # properties over the whole domain
 # ----------------------------------------------------------------------------------------------
+
+BUILDING_COST_LIMIT_S = 60.0
+"""No general building of the domain may take longer than this.  The slowest are undamped and
+followed to the horizon (200 isolation periods) with a stiff elastic branch (a bilinear bearing with
+``Pi10`` near 0, period ``~ sqrt(Pi10/Pi9)``) or a stiff superstructure: millions of steps."""
+
+
+@st.composite
+def buildings(draw, pulses=pulse_s):
+    """General buildings over the domain's corners and edges: bearings, flexible superstructures."""
+    sc = draw(scenes(pulses))
+    kw = {**sc.pis(), "pulse": sc.pulse}
+    kw["pi9"] = draw(st.one_of(st.just(0.0), log_uniform(-3, 1), st.just(10.0)))
+    kw["pi10"] = draw(st.one_of(st.just(0.0), log_uniform(-5, 0), st.just(1.0)))
+    if draw(st.booleans()):
+        kw["pi11"] = draw(st.one_of(st.floats(0.01, 0.95), st.sampled_from([0.01, 0.95])))
+        kw["pi12"] = draw(st.one_of(log_uniform(-2, 1), st.sampled_from([0.01, 10.0])))
+        kw["pi13"] = draw(st.one_of(st.just(0.0), log_uniform(-3, 0), st.just(1.0)))
+    kw["floor"] = draw(st.sampled_from(["base", "roof"]))
+    return Scene(**kw)
+
+
+@HYP
+@given(buildings())
+def test_valid_building_is_solved_finite_nonnegative_and_bounded(sc):
+    """Bearings with true stick or yielding, flexible superstructures, both floors, every corner."""
+    t0 = time.perf_counter()
+    s = solve(sc, horizon=50.0)
+    dt = time.perf_counter() - t0
+    check_solution(s)
+    assert dt < BUILDING_COST_LIMIT_S, f"{dt:.2f} s for {sc!r}"
 
 @HYP
 @given(scenes())
