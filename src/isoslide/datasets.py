@@ -230,7 +230,7 @@ def merge_chunks(chunks, grid) -> xr.Dataset:
                  f"{len(chunks)} chunk(s) of at most {spec.get('chunk_size')} scenes and merged by "
                  f"isoslide.datasets.merge_chunks (exact coordinate join); no timestamps are stored "
                  f"so that identical inputs give identical files"),
-        config=spec, study=grid.name, pulse=str(spec.get("pulse")),
+        config=spec, study=grid.name, pulse=str(spec.get("pulse")), floor=spec.get("floor"),
         figure=None if spec.get("figure") is None else str(spec["figure"]),
         panel=spec.get("panel"),
         reference_a_p_T_p=f"{grid.a_p_T_p:g} m/s (turns beta in s/m into Pi6 = beta a_p T_p)",

@@ -18,6 +18,7 @@ A study is given as a mapping (normally one entry of ``config.yaml``)::
     {"dims": {"pi3": [0.01, 0.5, 1]},      # swept groups, in dimension order
      "fixed": {"pi4": 0.1},                # held groups (others: ``defaults``)
      "pulse": "ricker",
+     "floor": "base",                      # the contents' floor (base or roof)
      "pi2": {"start": 0.02, "stop": "auto", "num": 64}}
 
 ``beta`` (s/m) may be used in ``dims`` or ``fixed`` in place of ``pi6``; it is
@@ -53,7 +54,7 @@ from .datasets import chunk_dataset, merge_chunks, open_dataset
 from .groups import BUILDING_NAMES, INPUT_NAMES, group
 from .progress import Progress
 from .pulses import get_pulse
-from .scene import Scene
+from .scene import FLOORS, Scene
 from .validation import check_range
 
 log = logging.getLogger(__name__)
@@ -97,6 +98,7 @@ class Grid:
     beta: object = None
     a_p_T_p: float = 1.0
     spec: dict = field(default_factory=dict, compare=False)
+    floor: str = FLOORS[0]
 
     @property
     def shape(self) -> tuple:
@@ -148,7 +150,8 @@ class Grid:
         """:class:`~isoslide.Scene` objects at flat ``indices`` (all by default)."""
         pts = self.points(indices)
         n = len(pts["pi2"])
-        return [Scene(**{k: float(pts[k][i]) for k in PI_NAMES}, pulse=self.pulse) for i in range(n)]
+        return [Scene(**{k: float(pts[k][i]) for k in PI_NAMES}, pulse=self.pulse, floor=self.floor)
+                for i in range(n)]
 
 
 def n_chunks(size: int, chunk_size: int) -> int:
@@ -178,7 +181,8 @@ def _pi_value(key: str, name: str, value) -> float:
 def normalise_study(name: str, study: dict, config: dict) -> dict:
     """Return the full, JSON-serialisable specification of one study.
 
-    Groups neither swept nor fixed take ``config["defaults"]``, the Pi2 axis
+    Groups neither swept nor fixed take ``config["defaults"]`` (so do the pulse and the contents'
+    ``floor``), the Pi2 axis
     completes the study's ``pi2`` with ``config["pi2"]`` (the configuration
     schema fills both, see :func:`isoslide.config.load`), ``beta`` becomes
     ``pi6`` and every value is checked,
@@ -198,7 +202,7 @@ def normalise_study(name: str, study: dict, config: dict) -> dict:
     where = f"studies.{name}"
     defaults = {}
     for k, v in config["defaults"].items():
-        if k == "pulse":
+        if k in ("pulse", "floor"):
             continue
         if k not in HELD:
             raise ConfigError(f"defaults.{k}: unknown group; allowed: {list(HELD)}")
@@ -212,6 +216,9 @@ def normalise_study(name: str, study: dict, config: dict) -> dict:
         get_pulse(pulse)
     except ValueError as err:
         raise ConfigError(f"{where}.pulse: {err}") from None
+    floor = study.get("floor", config["defaults"]["floor"])
+    if floor not in FLOORS:
+        raise ConfigError(f"{where}.floor = {floor!r} is invalid; allowed: {', '.join(map(repr, FLOORS))}")
     a_p_T_p = _num("reference.a_p_T_p", config["reference"]["a_p_T_p"], 0.0, math.inf, False, False)
 
     dims_in = study.get("dims") or {}
@@ -284,6 +291,7 @@ def normalise_study(name: str, study: dict, config: dict) -> dict:
         "figure": study.get("figure"),
         "panel": study.get("panel"),
         "pulse": pulse,
+        "floor": floor,
         "dims": dims,
         "fixed": fixed,
         "beta": beta,
@@ -330,7 +338,7 @@ def _build_grid(spec: dict) -> Grid:
     if isinstance(beta, list):
         beta = np.asarray(beta, dtype=float)
     return Grid(name=spec["study"], dims=dims, fixed=dict(spec["fixed"]), pulse=spec["pulse"],
-                beta=beta, a_p_T_p=spec["a_p_T_p"], spec=spec)
+                beta=beta, a_p_T_p=spec["a_p_T_p"], spec=spec, floor=spec["floor"])
 
 
 def study_grid(name: str, config: dict) -> Grid:
