@@ -5,7 +5,10 @@ of Pi-space (metres, seconds, kilograms; see
 :func:`isoslide.similarity.physical_parameters`) and integrates the stick-slip
 response with plain SciPy, independently of :mod:`isoslide.kernel` and of the
 dimensionless peers, so that ``Pi1 = u_max / (a_p T_p^2)`` can be compared
-across realisations with equal Pi-groups.
+across realisations with equal Pi-groups.  A general building (hysteretic isolator, flexible
+superstructure, contents on the roof) is integrated by
+:func:`isoslide.peers.si_building.simulate_building_si`; the paper's model by the plain
+two-state solver below.
 """
 
 from __future__ import annotations
@@ -18,6 +21,7 @@ from scipy.integrate import solve_ivp
 from ..history import History
 from ..pulses import accel_at, get_pulse
 from .result import PeerResult
+from .si_building import is_general, simulate_building_si
 
 __all__ = ["simulate_si"]
 
@@ -39,13 +43,17 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
       satisfies ``|A| <= mu_s g``; it breaks loose when ``|A| > mu_s g``,
       sliding in direction ``-sign(A)``.
 
-    ``T_b = 0`` is a fixed base (floor = ground).
+    ``T_b = 0`` is a fixed base (floor = ground).  Parameters of a general building
+    (``Q_d > 0`` on an isolated base, or ``T_s > 0``) are integrated with the building's
+    equations by :func:`~isoslide.peers.si_building.simulate_building_si`.
 
     Parameters
     ----------
     p : dict
-        SI parameters ``a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g``
-        (as returned by :func:`isoslide.similarity.physical_parameters`).
+        SI parameters ``a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g`` and
+        optionally the building's ``Q_d`` (N), ``D_y`` (m), ``m_st`` (kg), ``T_s`` (s), ``xi_s``,
+        ``floor`` (absent: the paper's model; as returned by
+        :func:`isoslide.similarity.physical_parameters`).
     pulse : str or Pulse
         Ground-acceleration shape, ``a_g(t) = a_p p(t / T_p)``.
     t_end : float, optional
@@ -63,6 +71,8 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
         (``u_max`` in m), ``pi1_residual``, ``tau_peak``, ``tau_end = t_end / T_p``,
         ``n_events``, ``nfev``; ``settled`` is False (the run always goes to ``t_end``).
     """
+    if is_general(p):
+        return simulate_building_si(p, pulse, t_end=t_end, rtol=rtol, history=history)
     pul = get_pulse(pulse)
     a_p, T_p, g = p["a_p"], p["T_p"], p["g"]
     M, m = p["M_b"], p["m_ec"]
