@@ -35,7 +35,7 @@ include: "workflow/rules/common.smk"
 
 
 wildcard_constraints:
-    study="|".join(STUDIES),
+    study="|".join(STUDY_SPECS),
     chunk=r"\d+",
     fig=r"fig[1-8]",
     record="|".join(re.escape(r) for r in RECORDS),
@@ -49,6 +49,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/records.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/fragility.smk"
+include: "workflow/rules/isolation.smk"
 include: "workflow/rules/reports.smk"
 
 
@@ -65,6 +66,8 @@ rule all:
         expand("results/datasets/{frag}.nc", frag=FRAGILITY_DATASETS),
         "results/fragility/pelicun_damage_db.csv",
         FRAGILITY_FIGURE_FILES,
+        expand("results/datasets/{name}.nc", name=ISOLATION_DATASETS),
+        ISOLATION_FIGURE_FILES,
         expand("reports/{report}.html", report=REPORTS),
         "reports/index.html",
     default_target: True

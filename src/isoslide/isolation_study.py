@@ -20,6 +20,7 @@ Three studies beyond the paper's Fig. 1-b model (configuration section ``isolati
 from __future__ import annotations
 
 import copy
+import math
 
 import numpy as np
 import xarray as xr
@@ -34,7 +35,7 @@ from .records import G
 from .scene import FLOORS, Scene
 from .sweep import normalise_study
 
-__all__ = ["FAMILIES", "NOMINAL_MASS", "design_comparison", "design_dataset", "design_excitations",
+__all__ = ["FAMILIES", "NOMINAL_MASS", "bearing_summary", "findings", "sliding_end", "design_comparison", "design_dataset", "design_excitations",
            "isolation_settings", "rigid_dataset", "rigid_error", "rigid_summary", "study_entries", "study_names",
            "study_specs"]
 
@@ -403,3 +404,119 @@ def design_dataset(settings: dict) -> xr.Dataset:
         config={"design": settings["isolation"]["design"], "defaults": settings["defaults"],
                 "solver": settings["solver"]}, **extra)
     return ds
+
+
+# ----------------------------------------------------------------------------------------------
+# the report's findings, with their numbers
+# ----------------------------------------------------------------------------------------------
+
+def sliding_end(pi1: np.ndarray, pi2: np.ndarray) -> float:
+    """Largest Pi2 of a master curve at which the contents still slide (NaN if they never do)."""
+    pi1 = np.asarray(pi1, dtype=float)
+    k = np.flatnonzero(pi1 > 0)
+    return float(np.asarray(pi2)[k[-1]]) if k.size else math.nan
+
+
+def bearing_summary(ds: xr.Dataset) -> list:
+    """The master curves of a bearing study (``iso_fp``, ``iso_lrb``) in numbers.
+
+    Returns
+    -------
+    list of tuple
+        Per Pi3 and Pi9: ``(pi3, pi9, peak Pi1, Pi2 at the peak, last sliding Pi2)``.
+    """
+    rows = []
+    for pi3 in ds["pi3"].values:
+        for pi9 in ds["pi9"].values:
+            curve = ds["pi1"].sel(pi3=pi3, pi9=pi9).values
+            k = int(np.argmax(curve))
+            rows.append((float(pi3), float(pi9), float(curve[k]), float(ds["pi2"].values[k]),
+                         sliding_end(curve, ds["pi2"].values)))
+    return rows
+
+
+def _bearing_text(name: str, ds: xr.Dataset) -> str:
+    rows = bearing_summary(ds)
+    pi9 = ds["pi9"].values
+    lo, hi = float(pi9.min()), float(pi9.max())
+    top = float(ds["pi2"].max())
+
+    def end(x):
+        return f"beyond {top:g} (the axis end)" if x >= top else f"{x:.3g}"
+
+    parts = []
+    for pi3 in ds["pi3"].values:
+        r = {row[1]: row for row in rows if row[0] == float(pi3)}
+        a, b = r[lo], r[hi]
+        parts.append(f"at Π₃ = {float(pi3):g} the peak Π₁ goes from {a[2]:.3g} (Π₉ = {lo:g}) to {b[2]:.3g} "
+                     f"(Π₉ = {hi:g}), {b[2] / a[2]:.2f}×, and sliding ends at Π₂ = {end(a[4])} and {end(b[4])}"
+                     if a[2] > 0 else f"at Π₃ = {float(pi3):g} no sliding at Π₉ = {lo:g}")
+    return f"{name}: " + "; ".join(parts) + "."
+
+
+def findings(fp: xr.Dataset, lrb: xr.Dataset, rigid: xr.Dataset, design: xr.Dataset) -> list:
+    """The report's findings, each ``(title, text with its numbers)``.
+
+    Parameters
+    ----------
+    fp, lrb : xarray.Dataset
+        The bearing studies ``iso_fp`` and ``iso_lrb``.
+    rigid : xarray.Dataset
+        :func:`rigid_error` (``isolation_rigid.nc``).
+    design : xarray.Dataset
+        :func:`design_comparison` (``isolation_design.nc``).
+    """
+    out = []
+    out.append(("A stronger bearing lowers the peak of the master curve but can lengthen sliding",
+                _bearing_text("Friction pendulum", fp) + " " + _bearing_text("Lead-rubber bearing", lrb)))
+
+    tol = float(rigid.attrs["tolerance"])
+    lines = []
+    for floor in rigid["floor"].values:
+        for pi3 in rigid["pi3"].values:
+            sub = rigid.sel(floor=floor, pi3=pi3)
+            ratio = sub["peak_ratio"].values
+            pi12 = sub["pi12"].values
+            k_hi, k_lo = int(np.nanargmax(ratio)), int(np.nanargmin(ratio))
+            lines.append(f"contents on the {floor}, Π₃ = {float(pi3):g}: the peak Π₁ of the flexible building is "
+                         f"{ratio[k_lo]:.2f}× (Π₁₂ = {pi12[k_lo]:g}) to {ratio[k_hi]:.2f}× (Π₁₂ = {pi12[k_hi]:g}) "
+                         f"the rigid one")
+    out.append(("A flexible superstructure changes the peak sliding, differently on the base and on the roof",
+                "; ".join(lines) + "."))
+
+    lines = []
+    for floor, pi3, limit, worst, err, _ratio in rigid_summary(rigid):
+        share = rigid["share_holds"].sel(floor=floor, pi3=pi3)
+        shares = ", ".join(f"{float(s):.0%}" for s in share.values[1:])
+        lim = f"up to Π₁₂ = {limit:g}" if np.isfinite(limit) else "at no Π₁₂ > 0"
+        lines.append(f"contents on the {floor}, Π₃ = {pi3:g}: within {tol:.0%} of the flexible curve's peak "
+                     f"{lim}; the largest error, {err:.0%} of the peak, at Π₁₂ = {worst:g}; pointwise within "
+                     f"{tol:.0%} at {shares} of the sliding Π₂ points for Π₁₂ = "
+                     f"{', '.join(f'{v:g}' for v in share['pi12'].values[1:])}")
+    out.append(("Where the paper's rigid-superstructure reduction holds", "; ".join(lines) + "."))
+
+    names = [str(s) for s in design["system"].values]
+    best = [str(b) for b in design["best"].values if str(b)]
+    mean = design["u_max"].mean("mu_k")
+    counts = ", ".join(f"{n.replace('_', ' ')} {best.count(n)}" for n in names)
+    ref = mean.sel(system="linear")
+    ratios = []
+    for n in names[1:]:
+        r = (mean.sel(system=n) / ref.where(ref > 0)).values
+        r = r[np.isfinite(r)]
+        if r.size:
+            ratios.append(f"{n.replace('_', ' ')} / linear: median {np.median(r):.2f} ({r.min():.2f} to "
+                          f"{r.max():.2f})")
+    pfa = design["pfa"].median("excitation")
+    disp = design["bearing_disp"]
+    out.append((
+        "Which isolation protects the contents best at equal effective period and damping",
+        f"Smallest mean u_max over μ_k = {float(design['mu_k'].min()):g} to {float(design['mu_k'].max()):g}, "
+        f"counted over the {len(best)} of {design.sizes['excitation']} excitations under which the contents slide: "
+        f"{counts}. Mean u_max relative to the linear isolator, per excitation: {'; '.join(ratios)}. Median peak "
+        f"floor acceleration over the excitations: "
+        + ", ".join(f"{n.replace('_', ' ')} {float(pfa.sel(system=n)) / G:.2f} g" for n in names)
+        + f". The three share T_eff = {design.attrs['T_eff_target']:g} s and β_eff = "
+        f"{design.attrs['beta_eff_target']:g} only at D = {design.attrs['D']:g} m; the bearings reached "
+        f"{float(disp.min()):.2f} to {float(disp.max()):.2f} m (median {float(disp.median()):.2f} m)."))
+    return out

@@ -9,6 +9,8 @@ import sys
 from snakemake.exceptions import WorkflowError
 
 import isoslide.fragility_study as fragility_study
+import isoslide.isolation_plot as isolation_plot
+import isoslide.isolation_study as isolation_study
 import isoslide.sweep as sweep
 from isoslide.provenance import code_hash
 
@@ -16,8 +18,12 @@ from isoslide.provenance import code_hash
 # stops the workflow here, before any job runs, with its key path in the message.
 try:
     SPECS = sweep.check_config(config)
+    # the isolation studies (friction pendulum, lead-rubber, flexible superstructure on base and roof):
+    # ordinary studies of the `isolation:` section, solved and merged by the same rules
+    ISOLATION_SPECS = isolation_study.study_specs(config)
 except sweep.ConfigError as err:
     raise WorkflowError(f"Invalid configuration: {err}")
+STUDY_SPECS = SPECS | ISOLATION_SPECS  # every study the rules of sweep.smk solve
 
 STUDIES = sorted(SPECS)
 DATASETS = expand("results/datasets/{study}.nc", study=STUDIES)
@@ -64,6 +70,15 @@ CODE_MODULES = {
                        "validation"],
     # fragility_pelicun (isoslide.pelicun_export)
     "pelicun": ["budget", "datasets", "groups", "models", "pelicun_export", "provenance", "validation"],
+    # isolation_rigid, isolation_design; the isolation report (isoslide.isolation_study)
+    "isolation": ["budget", "building", "building_kernel", "config", "datasets", "design", "dop853", "groups",
+                  "history", "history_io", "intensity", "isolation_study", "kernel", "models", "peers", "piecewise",
+                  "progress", "provenance", "pulses", "record_study", "records", "scene", "solver", "sweep",
+                  "validation"],
+    # isolation_figure (isoslide.isolation_plot)
+    "isolation_plot": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups", "history",
+                       "isolation_plot", "kernel", "models", "peers", "piecewise", "progress", "provenance",
+                       "pulses", "record_study", "records", "scene", "solver", "validation"],
 }
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
 
@@ -88,6 +103,15 @@ FRAGILITY_RECORD_FILES = [r for r in FRAGILITY_SETTINGS["fragility"]["records"]
 FRAGILITY_FIGURE_FILES = expand("reports/figures/fragility.{ext}", ext=FORMATS)
 FRAGILITY_FIGURE_INPUT = {"isolated": "results/datasets/fragility.nc"} | (
     {"fixed_base": "results/datasets/fragility_fixed_base.nc"} if len(FRAGILITY_DATASETS) > 1 else {})
+
+# Buildings as engineers isolate them (workflow/rules/isolation.smk).
+ISOLATION_SETTINGS = sweep.jsonable(isolation_study.isolation_settings(config))
+ISOLATION_STUDIES = list(ISOLATION_SPECS)
+ISOLATION_DATASETS = ISOLATION_STUDIES + ["isolation_rigid", "isolation_design"]
+ISOLATION_RECORD_FILES = [r for r in ISOLATION_SETTINGS["isolation"]["design"]["records"]
+                          if os.path.splitext(r)[1].lower() in (".at2", ".csv") and os.path.isfile(r)]
+ISOLATION_FIGURE_INPUT = {name: f"results/datasets/{name}.nc" for name in ISOLATION_DATASETS}
+ISOLATION_FIGURE_FILES = expand("reports/figures/{fig}.{ext}", fig=list(isolation_plot.FIGURES), ext=FORMATS)
 
 for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
     if _c["study"] not in SPECS:
@@ -131,6 +155,16 @@ REPORTS = {
         "needs": list(FRAGILITY_FIGURE_INPUT.values()) + ["results/fragility/pelicun_damage_db.csv"],
         "code": "fragility_plot",
     },
+    "isolation": {
+        "data": {"fp_path": "results/datasets/iso_fp.nc", "lrb_path": "results/datasets/iso_lrb.nc",
+                 "flex_base_path": "results/datasets/iso_flex_base.nc",
+                 "flex_roof_path": "results/datasets/iso_flex_roof.nc",
+                 "rigid_path": "results/datasets/isolation_rigid.nc",
+                 "design_path": "results/datasets/isolation_design.nc"},
+        "parameters": {"figure_dir": "reports/figures"},
+        "needs": expand("reports/figures/{fig}.png", fig=list(isolation_plot.FIGURES)),
+        "code": "isolation",
+    },
 }
 
 
@@ -139,9 +173,11 @@ REPORTS = {
 # and shows the complete configuration.
 INDEX = {
     "datasets": {name: f"results/datasets/{name}.nc"
-                 for name in STUDIES + ["similarity", "fig4_record", "records", "accuracy"] + FRAGILITY_DATASETS}
+                 for name in STUDIES + ["similarity", "fig4_record", "records", "accuracy"] + FRAGILITY_DATASETS
+                 + ISOLATION_DATASETS}
                 | {"accuracy_timings": "results/timings/accuracy_timings.nc"},
-    "figures": expand("reports/figures/{fig}.png", fig=FIGURES + ["records", "fragility"]),
+    "figures": expand("reports/figures/{fig}.png",
+                      fig=FIGURES + ["records", "fragility"] + list(isolation_plot.FIGURES)),
     "reports": expand("reports/{report}.html", report=REPORTS),
     "config": sweep.jsonable(config),
 }
@@ -149,7 +185,7 @@ INDEX = {
 
 def chunk_files(wildcards):
     """Chunk files of one study; none for a study of one chunk (merge_study solves it itself)."""
-    spec = SPECS[wildcards.study]
+    spec = STUDY_SPECS[wildcards.study]
     if len(sweep.spec_chunks(spec)) == 1:
         return []
     return expand(

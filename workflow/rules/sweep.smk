@@ -9,7 +9,7 @@ rule solve_chunk:
     params:
         code=CODE["solve"],
         # the study's full specification: editing one study reruns only its chunks
-        spec=lambda wildcards: SPECS[wildcards.study],
+        spec=lambda wildcards: STUDY_SPECS[wildcards.study],
     log:
         "logs/solve_chunk/{study}/{chunk}.log",
     benchmark:
@@ -31,7 +31,7 @@ rule merge_study:
         "results/datasets/{study}.nc",
     params:
         code=CODE["solve"],
-        spec=lambda wildcards: SPECS[wildcards.study],
+        spec=lambda wildcards: STUDY_SPECS[wildcards.study],
     log:
         "logs/merge_study/{study}.log",
     benchmark:

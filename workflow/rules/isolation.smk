@@ -1,0 +1,72 @@
+# Buildings as engineers isolate them (isoslide.isolation_study, `isolation:` in the config).  The
+# master curves of real bearings and of a flexible superstructure (studies iso_fp, iso_lrb,
+# iso_flex_base, iso_flex_roof) are ordinary studies: solved and merged by the rules of sweep.smk.
+# Here: where the rigid-superstructure reduction holds, the comparison of isolation systems of equal
+# effective period and damping, their figures; reports/isolation.html is the `report` rule's.
+
+
+rule isolation_rigid:
+    input:
+        base="results/datasets/iso_flex_base.nc",
+        roof="results/datasets/iso_flex_roof.nc",
+    output:
+        "results/datasets/isolation_rigid.nc",
+    params:
+        code=CODE["isolation"],
+        settings=ISOLATION_SETTINGS,
+    log:
+        "logs/isolation_rigid/isolation_rigid.log",
+    benchmark:
+        "results/benchmarks/isolation_rigid/isolation_rigid.tsv"
+    threads: 1
+    resources:
+        mem_mb=500,  # measured: max_rss 230 MB
+        runtime=2,  # minutes; measured: 3.0 s
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/isolation_rigid.py"
+
+
+rule isolation_design:
+    input:
+        ISOLATION_RECORD_FILES,
+    output:
+        "results/datasets/isolation_design.nc",
+    params:
+        code=CODE["isolation"],
+        settings=ISOLATION_SETTINGS,
+    log:
+        "logs/isolation_design/isolation_design.log",
+    benchmark:
+        "results/benchmarks/isolation_design/isolation_design.tsv"
+    threads: 1
+    resources:
+        mem_mb=600,  # measured: max_rss 280 MB
+        runtime=3,  # minutes; measured: 9.0 s
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/isolation_design.py"
+
+
+rule isolation_figure:
+    input:
+        **ISOLATION_FIGURE_INPUT,
+    output:
+        ISOLATION_FIGURE_FILES,
+    params:
+        code=CODE["isolation_plot"],
+        settings=FIGURE_SETTINGS,
+    log:
+        "logs/isolation_figure/isolation_figure.log",
+    benchmark:
+        "results/benchmarks/isolation_figure/isolation_figure.tsv"
+    threads: 1
+    resources:
+        mem_mb=600,  # measured: max_rss 290 MB
+        runtime=2,  # minutes; measured: 8.0 s
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/isolation_figure.py"

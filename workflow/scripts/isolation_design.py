@@ -1,0 +1,17 @@
+"""Rule isolation_design: linear, bilinear and friction-pendulum isolation of equal effective period
+and damping, compared on pulses and records (isoslide.isolation_study.design_dataset)."""
+
+from isoslide.budget import phase
+from isoslide.datasets import write_netcdf
+from isoslide.isolation_study import design_dataset
+from isoslide.provenance import log_to
+from isoslide.solver import warm_up
+
+with log_to(snakemake.log[0]) as log:
+    with phase("compilation", log):
+        warm_up(records=True, building=True)
+    with phase("solving", log):
+        ds = design_dataset(snakemake.params.settings)
+    log.info("%s", ds)
+    with phase("writing", log):
+        write_netcdf(ds, snakemake.output[0])
