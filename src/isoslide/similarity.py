@@ -30,7 +30,7 @@ from . import claims
 from .datasets import global_attrs, open_dataset, pi_attrs
 from .groups import BUILDING_NAMES, INPUT_NAMES, INPUTS
 from .peers.si import simulate_si
-from .scene import G_STANDARD
+from .scene import FLOORS, G_STANDARD
 
 CONVENTIONS = ("isoslide", "paper")
 """Group definitions used to realise a point physically: isoslide's, and the paper's printed Eq. 5."""
@@ -48,7 +48,7 @@ VERDICT_FLAGS = dict(flag_values=np.array([0, 1, 2], dtype=np.int8),
 # ----------------------------------------------------------------------------------------------
 
 def physical_parameters(pis: dict, a_p: float, T_p: float, M_b: float, convention: str = "isoslide",
-                        g: float = G_STANDARD) -> dict:
+                        g: float = G_STANDARD, floor: str = FLOORS[0]) -> dict:
     """Physical (SI) parameters realising the Pi-groups ``pis`` at scales ``a_p, T_p, M_b``.
 
     Parameters
@@ -60,22 +60,29 @@ def physical_parameters(pis: dict, a_p: float, T_p: float, M_b: float, conventio
     convention : {"isoslide", "paper"}
         ``"paper"`` inverts the printed ``Pi7 = gamma a_p T_p``; ``"isoslide"`` inverts
         ``Pi7 = gamma g T_p``.  All other groups are defined alike.
+    g : float
+        Gravitational acceleration, m/s^2.
+    floor : {"base", "roof"}
+        The contents' floor (a study dataset's ``floor`` attribute).
 
     Returns
     -------
     dict
-        ``a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g`` and the building's
-        ``Q_d, D_y, m_st, T_s, xi_s`` (keywords of :meth:`isoslide.Scene.from_physical`).
+        ``a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g``, the building's
+        ``Q_d, D_y, m_st, T_s, xi_s`` and ``floor`` (keywords of
+        :meth:`isoslide.Scene.from_physical`; the input of :func:`simulate_si`).
     """
     if convention not in CONVENTIONS:
         raise ValueError(f"convention = {convention!r} is invalid; allowed: {CONVENTIONS}")
+    if floor not in FLOORS:
+        raise ValueError(f"floor = {floor!r} is invalid; allowed: {FLOORS}")
     mu_k = pis["pi2"] * a_p / g
     gamma = pis["pi7"] / ((g if convention == "isoslide" else a_p) * T_p)
     building = {k: pis[k] if k in pis else 0.0 for k in BUILDING_NAMES}
     return dict(a_p=a_p, T_p=T_p, M_b=M_b, T_b=pis["pi3"] * T_p, xi_b=pis["pi4"], m_ec=pis["pi8"] * M_b,
                 mu_s=mu_k / pis["pi5"], mu_k=mu_k, beta=pis["pi6"] / (a_p * T_p), gamma=gamma, g=g,
                 Q_d=building["pi9"] * M_b * a_p, D_y=building["pi10"] * a_p * T_p**2,
-                m_st=building["pi11"] * M_b, T_s=building["pi12"] * T_p, xi_s=building["pi13"])
+                m_st=building["pi11"] * M_b, T_s=building["pi12"] * T_p, xi_s=building["pi13"], floor=floor)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -87,9 +94,21 @@ def _study_seed(seed: int, study: str) -> int:
 
 
 def _point_pis(ds: xr.Dataset, index: tuple) -> dict:
+    """Every input group at one grid point; a building group the dataset lacks is 0 (the paper's model)."""
     sel = {d: i for d, i in zip(ds["pi1"].dims, index, strict=True)}
     pt = ds.isel(sel)
-    return {g: float(pt[g]) for g in GROUPS}
+    return {g: float(pt[g]) if g in pt.variables or g not in BUILDING_NAMES else 0.0 for g in GROUPS}
+
+
+def study_floor(ds: xr.Dataset) -> str:
+    """The contents' floor of a study dataset: its ``floor`` attribute (or coordinate), else ``"base"``."""
+    floor = ds.attrs.get("floor")
+    if floor is None and "floor" in ds.variables and ds["floor"].ndim == 0:
+        floor = ds["floor"].item()
+    floor = FLOORS[0] if floor in (None, "", "None") else str(floor)
+    if floor not in FLOORS:
+        raise ValueError(f"floor = {floor!r} of study {ds.attrs.get('study')!r} is invalid; allowed: {FLOORS}")
+    return floor
 
 
 def sample_points(ds: xr.Dataset, n: int, rng, max_tau_end: float = 40.0) -> list:
@@ -129,7 +148,8 @@ def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
     Parameters
     ----------
     ds : xarray.Dataset
-        A study dataset.
+        A study dataset (the paper's model or a general building: its Pi9 .. Pi13 and its
+        ``floor`` attribute are realised too, see :func:`physical_parameters`).
     settings : dict
         The ``similarity`` section of the configuration (``seed``, ``points``,
         ``realisations``, ``a_p_g``, ``T_p``, ``M_b``).
@@ -142,6 +162,7 @@ def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
     """
     study = ds.attrs.get("study", "study")
     pulse = ds.attrs.get("pulse", "ricker")
+    floor = study_floor(ds)
     rng = np.random.default_rng(_study_seed(settings["seed"], study))
     idx = sample_points(ds, int(settings["points"]), rng)
     R = int(settings["realisations"])
@@ -170,7 +191,7 @@ def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
         tau_end[i] = float(ds["tau_end"].isel(sel)) if "tau_end" in ds else math.nan
         for j in range(R):
             for c, conv in enumerate(CONVENTIONS):
-                phys = physical_parameters(pt, a_p[i, j], T_p[i, j], M_b[i, j], conv)
+                phys = physical_parameters(pt, a_p[i, j], T_p[i, j], M_b[i, j], conv, floor=floor)
                 gamma[i, j, c] = phys["gamma"]
                 if c > 0 and pt["pi7"] == 0.0:
                     # identical physical parameters: the conventions differ only through Pi7
@@ -217,7 +238,7 @@ def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
         title=f"isoslide Buckingham realisations of study {study}",
         history=f"isoslide.similarity.buckingham_study: {ns} points x {R} realisations x "
                 f"{len(CONVENTIONS)} conventions, SI-units integration",
-        config={"settings": settings}, study=study, pulse=pulse, swept=" ".join(swept))
+        config={"settings": settings}, study=study, pulse=pulse, floor=floor, swept=" ".join(swept))
     return out
 
 
