@@ -175,3 +175,18 @@ def test_paper_points_without_building_coordinates_are_the_paper_model():
     assert all(pt[k] == 0.0 for k in ("pi9", "pi10", "pi11", "pi12", "pi13"))
     assert not is_general(S.physical_parameters(pt, 3.0, 1.0, 1e5))
     assert math.isclose(pt["pi3"], PAPER["pi3"])
+
+
+def test_a_tangential_touch_of_the_stick_limit_in_the_paper_model():
+    """A paper-model realisation whose floor acceleration touches mu_s g tangentially (at tau = 1.706):
+    the two-state solver stalls there, simulate_si integrates it by the building's equations and
+    agrees with isoslide.solve to 1e-5 (the Buckingham check of a rigid-superstructure grid point)."""
+    from isoslide.peers import si
+
+    pis = dict(pi2=0.908, pi3=1.0, pi4=0.1, pi5=1.0, pi6=0.0, pi7=0.0, pi8=1e-5)
+    sol = isoslide.solve(isoslide.Scene(**pis))
+    p = S.physical_parameters(pis, 15.400856331533095, 0.35986102112663587, 13351.122482138764)
+    t_end = (sol.tau_end + 1.0) * p["T_p"]
+    with pytest.raises(si._Stalled):
+        si._simulate_paper(p, "ricker", t_end, 1e-12, False)
+    assert simulate_si(p, "ricker", t_end=t_end).pi1 == pytest.approx(sol.pi1, rel=1e-5)

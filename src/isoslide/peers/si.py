@@ -43,7 +43,9 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
       satisfies ``|A| <= mu_s g``; it breaks loose when ``|A| > mu_s g``,
       sliding in direction ``-sign(A)``.
 
-    ``T_b = 0`` is a fixed base (floor = ground).  Parameters of a general building
+    ``T_b = 0`` is a fixed base (floor = ground).  Where the block touches its stick limit
+    tangentially and stick and slip would alternate at one instant, the run is integrated by the
+    building's equations (which hold the paper's model) instead.  Parameters of a general building
     (``Q_d > 0`` on an isolated base, or ``T_s > 0``) are integrated with the building's
     equations by :func:`~isoslide.peers.si_building.simulate_building_si`.
 
@@ -73,6 +75,21 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
     """
     if is_general(p):
         return simulate_building_si(p, pulse, t_end=t_end, rtol=rtol, history=history)
+    try:
+        return _simulate_paper(p, pulse, t_end, rtol, history)
+    except _Stalled:
+        # the block touched its stick limit tangentially and the two-state solver alternates
+        # between stick and slip at one instant; the building's joint mode choice (a slip is
+        # taken only when it accelerates in its own direction) settles the mode there
+        return simulate_building_si(p, pulse, t_end=t_end, rtol=rtol, history=history)
+
+
+class _Stalled(RuntimeError):
+    """The paper model's two-state solver makes no progress in time (stick/slip alternation)."""
+
+
+def _simulate_paper(p: dict, pulse, t_end: float | None, rtol: float, history: bool) -> PeerResult:
+    """:func:`simulate_si` for the paper's model (linear isolator, rigid superstructure)."""
     pul = get_pulse(pulse)
     a_p, T_p, g = p["a_p"], p["T_p"], p["g"]
     M, m = p["M_b"], p["m_ec"]
@@ -134,10 +151,15 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
     hist = [] if history else None
     bi = 0
     guard = 0
+    stall, t_last = 0, t
     while t < t_end - 1e-12 * T_p:
         guard += 1
         if guard > 100000:
             raise RuntimeError("simulate_si: too many phases (chattering?)")
+        stall = stall + 1 if t == t_last else 0
+        t_last = t
+        if stall > 1000:
+            raise _Stalled(f"simulate_si: stick and slip alternate at t = {t!r} s")
         while bi < len(bounds) and bounds[bi] <= t + 1e-14 * T_p:
             bi += 1
         t_next = bounds[bi] if bi < len(bounds) else t_end
