@@ -108,9 +108,9 @@ def test_physical_parameters_carry_the_building_and_the_floor():
 def test_scaling_physical_parameters_at_fixed_groups_keeps_pi1(scale):
     """Q_d, M_b, m_ec, m_st doubled together (Pi8, Pi9, Pi11 fixed), D_y with a_p T_p^2, T_s with T_p: same Pi1."""
     p = _physical()
-    base = _si(p, 12.0)
+    base = _si(p, 6.0)
     assert base > 1e-3
-    assert _si(_scaled(p, **scale), 12.0) == pytest.approx(base, rel=1e-7)
+    assert _si(_scaled(p, **scale), 6.0) == pytest.approx(base, rel=1e-7)
 
 
 @pytest.mark.parametrize("change", [dict(Q_d=1e5), dict(D_y=0.06), dict(m_st=1.6e5), dict(T_s=0.8),
@@ -121,8 +121,8 @@ def test_each_building_parameter_changes_pi1(change):
     (The smallest change, xi_s 0.03 -> 0.3, moves Pi1 by 0.28 %; the fixed-group scalings above agree to
     1e-7, so 0.1 % is far outside the integration's error.)
     """
-    base = _si(_physical(), 12.0)
-    assert abs(_si(_physical(**change), 12.0) - base) > 1e-3 * base
+    base = _si(_physical(), 6.0)
+    assert abs(_si(_physical(**change), 6.0) - base) > 1e-3 * base
 
 
 def test_bad_building_input_is_named():
@@ -190,3 +190,17 @@ def test_a_tangential_touch_of_the_stick_limit_in_the_paper_model():
     with pytest.raises(si._Stalled):
         si._simulate_paper(p, "ricker", t_end, 1e-12, False)
     assert simulate_si(p, "ricker", t_end=t_end).pi1 == pytest.approx(sol.pi1, rel=1e-5)
+
+
+def test_a_short_slip_near_the_sliding_threshold_is_not_stepped_over():
+    """A lead-rubber point just above its sliding threshold (Pi1 = 7.8e-4): the contents slip for
+    0.02 T_p at tau = 0.215, a stick-limit excursion shorter than a step of 1/32 of the elastic period
+    (which missed it, Pi1 off by 2.4e-4 relative); the realisation agrees with isoslide.solve to 1e-5."""
+    pis = dict(pi2=1.5301694915254236, pi3=1.0, pi4=0.03, pi5=1.0, pi6=0.0, pi7=0.0, pi8=1e-5, pi9=0.2,
+               pi10=0.002)
+    sol = isoslide.solve(isoslide.Scene(**pis))
+    p = S.physical_parameters(pis, 1.34185835, 2.72750898, 79084.98545812)
+    r = simulate_si(p, "ricker", t_end=(sol.tau_end + 1.0) * p["T_p"], history=True)
+    assert r.pi1 == pytest.approx(sol.pi1, rel=1e-5)
+    slipping = r.history.tau[r.history.phase != 0]
+    assert slipping.min() == pytest.approx(0.215, abs=1e-3)

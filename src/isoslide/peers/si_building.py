@@ -308,7 +308,10 @@ def simulate_building_si(p: dict, pulse="ricker", t_end: float | None = None, rt
         t_end = pul.tau_end * T_p + 20.0 * max(periods)
     bounds = sorted({float(b) * T_p for b in pul.breakpoint_array} | {t_end})
     bounds = [b for b in bounds if t0 < b <= t_end] or [t_end]
-    h_max = min(periods) / 32.0
+    # events are seen where their function changes sign between steps: a stick limit touched for
+    # less than about a step goes unseen, and the slip it misses moves the contents by about
+    # jerk * step^3; 128 steps per shortest period keep that far below the check's tolerance
+    h_max = min(periods) / 128.0
     h_slip = min(periods) / 200.0 if (B.beta > 0.0 and B.mu_s != B.mu_k) else h_max
     atol = np.array([L, V, L, V, L, V, Fs]) * 1e-12
     lim_b = B.mu_s * B.g * (1.0 + _SLACK)
