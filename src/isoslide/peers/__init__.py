@@ -11,7 +11,8 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.history.Histo
     The paper's method: the signum replaced by a stiff elastic-plastic spring, SciPy
     Radau; ``solve(scene, method="regularized", stiffness=...)``.
 :func:`simulate_si` (:mod:`.si`)
-    The physical equations in SI units, for the similarity check.
+    The physical equations in SI units, for the similarity check; a general building is
+    integrated by :func:`~.si_building.simulate_building_si` (:mod:`.si_building`).
 :func:`solve_opensees` (:mod:`.opensees`)
     The bilinear spring in OpenSees (optional; :func:`opensees_available`).
 """
