@@ -20,8 +20,8 @@ rule isolation_rigid:
         "results/benchmarks/isolation_rigid/isolation_rigid.tsv"
     threads: 1
     resources:
-        mem_mb=500,  # measured: max_rss 230 MB
-        runtime=2,  # minutes; measured: 3.0 s
+        mem_mb=500,  # measured: max_rss 236 MB
+        runtime=2,  # minutes; measured: 4.1 s (default config, 2 cores under load)
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -42,8 +42,8 @@ rule isolation_design:
         "results/benchmarks/isolation_design/isolation_design.tsv"
     threads: 1
     resources:
-        mem_mb=600,  # measured: max_rss 280 MB
-        runtime=3,  # minutes; measured: 9.0 s
+        mem_mb=700,  # measured: max_rss 351 MB
+        runtime=4,  # minutes; measured: 21.1 s (default config with 10 mu_k, 2 cores under load), 12.4 s with 7
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -64,8 +64,8 @@ rule isolation_figure:
         "results/benchmarks/isolation_figure/isolation_figure.tsv"
     threads: 1
     resources:
-        mem_mb=600,  # measured: max_rss 290 MB
-        runtime=2,  # minutes; measured: 8.0 s
+        mem_mb=600,  # measured: max_rss 296 MB
+        runtime=3,  # minutes; measured: 12.9 s (default config, 2 cores under load)
     conda:
         "../envs/isoslide.yaml"
     script:
