@@ -206,6 +206,8 @@ def test_findings_quote_the_datasets(solved):
     assert f"{float(ratio):.2f}×" in found[1][1]
     best = [str(b) for b in data["isolation_design"]["best"].values if str(b)]
     assert f"{len(best)} of 1 excitations" in found[3][1]
+    far = float(data["isolation_design"]["bearing_disp"].max()) > 2.0 * data["isolation_design"].attrs["D"]
+    assert f"{'beyond' if far else 'within'} 2 D (1 excitations)" in found[3][1]
 
 
 def test_sliding_end_is_the_last_sliding_pi2():

@@ -509,6 +509,14 @@ def findings(fp: xr.Dataset, lrb: xr.Dataset, rigid: xr.Dataset, design: xr.Data
                           f"{r.max():.2f})")
     pfa = design["pfa"].median("excitation")
     disp = design["bearing_disp"]
+    D = float(design.attrs["D"])
+    far = disp.max("system").values > 2.0 * D       # the isolators driven far beyond the design point
+    split = []
+    for label, mask in (("within 2 D", ~far), ("beyond 2 D", far)):
+        won = [str(b) for b, m in zip(design["best"].values, mask, strict=True) if m and str(b)]
+        if won:
+            split.append(f"{label} ({len(won)} excitations): "
+                         + ", ".join(f"{n.replace('_', ' ')} {won.count(n)}" for n in names))
     out.append((
         "Which isolation protects the contents best at equal effective period and damping",
         f"Smallest mean u_max over μ_k = {float(design['mu_k'].min()):g} to {float(design['mu_k'].max()):g}, "
@@ -518,5 +526,6 @@ def findings(fp: xr.Dataset, lrb: xr.Dataset, rigid: xr.Dataset, design: xr.Data
         + ", ".join(f"{n.replace('_', ' ')} {float(pfa.sel(system=n)) / G:.2f} g" for n in names)
         + f". The three share T_eff = {design.attrs['T_eff_target']:g} s and β_eff = "
         f"{design.attrs['beta_eff_target']:g} only at D = {design.attrs['D']:g} m; the bearings reached "
-        f"{float(disp.min()):.2f} to {float(disp.max()):.2f} m (median {float(disp.median()):.2f} m)."))
+        f"{float(disp.min()):.2f} to {float(disp.max()):.2f} m (median {float(disp.median()):.2f} m). "
+        f"Best system by the largest bearing displacement of the excitation, " + "; ".join(split) + "."))
     return out
