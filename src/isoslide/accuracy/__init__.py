@@ -35,8 +35,8 @@ Peers
 ``reference``: the plain SciPy event-driven solver (:mod:`isoslide.peers.reference`);
 ``regularized``: the paper's method, signum replaced by a stiff elastic-plastic spring,
 SciPy Radau (:mod:`isoslide.peers.regularized`); ``opensees`` (optional, ``accuracy.opensees``
-``auto``/``true``/``false``; needs ``pip install openseespy`` and, on Debian, ``libblas3``
-``liblapack3``): the same bilinear spring in OpenSees (:func:`isoslide.peers.solve_opensees`), Coulomb
+``auto``/``true``/``false``; needs ``pip install -e .[peers]``, pinned in ``environment.lock``):
+the same bilinear spring in OpenSees (:func:`isoslide.peers.solve_opensees`), Coulomb
 scenes only.  The peers run on evenly spread subsets of the scene set.
 
 Horizon

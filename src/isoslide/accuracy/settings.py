@@ -89,7 +89,7 @@ def method_settings(settings: dict, part: str | None = None) -> list[Setting]:
                 for k in settings["regularized_stiffness"]]
         if settings["opensees"] is True and not opensees_available():
             raise RuntimeError("accuracy.opensees = true but openseespy does not import: pip install "
-                               "openseespy (on Debian also apt-get install libblas3 liblapack3)")
+                               "-e .[peers] (pinned in environment.lock)")
         if settings["opensees"] is True or (settings["opensees"] == "auto" and opensees_available()):
             out += [Setting(f"opensees K={k:.0e}", "opensees", math.nan, k)
                     for k in settings["regularized_stiffness"]]

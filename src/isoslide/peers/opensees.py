@@ -1,12 +1,18 @@
-"""Optional peer: the paper's bilinear friction spring in OpenSees (Coulomb scenes only).
+"""Optional peer: the paper's model and the general building in OpenSees.
 
-Needs ``pip install openseespy`` (``pip install -e .[peers]``) and, on Debian,
-``apt-get install libblas3 liblapack3``; :func:`opensees_available` says whether it imports.
+Needs ``pip install -e .[peers]`` (``openseespy``; on Linux its binary ``openseespylinux``, pinned in
+``environment.lock``: openseespy 3.8 needs Python >= 3.12, Python 3.11 gets 3.7.1.2).
+:func:`opensees_available` says whether it imports.  The Linux wheel ships BLAS and LAPACK in
+``openseespylinux/lib`` but its LAPACK finds BLAS only on the system's library path, so
+:func:`_opensees` loads the bundled BLAS first: no system ``libblas3`` / ``liblapack3`` is needed.
 """
 
 from __future__ import annotations
 
+import ctypes
+import importlib.util
 import math
+import os
 
 import numpy as np
 
@@ -17,10 +23,22 @@ from .result import PeerResult
 __all__ = ["opensees_available", "solve_opensees"]
 
 
+def _opensees():
+    """The ``openseespy.opensees`` module, after loading the wheel's own BLAS (see the module doc)."""
+    spec = importlib.util.find_spec("openseespylinux")
+    if spec is not None and spec.origin:
+        blas = os.path.join(os.path.dirname(spec.origin), "lib", "libblas.so.3")
+        if os.path.exists(blas):
+            ctypes.CDLL(blas, mode=ctypes.RTLD_GLOBAL)
+    import openseespy.opensees as ops
+
+    return ops
+
+
 def opensees_available() -> bool:
-    """True when ``openseespy`` imports (``pip install openseespy``; Debian libblas3 liblapack3)."""
+    """True when ``openseespy`` imports (``pip install -e .[peers]``)."""
     try:
-        import openseespy.opensees  # noqa: F401
+        _opensees()
     except Exception:
         return False
     return True
@@ -59,7 +77,7 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
         ``method = "opensees"``, ``integrator = "Newmark"``, ``stiffness = K``; cost in
         ``n_steps``; ``settled`` is False (the run always goes to ``tau_max``).
     """
-    import openseespy.opensees as ops
+    ops = _opensees()
 
     if not scene.rate_independent:
         raise ValueError("the OpenSees peer models Coulomb friction only")
