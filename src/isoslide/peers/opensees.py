@@ -13,6 +13,7 @@ import ctypes
 import importlib.util
 import math
 import os
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -20,7 +21,7 @@ from ..history import History, phase_of
 from ..scene import Scene
 from .result import PeerResult
 
-__all__ = ["opensees_available", "solve_opensees"]
+__all__ = ["opensees_available", "opensees_model", "solve_opensees"]
 
 
 def _opensees():
@@ -44,70 +45,225 @@ def opensees_available() -> bool:
     return True
 
 
-def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None = None,
-                   dtau: float | None = None, history: bool = False) -> PeerResult:
-    """Pi1 of a Coulomb scene with OpenSees (elastic-perfectly-plastic friction spring, Newmark).
+@dataclass(frozen=True)
+class OpenSeesModel:
+    """The OpenSees model of a scene (dimensionless: masses ``M_b``, lengths ``a_p T_p^2``, time ``T_p``).
 
-    Two-DOF model in dimensionless units (masses 1 and Pi8, lengths a_p T_p^2, time T_p):
-    the base on a linear spring ``w^2`` with a dashpot ``2 z w`` (``Elastic`` material with
-    damping tangent), the block on an ``ElasticPP`` spring of stiffness ``K Pi8`` and yield
-    force ``Pi8 Pi2/Pi5`` (the paper's bilinear regularisation with a very large initial
-    stiffness), under ``UniformExcitation`` by the ground acceleration ``p`` sampled every
-    ``dtau`` (default ``min(1e-3, T_r / 10)``, ``T_r = 2 pi / sqrt(K)``), average-acceleration
-    Newmark with Newton iterations.  A fixed base ties the block to the ground.  Coulomb
-    friction only (``Pi7 = 0`` and ``Pi5 = 1`` or ``Pi6 = 0``).
+    Attributes
+    ----------
+    mb, mst, m : float
+        Slab, superstructure and block masses (``mst = 0`` for a rigid superstructure; ``m`` at
+        least ``1e-6`` so that the block node has a mass).
+    kd, cb : float
+        Isolator's linear stiffness and viscous coefficient (``Elastic`` with damping tangent).
+    q, d_iso : float
+        Isolator's ``ElasticPP`` part: yield force and yield displacement (``Pi10`` for a bilinear
+        bearing, the stick displacement for a sliding bearing); ``q = 0``: none.
+    ks, cs : float
+        Superstructure spring and dashpot (``Elastic`` with damping tangent); 0 when rigid.
+    thr, d_block : float
+        Block's ``ElasticPP`` friction spring: yield force ``m thr`` and yield displacement.
+    fixed, flexible, roof : bool
+        Fixed base (the slab is the ground), flexible superstructure, contents on its mass.
+    """
+
+    mb: float
+    mst: float
+    m: float
+    kd: float
+    cb: float
+    q: float
+    d_iso: float
+    ks: float
+    cs: float
+    thr: float
+    d_block: float
+    fixed: bool
+    flexible: bool
+    roof: bool
+
+    def periods(self) -> list:
+        """Shortest natural periods of the model's stiff parts (units ``T_p``), for the time step."""
+        out = [2.0 * math.pi * math.sqrt(self.d_block / self.thr)]       # block on its stick spring
+        if not self.fixed:
+            k = self.kd + (self.q / self.d_iso if self.q > 0.0 else 0.0)
+            out.append(2.0 * math.pi * math.sqrt(self.mb / k))
+        if self.flexible:                                              # slab and superstructure
+            out.append(2.0 * math.pi * math.sqrt(self.mst * self.mb / (self.ks * (self.mst + self.mb))))
+        return out
+
+
+def _positive(name: str, value) -> float:
+    v = float(value)
+    if not (math.isfinite(v) and v > 0.0):
+        raise ValueError(f"{name} = {value!r} is out of range; allowed range: 0 < value < inf")
+    return v
+
+
+def opensees_model(scene: Scene, stiffness: float = 1e6, stick_displacement: float | None = None) -> OpenSeesModel:
+    """The parameters of the OpenSees model of a scene (see :func:`solve_opensees`).
 
     Parameters
     ----------
     scene : Scene
-        A scene with rate-independent friction; starts at rest at ``pulse.tau_start``.
+        A scene with rate-independent friction (any isolator, superstructure and floor).
     stiffness : float
-        Dimensionless regularising stiffness ``K = k_r T_p^2 / m_EC``.
+        Block's regularising stiffness ``K = k_r T_p^2 / m_EC``; its stick displacement is
+        ``(Pi2/Pi5) / K`` (units ``a_p T_p^2``).
+    stick_displacement : float or None
+        Yield displacement (units ``a_p T_p^2``) of every frictional interface: the block's spring
+        (then ``K = (Pi2/Pi5) / stick_displacement``, ``stiffness`` is not read) and a sliding
+        bearing's.  None: the block's ``(Pi2/Pi5) / K``, for both.
+
+    Returns
+    -------
+    OpenSeesModel
+    """
+    if not scene.rate_independent:
+        raise ValueError("the OpenSees peer models Coulomb friction only (Pi7 = 0 and Pi5 = 1 or Pi6 = 0)")
+    thr = scene.static_level
+    if stick_displacement is None:
+        d = thr / _positive("stiffness", stiffness)
+    else:
+        d = _positive("stick_displacement", stick_displacement)
+    flexible = scene.pi12 > 0.0
+    mst = scene.pi11 if flexible else 0.0
+    fixed = scene.pi3 == 0.0
+    kd = cb = q = 0.0
+    d_iso = math.nan
+    if not fixed:
+        w = 2.0 * math.pi / scene.pi3
+        kd, cb = w * w, 2.0 * scene.pi4 * w
+        if scene.pi9 > 0.0:
+            q, d_iso = scene.pi9, (scene.pi10 if scene.pi10 > 0.0 else d)
+    ks = cs = 0.0
+    if flexible:
+        ws = 2.0 * math.pi / scene.pi12
+        ks, cs = mst * ws * ws, 2.0 * scene.pi13 * ws * mst
+    return OpenSeesModel(mb=1.0 - mst, mst=mst, m=max(scene.pi8, 1e-6), kd=kd, cb=cb, q=q, d_iso=d_iso,
+                         ks=ks, cs=cs, thr=thr, d_block=d, fixed=fixed, flexible=flexible,
+                         roof=flexible and scene.floor == "roof")
+
+
+GROUND, SLAB, TOP, BLOCK = 1, 2, 3, 4
+"""Node tags: the ground (fixed), the slab, the superstructure's mass and the block."""
+
+
+def _build(ops, M: OpenSeesModel) -> tuple:
+    """Nodes, materials and elements of ``M``; returns the slab's and the floor's node tags."""
+    ops.wipe()
+    ops.model("basic", "-ndm", 1, "-ndf", 1)
+    ops.node(GROUND, 0.0)
+    ops.fix(GROUND, 1)
+    slab = GROUND
+    if not M.fixed:
+        slab = SLAB
+        ops.node(SLAB, 0.0)
+        ops.mass(SLAB, M.mb)
+        ops.uniaxialMaterial("Elastic", 1, M.kd, M.cb)          # k_d x + c_b x'
+        ops.element("zeroLength", 1, GROUND, SLAB, "-mat", 1, "-dir", 1)
+        if M.q > 0.0:                                            # hysteretic part f_h
+            ops.uniaxialMaterial("ElasticPP", 2, M.q / M.d_iso, M.d_iso)
+            ops.element("zeroLength", 2, GROUND, SLAB, "-mat", 2, "-dir", 1)
+    floor = slab
+    if M.flexible:
+        ops.node(TOP, 0.0)
+        ops.mass(TOP, M.mst)
+        ops.uniaxialMaterial("Elastic", 3, M.ks, M.cs)          # k_s xs + c_s xs'
+        ops.element("zeroLength", 3, slab, TOP, "-mat", 3, "-dir", 1)
+        if M.roof:
+            floor = TOP
+    ops.node(BLOCK, 0.0)
+    ops.mass(BLOCK, M.m)
+    k_r = M.m * M.thr / M.d_block
+    ops.uniaxialMaterial("ElasticPP", 4, k_r, M.d_block)        # the block's friction, yield force m thr
+    ops.element("zeroLength", 4, floor, BLOCK, "-mat", 4, "-dir", 1)
+    return slab, floor
+
+
+def _disp(ops, node: int) -> float:
+    return ops.nodeDisp(node, 1) if node != GROUND else 0.0
+
+
+def _vel(ops, node: int) -> float:
+    return ops.nodeVel(node, 1) if node != GROUND else 0.0
+
+
+def _at_limit(force: float, limit: float, rate: float) -> int:
+    """+1 / -1 when an ``ElasticPP`` force is at its yield ``limit`` and moving that way, else 0."""
+    if abs(force) >= limit * (1.0 - 1e-9) and force * rate > 0.0:
+        return 1 if force > 0.0 else -1
+    return 0
+
+
+def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None = None,
+                   dtau: float | None = None, history: bool = False,
+                   stick_displacement: float | None = None) -> PeerResult:
+    """Pi1 of a Coulomb scene with OpenSees (elastic-perfectly-plastic springs, Newmark).
+
+    Model in dimensionless units (masses ``M_b``, lengths ``a_p T_p^2``, time ``T_p``), one
+    ``zeroLength`` element per spring, excitation ``UniformExcitation`` by the ground acceleration
+    ``p`` (so node displacements are relative to the ground):
+
+    * slab (mass ``1 - mst``) on the isolator: ``Elastic(k_d)`` with damping tangent ``c_b``
+      (``k_d = (2 pi / Pi3)^2``, ``c_b = 2 Pi4 sqrt(k_d)``) in parallel with, for ``Pi9 > 0``, an
+      ``ElasticPP`` of yield force ``Pi9`` and yield displacement ``Pi10`` (bilinear bearing) or the
+      stick displacement (sliding bearing: true stick regularised); a fixed base (``Pi3 = 0``)
+      ties the slab to the ground;
+    * flexible superstructure (``Pi12 > 0``): a mass ``mst = Pi11`` on ``Elastic(k_s)`` with damping
+      tangent ``c_s`` from the slab (``k_s = mst (2 pi / Pi12)^2``, ``c_s = 2 Pi13 mst 2 pi / Pi12``);
+    * block (mass ``Pi8``, at least ``1e-6``) on its floor (slab, or the superstructure for
+      ``floor = "roof"``) by an ``ElasticPP`` of yield force ``Pi8 Pi2/Pi5`` and yield displacement
+      the stick displacement (the paper's bilinear regularisation).
+
+    The ground acceleration is sampled every ``dtau`` (a ``Path`` series); average-acceleration
+    Newmark with Newton iterations.  The paper's model (``Pi9 = Pi12 = 0``) is the same model
+    without the isolator's and superstructure's extra elements.
+
+    Parameters
+    ----------
+    scene : Scene
+        A scene with rate-independent friction (``Pi7 = 0`` and ``Pi5 = 1`` or ``Pi6 = 0``);
+        starts at rest at ``pulse.tau_start``.
+    stiffness : float
+        Block's regularising stiffness ``K = k_r T_p^2 / m_EC`` (stick displacement
+        ``(Pi2/Pi5) / K``).
     tau_max : float or None
-        End time (units ``T_p``); default ``tau_end + 50 max(1, Pi3)``.
+        End time (units ``T_p``); default ``tau_end + 50 max(1, Pi3, Pi12)``.
     dtau : float or None
-        Time step (units ``T_p``), see above.
+        Time step (units ``T_p``); default ``min(1e-3, T_min / 10)``, ``T_min`` the shortest
+        period of :meth:`OpenSeesModel.periods` (block's stick spring, isolator's initial
+        stiffness, slab with superstructure).
     history : bool
-        Also return the step-by-step :class:`~isoslide.history.History` (``phase``:
-        the spring at its yield force, in the direction of ``u'``).
+        Also return the step-by-step :class:`~isoslide.history.History` (``phase``: the block's
+        spring at its yield force in the direction of ``u'``; for a bilinear or sliding bearing
+        ``fh`` = its ``ElasticPP`` force and ``iso_phase`` likewise; ``xs, xsd`` for a flexible
+        superstructure).
+    stick_displacement : float or None
+        Yield displacement (units ``a_p T_p^2``) of the block's spring and of a sliding bearing's;
+        None: ``(Pi2/Pi5) / K`` (see :func:`opensees_model`).
 
     Returns
     -------
     PeerResult
-        ``method = "opensees"``, ``integrator = "Newmark"``, ``stiffness = K``; cost in
-        ``n_steps``; ``settled`` is False (the run always goes to ``tau_max``).
+        ``method = "opensees"``, ``integrator = "Newmark"``, ``stiffness = K`` (the block's, also
+        when set by ``stick_displacement``); cost in ``n_steps``; ``settled`` is False (the run
+        always goes to ``tau_max``).
     """
+    M = opensees_model(scene, stiffness, stick_displacement)
     ops = _opensees()
-
-    if not scene.rate_independent:
-        raise ValueError("the OpenSees peer models Coulomb friction only")
     pulse = scene.pulse
-    mu = scene.static_level
-    K = float(stiffness)
     if dtau is None:
-        dtau = min(1e-3, 2.0 * math.pi / math.sqrt(K) / 10.0)
-    end = tau_max if tau_max is not None else pulse.tau_end + 50.0 * max(1.0, scene.pi3)
+        dtau = min(1e-3, min(M.periods()) / 10.0)
+    dtau = _positive("dtau", dtau)
+    end = tau_max if tau_max is not None else pulse.tau_end + 50.0 * max(1.0, scene.pi3, scene.pi12)
     n = int(math.ceil((end - pulse.tau_start) / dtau))
+    if n < 1:
+        raise ValueError(f"tau_max = {tau_max!r} is out of range; allowed range: > pulse.tau_start "
+                         f"= {pulse.tau_start!r}")
     tt = pulse.tau_start + dtau * np.arange(n + 1)
     acc = pulse.accel(tt)
-    m_c = max(scene.pi8, 1e-6)
-    ops.wipe()
-    ops.model("basic", "-ndm", 1, "-ndf", 1)
-    ops.node(1, 0.0)
-    ops.fix(1, 1)
-    ops.node(3, 0.0)
-    ops.mass(3, m_c)
-    floor = 1
-    if not scene.fixed_base:
-        w = 2.0 * math.pi / scene.pi3
-        ops.node(2, 0.0)
-        ops.mass(2, 1.0)
-        ops.uniaxialMaterial("Elastic", 1, w * w, 2.0 * scene.pi4 * w)
-        ops.element("zeroLength", 1, 1, 2, "-mat", 1, "-dir", 1)
-        floor = 2
-    k_r = K * m_c
-    ops.uniaxialMaterial("ElasticPP", 2, k_r, mu * m_c / k_r)
-    ops.element("zeroLength", 2, floor, 3, "-mat", 2, "-dir", 1)
+    slab, floor = _build(ops, M)
     ops.timeSeries("Path", 1, "-dt", dtau, "-values", *acc.tolist())
     ops.pattern("UniformExcitation", 1, 1, "-accel", 1)
     ops.constraints("Plain")
@@ -117,30 +273,36 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
     ops.algorithm("Newton")
     ops.integrator("Newmark", 0.5, 0.25)
     ops.analysis("Transient")
+    iso = M.q > 0.0
     umax, tau_peak, u = 0.0, float(pulse.tau_start), 0.0
     rows = [] if history else None
     if rows is not None:
-        rows.append((tau_peak, 0.0, 0.0, 0.0, 0.0, False))
+        rows.append((tau_peak,) + (0.0,) * 7 + (0, 0))
     for i in range(n):
         if ops.analyze(1, dtau) != 0:
             ops.wipe()
-            raise RuntimeError("OpenSees analysis failed")
-        u = ops.nodeDisp(3, 1) - (ops.nodeDisp(floor, 1) if floor != 1 else 0.0)
+            raise RuntimeError(f"OpenSees analysis failed at tau = {tt[i]:.6g}")
+        u = ops.nodeDisp(BLOCK, 1) - _disp(ops, floor)
         if abs(u) > umax:
             umax, tau_peak = abs(u), float(tt[i + 1])
         if rows is not None:
-            x = ops.nodeDisp(floor, 1) if floor != 1 else 0.0
-            xd = ops.nodeVel(floor, 1) if floor != 1 else 0.0
-            ud = ops.nodeVel(3, 1) - xd
-            force = ops.eleResponse(2, "material", 1, "stress")[0]
-            yielding = abs(force) >= mu * m_c * (1.0 - 1e-9) and force * ud > 0.0
-            rows.append((float(tt[i + 1]), x, xd, u, ud, yielding))
+            x, xd = _disp(ops, slab), _vel(ops, slab)
+            fd = _vel(ops, floor)
+            ud = ops.nodeVel(BLOCK, 1) - fd
+            xs = _disp(ops, TOP) - x if M.flexible else 0.0
+            xsd = _vel(ops, TOP) - xd if M.flexible else 0.0
+            fh = ops.eleResponse(2, "material", 1, "stress")[0] if iso else 0.0
+            force = ops.eleResponse(4, "material", 1, "stress")[0]
+            rows.append((float(tt[i + 1]), x, xd, u, ud, xs, xsd, fh,
+                         _at_limit(force, M.m * M.thr, ud), _at_limit(fh, M.q, xd) if iso else 0))
     ops.wipe()
     h = None
     if rows is not None:
-        a = np.array([r[:5] for r in rows], dtype=float)
+        a = np.array(rows, dtype=float)
         h = History(tau=a[:, 0], x=a[:, 1], xd=a[:, 2], u=a[:, 3], ud=a[:, 4],
-                    phase=phase_of([r[5] for r in rows], a[:, 4]))
+                    phase=phase_of(a[:, 8] != 0.0, a[:, 4]),
+                    xs=a[:, 5] if M.flexible else None, xsd=a[:, 6] if M.flexible else None,
+                    fh=a[:, 7] if iso else None, iso_phase=a[:, 9].astype(np.int8) if iso else None)
     return PeerResult(method="opensees", pi1=umax, pi1_residual=float(u), tau_peak=tau_peak,
-                      settled=False, tau_end=float(tt[-1]), n_steps=n, stiffness=K,
+                      settled=False, tau_end=float(tt[-1]), n_steps=n, stiffness=M.thr / M.d_block,
                       integrator="Newmark", history=h)
