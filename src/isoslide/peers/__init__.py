@@ -14,7 +14,8 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.history.Histo
     The physical equations in SI units, for the similarity check; a general building is
     integrated by :func:`~.si_building.simulate_building_si` (:mod:`.si_building`).
 :func:`solve_opensees` (:mod:`.opensees`)
-    The bilinear spring in OpenSees (optional; :func:`opensees_available`).
+    The paper's model and the general building in OpenSees, sticks regularised by elastic-plastic
+    springs (extra ``peers``; :func:`opensees_available`).
 """
 
 from .opensees import opensees_available, solve_opensees
