@@ -33,7 +33,9 @@ from isoslide import datasets, provenance
 ROOT = Path(__file__).resolve().parents[1]
 TEST_CONFIG = ["--configfile", "config/test.yaml"]
 STUDIES = sorted(yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["studies"])
-REPORTS = ["accuracy", "figures", "fragility", "records", "similarity"]
+ISOLATION_STUDIES = ["iso_fp", "iso_lrb", "iso_flex_base", "iso_flex_roof"]
+ISOLATION_RULES = {"isolation_rigid", "isolation_design", "isolation_figure"}
+REPORTS = ["accuracy", "figures", "fragility", "isolation", "records", "similarity"]
 LAUNCHERS = ("snakemake", "papermill", "jupyter", "jupyter-nbconvert")
 
 
@@ -308,7 +310,7 @@ def test_dry_run_plans_the_whole_dag(wf):
     rules = {r for r, _ in jobs}
     assert {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure", "fig4_record",
             "record_compare", "records_dataset", "figure_records", "accuracy_part", "accuracy_dataset",
-            "fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report", "all"} <= rules
+            "fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report", "all"} | ISOLATION_RULES <= rules
     assert sorted(w for r, w in jobs if r == "report") == [f"report={r}" for r in REPORTS]
     chunk_wildcards = [w for r, w in jobs if r == "solve_chunk"]
     assert all(re.fullmatch(r"study=\w+, chunk=\d+", w) for w in chunk_wildcards)
@@ -318,7 +320,10 @@ def test_dry_run_plans_the_whole_dag(wf):
     several = {f"study={name}" for name, spec in specs.items() if len(isoslide.sweep.spec_chunks(spec)) > 1}
     assert "study=fig3_newmark" not in several and len(several) >= 2
     assert {w.split(",")[0] for w in chunk_wildcards} == several
-    assert {w for r, w in jobs if r == "merge_study"} == {f"study={s}" for s in STUDIES}
+    assert {w for r, w in jobs if r == "merge_study"} == {f"study={s}" for s in STUDIES + ISOLATION_STUDIES}
+    # the isolation studies of config/test.yaml are one chunk each: no solve_chunk job, one job per rule
+    assert not [w for w in chunk_wildcards if "study=iso_" in w]
+    assert all(sum(r == rule for r, _ in jobs) == 1 for rule in ISOLATION_RULES)
     # the fragility study: 12 analyses per base in chunks of 5 (config/test.yaml) -> 3 chunk jobs each
     assert sorted(w for r, w in jobs if r == "fragility_chunk") == [
         f"frag={f}, chunk={c}" for f in ("fragility", "fragility_fixed_base") for c in range(3)]
@@ -334,6 +339,8 @@ def test_dry_run_plans_the_whole_dag(wf):
     ({"fragility": {"stripes": {"levels": [3.0, 2.0]}}}, "fragility.stripes.levels"),
     ({"fragility": {"records": ["Northridge_1994_PAC-175", "no_such_record"]}}, "fragility.records[1]"),
     ({"fragility": {"limit_states": [0.3, 0.2]}}, "fragility.limit_states"),
+    ({"isolation": {"flexible": {"pi12": [0.1, 0.5]}}}, "isolation.flexible.pi12"),
+    ({"isolation": {"friction_pendulum": {"pi9": [0.1, -0.1]}}}, "['friction_pendulum']['pi9']"),
 ])
 def test_invalid_config_fails_before_any_job_naming_the_key(tmp_path, overlay, key):
     d = copy_workflow(tmp_path / "bad")
@@ -527,6 +534,48 @@ def test_fragility_outputs(full_run):
         assert (wf / "reports" / "figures" / f"fragility.{ext}").stat().st_size > 1000
     html = (wf / "reports" / "fragility.html").read_text()
     assert "Fragility of sliding contents" in html and "Traceback" not in html
+
+
+@pytest.mark.slow
+def test_isolation_outputs(full_run):
+    """The isolation datasets, figures and report of the tiny run."""
+    wf, _ = full_run
+    cfg = isoslide.config.load(ROOT / "config" / "config.yaml",
+                               yaml.safe_load((ROOT / "config" / "test.yaml").read_text()))["isolation"]
+    for name in ISOLATION_STUDIES:
+        ds = datasets.open_dataset(wf / "results" / "datasets" / f"{name}.nc")
+        assert ds["pi1"].dims[-1] == "pi2" and ds.attrs["Conventions"].startswith("CF")
+        assert ds.attrs["floor"] == ("roof" if name == "iso_flex_roof" else "base")
+    rigid = datasets.open_dataset(wf / "results" / "datasets" / "isolation_rigid.nc")
+    assert rigid["rel_error"].dims == ("floor", "pi3", "pi12", "pi2")
+    assert list(rigid["pi12"].values) == cfg["flexible"]["pi12"]
+    design = datasets.open_dataset(wf / "results" / "datasets" / "isolation_design.nc")
+    assert design.sizes["excitation"] == len(cfg["design"]["pulses"]) * len(cfg["design"]["T_p"]) + len(
+        cfg["design"]["records"])
+    assert design.sizes["mu_k"] == cfg["design"]["mu_k"]["num"] and "isoslide_config" in design.attrs
+    for fig in ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design"):
+        for ext in ("png", "pdf"):
+            assert (wf / "reports" / "figures" / f"{fig}.{ext}").stat().st_size > 1000, (fig, ext)
+    html = (wf / "reports" / "isolation.html").read_text()
+    assert "Buildings as engineers isolate them" in html and "Traceback" not in html
+    assert "Where the paper&#39;s rigid-superstructure reduction holds" in html or \
+        "Where the paper's rigid-superstructure reduction holds" in html
+    assert 'href="isolation.html"' in (wf / "reports" / "index.html").read_text()
+
+
+@pytest.mark.slow
+def test_changing_the_isolation_design_reruns_only_its_jobs(full_run):
+    wf, _ = full_run
+    (wf / "config" / "iso.yaml").write_text(yaml.safe_dump({"isolation": {"design": {"beta_eff": 0.15}}}))
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/iso.yaml", timeout=300)
+    jobs = planned_jobs(out)
+    assert {r for r, _ in jobs} == {"isolation_design", "isolation_figure", "report", "index_page", "all"}
+    assert {w for r, w in jobs if r == "report"} == {"report=isolation"}
+    # the band of the rigid reduction: only its map, the figures and the report
+    (wf / "config" / "iso.yaml").write_text(yaml.safe_dump({"isolation": {"flexible": {"tolerance": 0.2}}}))
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/iso.yaml", timeout=300)
+    jobs = planned_jobs(out)
+    assert {r for r, _ in jobs} == {"isolation_rigid", "isolation_figure", "report", "index_page", "all"}
 
 
 @pytest.mark.slow

@@ -106,6 +106,9 @@ FRAGILITY_FIGURE_INPUT = {"isolated": "results/datasets/fragility.nc"} | (
 
 # Buildings as engineers isolate them (workflow/rules/isolation.smk).
 ISOLATION_SETTINGS = sweep.jsonable(isolation_study.isolation_settings(config))
+# each rule gets only the sections it reads, so editing one part reruns only its jobs
+ISOLATION_RIGID_SETTINGS = {"isolation": {"flexible": ISOLATION_SETTINGS["isolation"]["flexible"]}}
+ISOLATION_DESIGN_SETTINGS = ISOLATION_SETTINGS | {"isolation": {"design": ISOLATION_SETTINGS["isolation"]["design"]}}
 ISOLATION_STUDIES = list(ISOLATION_SPECS)
 ISOLATION_DATASETS = ISOLATION_STUDIES + ["isolation_rigid", "isolation_design"]
 ISOLATION_RECORD_FILES = [r for r in ISOLATION_SETTINGS["isolation"]["design"]["records"]

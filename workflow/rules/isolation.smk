@@ -13,7 +13,7 @@ rule isolation_rigid:
         "results/datasets/isolation_rigid.nc",
     params:
         code=CODE["isolation"],
-        settings=ISOLATION_SETTINGS,
+        settings=ISOLATION_RIGID_SETTINGS,
     log:
         "logs/isolation_rigid/isolation_rigid.log",
     benchmark:
@@ -35,7 +35,7 @@ rule isolation_design:
         "results/datasets/isolation_design.nc",
     params:
         code=CODE["isolation"],
-        settings=ISOLATION_SETTINGS,
+        settings=ISOLATION_DESIGN_SETTINGS,
     log:
         "logs/isolation_design/isolation_design.log",
     benchmark:
