@@ -60,6 +60,7 @@ import math
 import numpy as np
 from numba import njit
 
+from . import jit_cache
 from .kernel import (ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
                      _step_factor, hermite_root)
 from .pulses import accel_at, jerk_at
@@ -876,3 +877,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                      1 if moved else 0, rejected], dtype=np.int64)
     floats = np.array([umax, tpeak, y[Y_U], tau, xmax, vmax])
     return ints, floats, hist[:nh]
+
+
+# numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
+jit_cache.seed(run)

@@ -46,6 +46,7 @@ import math
 import numpy as np
 from numba import njit
 
+from . import jit_cache
 from . import dop853
 from .pulses import accel_at, jerk_at
 
@@ -828,3 +829,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                      cnt[CNT_REJECTED]], dtype=np.int64)
     floats = np.array([umax, tpeak, y[2], tau, amax, vmax])
     return ints, floats, hist[:nh]
+
+
+# numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
+jit_cache.seed(run)

@@ -46,6 +46,7 @@ import math
 import numpy as np
 from numba import njit
 
+from . import jit_cache
 from .kernel import (F_TEND, F_TPEAK, F_UMAX, F_URES, F_VMAX, F_AMAX, M_CW, M_FIXED, M_P8, M_THR, M_W2,
                      N_F, N_H, N_R, R_EVENTS, R_HIST, R_LOC_PEAK, R_LOC_SLIP, R_LOC_STICK, R_REJECTED,
                      R_SETTLED, R_SLIPPED, R_STEPS, _break_away, _demand_bound, _hermite_max, _record)
@@ -534,3 +535,7 @@ def run(m, params, tau_start, tau_end, tau_stop, track_max, hist_cap, settle, ma
     floats[F_AMAX] = amax
     floats[F_VMAX] = vmax
     return ints, floats, hist[:nh]
+
+
+# numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
+jit_cache.seed(run)

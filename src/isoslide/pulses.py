@@ -57,6 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from . import jit_cache
 from .validation import check_range
 from scipy.optimize import brentq
 
@@ -873,3 +874,7 @@ def mp_velocity(t, A, t0, T, gamma, nu):
     inside = np.abs(x) <= 0.5 * gamma
     v = 0.5 * A * (1 + np.cos(2 * _PI * x / gamma)) * np.cos(2 * _PI * x + nu)
     return np.where(inside, v, 0.0)
+
+
+# numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
+jit_cache.seed(accel_at)

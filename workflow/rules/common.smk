@@ -42,28 +42,28 @@ FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 CODE_MODULES = {
     # solve_chunk, merge_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
     "solve": ["budget", "building", "building_kernel", "config", "datasets", "dop853", "groups", "history",
-              "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene", "solver",
+              "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene", "solver",
               "sweep", "validation"],
     # similarity_study, similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
-    "similarity": ["budget", "claims", "datasets", "groups", "history", "models", "peers", "provenance", "pulses",
+    "similarity": ["budget", "claims", "datasets", "groups", "history", "jit_cache", "models", "peers", "provenance", "pulses",
                    "scene", "similarity", "validation"],
     # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
-    "records": ["budget", "building", "building_kernel", "datasets", "dop853", "groups", "history", "kernel",
+    "records": ["budget", "building", "building_kernel", "datasets", "dop853", "groups", "history", "jit_cache", "kernel",
                 "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study", "records",
                 "scene", "solver", "validation"],
     # figure, figure_records (isoslide.figures)
     "figures": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups", "history",
-                "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study",
+                "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study",
                 "records", "scene", "solver", "validation"],
     # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
     "accuracy": ["accuracy", "budget", "building", "building_kernel", "config", "datasets", "dop853", "groups",
-                 "history", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene",
+                 "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene",
                  "solver", "sweep", "validation"],
     # index_page (isoslide.index_page)
     "index": ["budget", "index_page", "provenance"],
     # fragility_chunk, fragility_dataset (isoslide.fragility_study)
     "fragility": ["budget", "building", "building_kernel", "datasets", "dop853", "fragility", "fragility_study",
-                  "groups", "history", "history_io", "intensity", "kernel", "models", "peers", "piecewise",
+                  "groups", "history", "history_io", "intensity", "jit_cache", "kernel", "models", "peers", "piecewise",
                   "progress", "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
     # fragility_figure; the fragility report (isoslide.fragility_plot, datasets.open_dataset)
     "fragility_plot": ["budget", "datasets", "fragility", "fragility_plot", "groups", "models", "provenance",
@@ -72,12 +72,12 @@ CODE_MODULES = {
     "pelicun": ["budget", "datasets", "groups", "models", "pelicun_export", "provenance", "validation"],
     # isolation_rigid, isolation_design; the isolation report (isoslide.isolation_study)
     "isolation": ["budget", "building", "building_kernel", "config", "datasets", "design", "dop853", "groups",
-                  "history", "history_io", "intensity", "isolation_study", "kernel", "models", "peers", "piecewise",
+                  "history", "history_io", "intensity", "isolation_study", "jit_cache", "kernel", "models", "peers", "piecewise",
                   "progress", "provenance", "pulses", "record_study", "records", "scene", "solver", "sweep",
                   "validation"],
     # isolation_figure (isoslide.isolation_plot)
     "isolation_plot": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups", "history",
-                       "isolation_plot", "kernel", "models", "peers", "piecewise", "progress", "provenance",
+                       "isolation_plot", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance",
                        "pulses", "record_study", "records", "scene", "solver", "validation"],
 }
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
