@@ -339,3 +339,31 @@ def test_opensees_peer_converges_like_the_regularised_method():
     assert errs[1] < errs[0] < 0.1 and errs[1] < 1e-2
     with pytest.raises(ValueError, match="Coulomb"):
         accuracy.solve_opensees(Scene(pi2=0.2, pi3=1.0, pi5=0.5, pi6=10.0))
+
+
+@pytest.mark.parametrize("scene", [
+    Scene(pi2=0.2, pi3=2.0, pi4=0.1),                          # settles soon after the pulse
+    Scene(pi2=0.1, pi3=1.0, pi4=0.0, pi5=0.7, pi6=1e3),         # undamped Stribeck: late slides
+    Scene(pi2=0.3, pi3=0.0, pulse="rectangular"),               # fixed base
+], ids=["isolated", "undamped-stribeck", "fixed-base"])
+def test_peers_stopped_after_the_converged_settlement_find_the_peak_of_the_whole_horizon(scene):
+    """The peer's stop (settlement of the converged answer plus two isolation periods) loses no slide."""
+    from isoslide.accuracy.timing import peer_stop, tau_max
+    from isoslide.solver import solve
+
+    horizon = 50.0
+    conv = solve(scene, rtol=1e-12, horizon=horizon, model="full")
+    stop = peer_stop(scene, horizon, conv.tau_end if conv.settled else math.inf)
+    assert scene.pulse.tau_end < stop <= tau_max(scene, horizon)
+    assert stop >= conv.tau_end if conv.settled else stop == tau_max(scene, horizon)
+    short = solve_reference(scene, rtol=1e-10, tau_max=stop)
+    whole = solve_reference(scene, rtol=1e-10, tau_max=tau_max(scene, horizon))
+    assert short.pi1 == pytest.approx(whole.pi1, rel=1e-9, abs=1e-14)
+    assert short.pi1 == pytest.approx(conv.pi1, rel=1e-6, abs=1e-12)
+
+
+def test_tiny_measurement_records_where_the_peers_stopped(tiny):
+    """``peer_stop`` lies between the pulse end and the horizon for every scene of the set."""
+    stop = tiny["peer_stop"].values
+    assert np.all(np.isfinite(stop)) and np.all(stop > 0)
+    assert np.all(stop <= tiny["pi3"].clip(min=1.0).values * TINY["accuracy"]["horizon"] + 10.0)

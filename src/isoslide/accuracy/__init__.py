@@ -43,7 +43,11 @@ Horizon
 -------
 Every method follows a scene that does not settle (``xi_b = 0``) to the same
 time, ``tau_end + horizon * max(1, Pi3)`` (``horizon`` of the configuration,
-default 50), so the peak is the same quantity for all of them.
+default 50), so the peak is the same quantity for all of them.  The compiled
+solver stops where it proves that the contents never slide again; the peers,
+which cannot all prove it, stop two isolation periods (at least ``T_p``) after
+the converged answer settles (``peer_stop``), so their cost is that of the
+motion, not of following a block at rest to the horizon.
 
 Determinism
 -----------

@@ -24,14 +24,34 @@ STATUS_ATTRS = {"long_name": "outcome of the run", "units": "1",
 """CF attributes of the ``status`` variable."""
 
 
+PEER_MARGIN = 2.0
+"""Isolation periods (at least T_p) the peers run past the converged answer's settlement."""
+
+
 def tau_max(scene: Scene, horizon: float) -> float:
     """The common end time ``tau_end + horizon * max(1, Pi3)`` (units of T_p)."""
     return scene.pulse.tau_end + horizon * max(1.0, scene.pi3)
 
 
+def peer_stop(scene: Scene, horizon: float, tau_settled: float) -> float:
+    """Where the peers stop on ``scene``: past the converged answer's settlement, within the horizon.
+
+    ``min(tau_max, max(tau_end_pulse, tau_settled) + PEER_MARGIN * max(1, Pi3))`` (units of T_p),
+    with ``tau_settled`` the time from which the converged exact solution proves that the
+    contents never slide again (the horizon's end where it does not settle).  Every slide of
+    the scene lies before it, so the peak is the same quantity as over the whole horizon; the
+    margin leaves room for a peer whose last slide ends late.
+    """
+    end = max(scene.pulse.tau_end, tau_settled) + PEER_MARGIN * max(1.0, scene.pi3)
+    return min(tau_max(scene, horizon), end)
+
+
 def run_setting(setting: Setting, scene: Scene, horizon: float, max_work: int | None = None,
-                **extra) -> tuple[float, float, int, str]:
+                stop: float | None = None, **extra) -> tuple[float, float, int, str]:
     """Run one setting on one scene: ``(pi1, seconds, work, status)``.
+
+    The compiled solver runs to settlement (or the horizon); the peers to ``stop`` (units of T_p;
+    default the horizon's end, :func:`tau_max`; see :func:`peer_stop`).
 
     ``work`` counts integrator steps (exact and OpenSees) or right-hand-side evaluations
     (SciPy peers).  The SciPy peers stop after ``max_work`` right-hand-side evaluations
@@ -39,21 +59,22 @@ def run_setting(setting: Setting, scene: Scene, horizon: float, max_work: int | 
     ``status = "over_budget"``, any other failure is logged and returned as ``"error"``; neither
     raises.  Only ``seconds`` depends on the machine: the outcome is a function of the inputs.
     """
+    end = tau_max(scene, horizon) if stop is None else float(stop)
     t0 = time.perf_counter()
     try:
         if setting.method == "exact":
             s = solve(scene, rtol=setting.rtol, horizon=horizon, **extra)
             pi1, work = s.pi1, s.n_steps
         elif setting.method == "reference":
-            r = solve_reference(scene, rtol=setting.rtol, tau_max=tau_max(scene, horizon), max_work=max_work)
+            r = solve_reference(scene, rtol=setting.rtol, tau_max=end, max_work=max_work)
             pi1, work = r.pi1, r.work
         elif setting.method == "regularized":
             r = solve_regularized(scene, stiffness=setting.stiffness, rtol=setting.rtol,
                                   method=extra.get("regularized_method", "Radau"),
-                                  tau_max=tau_max(scene, horizon), max_work=max_work)
+                                  tau_max=end, max_work=max_work)
             pi1, work = r.pi1, r.work
         elif setting.method == "opensees":
-            r = solve_opensees(scene, stiffness=setting.stiffness, tau_max=tau_max(scene, horizon))
+            r = solve_opensees(scene, stiffness=setting.stiffness, tau_max=end)
             pi1, work = r.pi1, r.work
         else:
             raise ValueError(f"unknown method {setting.method!r}")

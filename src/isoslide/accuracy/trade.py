@@ -11,29 +11,35 @@ from ..solver import solve
 from .scenes import SceneSet, scene_coords
 from .settings import Setting, method_settings
 from ..solver import warm_up
-from .timing import STATUS, STATUS_ATTRS, run_setting
+from .timing import PEER_MARGIN, STATUS, STATUS_ATTRS, peer_stop, run_setting
 
 log = logging.getLogger(__name__)
 
 
 def converged(entries, settings: dict, reference_idx=()) -> dict:
-    """Converged answers: ``pi1_converged``, ``converged_spread`` and ``pi1_reference``."""
+    """Converged answers: ``pi1_converged``, ``converged_spread``, ``peer_stop`` and ``pi1_reference``.
+
+    ``peer_stop`` is where the peers stop on each scene (:func:`~isoslide.accuracy.timing.peer_stop`
+    of the converged answer's settlement time).
+    """
     n = len(entries)
     conv = np.full(n, np.nan)
     spread = np.full(n, np.nan)
+    stop = np.full(n, np.nan)
     ref = np.full(n, np.nan)
     rtol = settings["converged_rtol"]
     H = settings["horizon"]
     for i, e in enumerate(entries):
-        a = solve(e.scene, rtol=rtol, horizon=H, model="full").pi1
-        conv[i] = a
+        a = solve(e.scene, rtol=rtol, horizon=H, model="full")
+        conv[i] = a.pi1
+        stop[i] = peer_stop(e.scene, H, a.tau_end if a.settled else np.inf)
         b = solve(e.scene, rtol=rtol, horizon=H, model="full", max_step=0.01).pi1
-        spread[i] = abs(a - b) / a if a > 0 else abs(a - b)
+        spread[i] = abs(a.pi1 - b) / a.pi1 if a.pi1 > 0 else abs(a.pi1 - b)
     for i in reference_idx:
         pi1, _, _, st = run_setting(Setting("reference converged", "reference", rtol), entries[i].scene,
-                                    H, max_work=settings["peer_max_work"])
+                                    H, max_work=settings["peer_max_work"], stop=stop[i])
         ref[i] = pi1 if st == "ok" else np.nan
-    return {"pi1_converged": conv, "converged_spread": spread, "pi1_reference": ref}
+    return {"pi1_converged": conv, "converged_spread": spread, "peer_stop": stop, "pi1_reference": ref}
 
 
 def rel_error(pi1, conv):
@@ -96,6 +102,7 @@ def measure_trade(entries, settings: dict, part: str | None = None) -> xr.Datase
     os_idx = [coulomb[k] for k in SceneSet(tuple(entries[i] for i in coulomb)).subset(settings["opensees_scenes"])]
     warm_up()
     extra = {"regularized_method": settings["regularized_method"]}
+    conv = converged(entries, settings, ref_idx if part in (None, "exact", "reference") else ())
     exact_rows = [j for j, s in enumerate(sets) if s.method == "exact"]
     for i, e in enumerate(entries):
         runs = {j: [] for j in exact_rows}
@@ -113,14 +120,14 @@ def measure_trade(entries, settings: dict, part: str | None = None) -> xr.Datase
         for i in idx:
             ts = []
             for _ in range(settings["peer_repeats"]):
-                p, t, w, st = run_setting(s, entries[i].scene, H, settings["peer_max_work"], **extra)
+                p, t, w, st = run_setting(s, entries[i].scene, H, settings["peer_max_work"],
+                                          stop=conv["peer_stop"][i], **extra)
                 ts.append(t)
                 if st != "ok":
                     break
             pi1[j, i], work[j, i], status[j, i] = p, w, STATUS[st]
             secs[j, i] = float(np.median(ts))
             log.info("%s scene %d (%s): pi1=%.10g %.3f s %s", s.name, i, entries[i].cls, p, secs[j, i], st)
-    conv = converged(entries, settings, ref_idx if part in (None, "exact", "reference") else ())
     rel = rel_error(pi1, conv["pi1_converged"][None, :])
     abs_err = np.abs(pi1 - conv["pi1_converged"][None, :])
     coords = scene_coords(entries.entries)
@@ -151,6 +158,10 @@ def measure_trade(entries, settings: dict, part: str | None = None) -> xr.Datase
                                  {"long_name": "relative change of the converged Pi1 when the step is "
                                                "capped at 0.01 T_p (a different step sequence)",
                                   "units": "1"}),
+            "peer_stop": ("scene", conv["peer_stop"],
+                          {"long_name": "time the peers stop at / T_p: the converged answer's settlement "
+                                        "plus %g isolation periods (at least T_p), within the horizon"
+                                        % PEER_MARGIN, "units": "1"}),
             "pi1_reference": ("scene", conv["pi1_reference"],
                               {"long_name": "Pi1 of the independent plain-SciPy reference solver at "
                                             "rtol=%g (nan: not run on this scene)"
