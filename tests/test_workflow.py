@@ -308,7 +308,7 @@ def test_dry_run_plans_the_whole_dag(wf):
     _, out = snakemake(wf, "-n", *TEST_CONFIG, timeout=300)
     jobs = planned_jobs(out)
     rules = {r for r, _ in jobs}
-    assert {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure", "fig4_record",
+    assert {"solve_chunk", "merge_study", "merge_isolation_study", "similarity", "figure", "fig4_record",
             "record_compare", "records_dataset", "figure_records", "accuracy_part", "accuracy_dataset",
             "fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report", "all"} | ISOLATION_RULES <= rules
     assert sorted(w for r, w in jobs if r == "report") == [f"report={r}" for r in REPORTS]
@@ -320,7 +320,8 @@ def test_dry_run_plans_the_whole_dag(wf):
     several = {f"study={name}" for name, spec in specs.items() if len(isoslide.sweep.spec_chunks(spec)) > 1}
     assert "study=fig3_newmark" not in several and len(several) >= 2
     assert {w.split(",")[0] for w in chunk_wildcards} == several
-    assert {w for r, w in jobs if r == "merge_study"} == {f"study={s}" for s in STUDIES + ISOLATION_STUDIES}
+    assert {w for r, w in jobs if r == "merge_study"} == {f"study={s}" for s in STUDIES}
+    assert {w for r, w in jobs if r == "merge_isolation_study"} == {f"study={s}" for s in ISOLATION_STUDIES}
     # the isolation studies of config/test.yaml are one chunk each: no solve_chunk job, one job per rule
     assert not [w for w in chunk_wildcards if "study=iso_" in w]
     assert all(sum(r == rule for r, _ in jobs) == 1 for rule in ISOLATION_RULES)
@@ -497,7 +498,7 @@ def test_changing_one_study_reruns_only_that_study(full_run):
     assert per_study and all("study=fig7_pi7" in w for _, w in per_study), per_study
     # the accuracy scene set comes from the paper's studies (the package's), so it is not measured
     # again; nor are the records
-    assert {r for r, _ in jobs} <= {"solve_chunk", "merge_study", "similarity_study", "similarity", "figure",
+    assert {r for r, _ in jobs} <= {"solve_chunk", "merge_study", "similarity", "figure",
                                      "report", "index_page", "all"}
     assert {w for r, w in jobs if r == "figure"} == {"fig=fig7"}
     assert {w for r, w in jobs if r == "report"} == {"report=similarity", "report=figures"}

@@ -39,6 +39,8 @@ DEFINITIONS = {g.name: (g.definition, g.printed) for g in INPUTS}
 """Definition of each input group: (isoslide, paper as printed), from :mod:`isoslide.groups`."""
 
 GROUPS = INPUT_NAMES
+BUCKINGHAM_KEYS = ("seed", "points", "realisations", "a_p_g", "T_p", "M_b")
+"""The keys of the ``similarity`` section that :func:`buckingham_study` reads."""
 VERDICT_FLAGS = dict(flag_values=np.array([0, 1, 2], dtype=np.int8),
                      flag_meanings="does_not_hold holds holds_partly")
 
@@ -151,8 +153,8 @@ def buckingham_study(ds: xr.Dataset, settings: dict) -> xr.Dataset:
         A study dataset (the paper's model or a general building: its Pi9 .. Pi13 and its
         ``floor`` attribute are realised too, see :func:`physical_parameters`).
     settings : dict
-        The ``similarity`` section of the configuration (``seed``, ``points``,
-        ``realisations``, ``a_p_g``, ``T_p``, ``M_b``).
+        The ``similarity`` section of the configuration, or its :data:`BUCKINGHAM_KEYS`
+        (``seed``, ``points``, ``realisations``, ``a_p_g``, ``T_p``, ``M_b``).
 
     Returns
     -------

@@ -49,6 +49,7 @@ import numpy as np
 import xarray as xr
 
 from . import solver
+from .budget import phase
 from .config import ConfigError
 from .datasets import chunk_dataset, merge_chunks, open_dataset
 from .groups import BUILDING_NAMES, INPUT_NAMES, group
@@ -487,3 +488,21 @@ def merge_chunk_files(paths, spec: dict) -> xr.Dataset:
     chunks = [open_dataset(p) for p in paths]
     log.info("merging %d chunk file(s) of study %s into grid %s", len(chunks), grid.name, grid.shape)
     return merge_chunks(chunks, grid)
+
+
+def study_dataset(paths, spec: dict, job_log: logging.Logger | None = None) -> xr.Dataset:
+    """The dataset of ``spec``: its chunk files merged, or, given none, the study solved here.
+
+    The pipeline's study job: :func:`merge_chunk_files` when the study was cut into chunk
+    jobs, :func:`solve_study` when it fits one chunk. ``job_log`` receives the time of each
+    phase (:func:`isoslide.budget.phase`).
+    """
+    paths = list(paths)
+    if paths:
+        with phase("writing", job_log):
+            return merge_chunk_files(paths, spec)
+    log.info("study %s is one chunk: solved in this job", spec["study"])
+    with phase("compilation", job_log):
+        solver.warm_up()
+    with phase("solving", job_log):
+        return solve_study(spec)

@@ -11,6 +11,7 @@ from snakemake.exceptions import WorkflowError
 import isoslide.fragility_study as fragility_study
 import isoslide.isolation_plot as isolation_plot
 import isoslide.isolation_study as isolation_study
+import isoslide.similarity as similarity
 import isoslide.sweep as sweep
 from isoslide.provenance import code_hash
 
@@ -31,6 +32,7 @@ FIGURES = [f"fig{n}" for n in range(1, 9)]
 FORMATS = config["figures"]["formats"]
 FIGURE_FILES = expand("reports/figures/{fig}.{ext}", fig=FIGURES, ext=FORMATS)
 SIMILARITY_SETTINGS = sweep.jsonable(config["similarity"])
+BUCKINGHAM_SETTINGS = {k: SIMILARITY_SETTINGS[k] for k in similarity.BUCKINGHAM_KEYS}
 FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 
 # The isoslide modules behind each family of rules: every module the family's scripts (or report
@@ -40,31 +42,32 @@ FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 # that no longer exists stops the workflow; tests/test_workflow.py checks that every list is the
 # import closure of its scripts.
 CODE_MODULES = {
-    # solve_chunk, merge_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
+    # solve_chunk, merge_isolation_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
     "solve": ["budget", "building", "building_kernel", "config", "datasets", "dop853", "groups", "history",
-              "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene", "solver",
-              "sweep", "validation"],
-    # similarity_study, similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
-    "similarity": ["budget", "claims", "datasets", "groups", "history", "jit_cache", "models", "peers", "provenance", "pulses",
-                   "scene", "similarity", "validation"],
+              "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene",
+              "solver", "sweep", "validation"],
+    # similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
+    "similarity": ["budget", "claims", "datasets", "groups", "history", "jit_cache", "models", "peers",
+                   "provenance", "pulses", "scene", "similarity", "validation"],
     # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
-    "records": ["budget", "building", "building_kernel", "datasets", "dop853", "groups", "history", "jit_cache", "kernel",
-                "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study", "records",
-                "scene", "solver", "validation"],
+    "records": ["budget", "building", "building_kernel", "datasets", "dop853", "groups", "history", "jit_cache",
+                "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study",
+                "records", "scene", "solver", "validation"],
     # figure, figure_records (isoslide.figures)
     "figures": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups", "history",
-                "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study",
-                "records", "scene", "solver", "validation"],
+                "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses",
+                "record_study", "records", "scene", "solver", "validation"],
     # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
     "accuracy": ["accuracy", "budget", "building", "building_kernel", "config", "datasets", "dop853", "groups",
-                 "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene",
-                 "solver", "sweep", "validation"],
+                 "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance",
+                 "pulses", "scene", "solver", "sweep", "validation"],
     # index_page (isoslide.index_page)
     "index": ["budget", "index_page", "provenance"],
     # fragility_chunk, fragility_dataset (isoslide.fragility_study)
     "fragility": ["budget", "building", "building_kernel", "datasets", "dop853", "fragility", "fragility_study",
-                  "groups", "history", "history_io", "intensity", "jit_cache", "kernel", "models", "peers", "piecewise",
-                  "progress", "provenance", "pulses", "record_study", "records", "scene", "solver", "validation"],
+                  "groups", "history", "history_io", "intensity", "jit_cache", "kernel", "models", "peers",
+                  "piecewise", "progress", "provenance", "pulses", "record_study", "records", "scene", "solver",
+                  "validation"],
     # fragility_figure; the fragility report (isoslide.fragility_plot, datasets.open_dataset)
     "fragility_plot": ["budget", "datasets", "fragility", "fragility_plot", "groups", "models", "provenance",
                        "validation"],
@@ -72,14 +75,17 @@ CODE_MODULES = {
     "pelicun": ["budget", "datasets", "groups", "models", "pelicun_export", "provenance", "validation"],
     # isolation_rigid, isolation_design; the isolation report (isoslide.isolation_study)
     "isolation": ["budget", "building", "building_kernel", "config", "datasets", "design", "dop853", "groups",
-                  "history", "history_io", "intensity", "isolation_study", "jit_cache", "kernel", "models", "peers", "piecewise",
-                  "progress", "provenance", "pulses", "record_study", "records", "scene", "solver", "sweep",
-                  "validation"],
+                  "history", "history_io", "intensity", "isolation_study", "jit_cache", "kernel", "models", "peers",
+                  "piecewise", "progress", "provenance", "pulses", "record_study", "records", "scene", "solver",
+                  "sweep", "validation"],
     # isolation_figure (isoslide.isolation_plot)
-    "isolation_plot": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups", "history",
-                       "isolation_plot", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance",
-                       "pulses", "record_study", "records", "scene", "solver", "validation"],
+    "isolation_plot": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups",
+                       "history", "isolation_plot", "jit_cache", "kernel", "models", "peers", "piecewise",
+                       "progress", "provenance", "pulses", "record_study", "records", "scene", "solver",
+                       "validation"],
 }
+# merge_study: a paper study solved or merged (solve), then its Buckingham check (similarity)
+CODE_MODULES["study"] = sorted(set(CODE_MODULES["solve"]) | set(CODE_MODULES["similarity"]))
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
 
 # Real records against their fitted pulses (workflow/rules/records.smk).

@@ -1,6 +1,8 @@
 # Fan-out and merge: each study is cut into chunks of `chunk_size` scenes, solved one job per
 # chunk, and merged with an exact coordinate join into results/datasets/<study>.nc.  A study of
-# one chunk is solved by its merge_study job directly (same bytes, one job instead of two).
+# one chunk is solved by its merge job directly (same bytes, one job instead of two).  The merge
+# job of a paper study also realises sampled points in SI units (the Buckingham check of
+# reports/similarity.html), reading the dataset it has just written from memory.
 
 
 rule solve_chunk:
@@ -28,10 +30,16 @@ rule merge_study:
     input:
         chunk_files,
     output:
-        "results/datasets/{study}.nc",
+        dataset="results/datasets/{study}.nc",
+        similarity="results/similarity/{study}.nc",
     params:
-        code=CODE["solve"],
-        spec=lambda wildcards: STUDY_SPECS[wildcards.study],
+        code=CODE["study"],
+        spec=lambda wildcards: SPECS[wildcards.study],
+        # only the settings the Buckingham check reads: editing the similarity tables' settings
+        # reruns the similarity job, not the studies
+        buckingham=BUCKINGHAM_SETTINGS,
+    wildcard_constraints:
+        study="|".join(STUDIES),
     log:
         "logs/merge_study/{study}.log",
     benchmark:
@@ -39,8 +47,34 @@ rule merge_study:
     threads: 1
     resources:
         mem_mb=500,  # measured: max_rss 248 MB over 7 jobs
-        runtime=2,  # minutes; measured: 3.9 s at most
+        runtime=2,  # minutes; measured: 5.0 s at most (fig5_pi4: solving and its check)
     conda:
         "../envs/isoslide.yaml"
     script:
         "../scripts/merge_study.py"
+
+
+# The isolation studies (workflow/rules/isolation.smk): merged or solved the same way; their
+# similarity is checked by the tests (the SI-unit peer of the general building).
+rule merge_isolation_study:
+    input:
+        chunk_files,
+    output:
+        "results/datasets/{study}.nc",
+    params:
+        code=CODE["solve"],
+        spec=lambda wildcards: ISOLATION_SPECS[wildcards.study],
+    wildcard_constraints:
+        study="|".join(ISOLATION_STUDIES),
+    log:
+        "logs/merge_isolation_study/{study}.log",
+    benchmark:
+        "results/benchmarks/merge_isolation_study/{study}.tsv"
+    threads: 1
+    resources:
+        mem_mb=500,  # measured: max_rss 248 MB over 4 jobs
+        runtime=2,  # minutes; measured: 2.7 s at most
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/merge_isolation_study.py"
