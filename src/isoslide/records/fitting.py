@@ -28,7 +28,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import least_squares
-from scipy.signal import fftconvolve
 
 from ..pulses import (Pulse, get_pulse, mp_accel, mp_accel_jacobian, mp_velocity, ricker,
                       ricker_accel, ricker_velocity)
@@ -197,6 +196,8 @@ def _ricker_grid_search(a, dt, T_grid, i_lo, i_hi):
     for T in T_grid:
         J = int(math.ceil(2.0 * T / dt))
         k = ricker_accel(np.arange(-J, J + 1) * dt, 1.0, 0.0, T)
+        from scipy.signal import fftconvolve  # here: scipy.signal costs 0.2 s to import
+
         c = fftconvolve(a, k, mode="same")  # kernel is symmetric: convolution == correlation
         score = c[i_lo:i_hi] ** 2 / np.dot(k, k)
         j = int(np.argmax(score))
