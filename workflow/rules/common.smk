@@ -49,6 +49,8 @@ CODE_MODULES = {
     # similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
     "similarity": ["budget", "claims", "datasets", "groups", "history", "jit_cache", "models", "peers",
                    "provenance", "pulses", "scene", "similarity", "validation"],
+    # the similarity report (the claims and the groups' symbols; it only reads datasets)
+    "similarity_report": ["claims", "groups", "validation"],
     # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
     "records": ["budget", "building", "building_kernel", "datasets", "dop853", "groups", "history", "jit_cache",
                 "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study",
@@ -140,7 +142,7 @@ REPORTS = {
         "data": {"similarity_path": "results/datasets/similarity.nc"},
         "parameters": {"dataset_dir": "results/datasets"},
         "needs": DATASETS,  # the master curves each complete-similarity verdict and conclusion judges
-        "code": "similarity",
+        "code": "similarity_report",
     },
     "figures": {
         "parameters": {"figure_dir": "reports/figures"},
