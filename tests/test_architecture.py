@@ -86,7 +86,13 @@ def test_package_modules_import_each_other_at_module_level():
 
 def test_the_datasets_module_is_a_leaf():
     deps = {t for t, _ in _package_imports()["isoslide.datasets"]}
-    assert deps <= {"isoslide.groups", "isoslide.models", "isoslide.provenance", "isoslide.validation"}
+    assert deps <= {"isoslide.atomic", "isoslide.groups", "isoslide.models", "isoslide.provenance",
+                    "isoslide.validation"}
+
+
+def test_the_atomic_write_module_imports_nothing_of_the_package():
+    """isoslide.atomic serves the datasets, figures, exports and the kernels' import: standard library only."""
+    assert _package_imports()["isoslide.atomic"] == []
 
 
 def test_scene_fields_are_the_registry_input_groups_with_their_defaults():

@@ -21,13 +21,12 @@ output under the final name.
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
+from .atomic import atomic_path
 from .groups import RESULT, group
 from .models import MODEL_LABELS
 from .provenance import code_hash, git_commit, source_text  # noqa: F401 - re-exported
@@ -258,16 +257,8 @@ def write_netcdf(ds: xr.Dataset, path, complevel: int = 4) -> Path:
     Numeric variables are zlib-compressed.  Returns the path.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
+    with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", encoding=encoding_for(ds, complevel))
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
     return path
 
 

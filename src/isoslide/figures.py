@@ -18,12 +18,11 @@ from __future__ import annotations
 import json
 import logging
 import math
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from .atomic import atomic_path
 from .datasets import open_dataset
 from .groups import GROUPS
 from .pulses import get_pulse
@@ -706,16 +705,8 @@ def _save(fig, path: Path, caption: str, dpi: int = 200):
     }
     if ext not in meta:
         raise ValueError(f"unsupported figure format {ext!r}; allowed: png, pdf, svg")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=f".{ext}", dir=path.parent)
-    os.close(fd)
-    try:
+    with atomic_path(path, suffix=f".{ext}") as tmp:
         fig.savefig(tmp, format=ext, dpi=dpi, metadata=meta[ext])
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def read_caption(png_path) -> str:

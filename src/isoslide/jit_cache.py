@@ -33,6 +33,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from .atomic import atomic_path
+
 SHIPPED_DIR = Path(__file__).resolve().parent / "data" / "kernel_cache"
 ENV_SWITCH = "ISOSLIDE_SHIPPED_KERNELS"
 # the modules whose numba functions are cached (cache=True), in compile order
@@ -52,14 +54,8 @@ def _cache_dir(dispatcher) -> Path | None:
 
 
 def _copy_atomic(src: Path, dest: Path) -> None:
-    fd, tmp = tempfile.mkstemp(dir=dest.parent, prefix=f".{dest.name}.")
-    try:
-        with os.fdopen(fd, "wb") as out, open(src, "rb") as inp:
-            shutil.copyfileobj(inp, out)
-        os.replace(tmp, dest)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_path(dest) as tmp:
+        shutil.copyfile(src, tmp)
 
 
 def seed(dispatcher, shipped_dir: Path = SHIPPED_DIR) -> int:

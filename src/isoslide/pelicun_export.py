@@ -42,13 +42,13 @@ import csv
 import io
 import json
 import math
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import xarray as xr
+
+from .atomic import atomic_path
 
 __all__ = ["COMPONENT_IDS", "DEMANDS", "G_PELICUN", "damage_db", "write_damage_db"]
 
@@ -220,15 +220,8 @@ def _json_text(table: pd.DataFrame, description: str) -> str:
 
 
 def _write_atomic(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_path(path) as tmp:
+        Path(tmp).write_text(text, encoding="utf-8", newline="")
 
 
 def write_damage_db(path, theta: xr.DataArray, beta: xr.DataArray, *, json_path=None,

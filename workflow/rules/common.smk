@@ -43,45 +43,45 @@ FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 # import closure of its scripts.
 CODE_MODULES = {
     # solve_chunk, merge_isolation_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
-    "solve": ["budget", "building", "building_kernel", "config", "datasets", "dop853", "groups", "history",
-              "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "scene",
-              "solver", "sweep", "validation"],
+    "solve": ["atomic", "budget", "building", "building_kernel", "config", "datasets", "dop853", "groups",
+              "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses",
+              "scene", "solver", "sweep", "validation"],
     # similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
-    "similarity": ["budget", "claims", "datasets", "groups", "history", "jit_cache", "models", "peers",
+    "similarity": ["atomic", "budget", "claims", "datasets", "groups", "history", "jit_cache", "models", "peers",
                    "provenance", "pulses", "scene", "similarity", "validation"],
     # the similarity report (the claims and the groups' symbols; it only reads datasets)
     "similarity_report": ["claims", "groups", "validation"],
     # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
-    "records": ["budget", "building", "building_kernel", "datasets", "dop853", "groups", "history", "jit_cache",
-                "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study",
-                "records", "scene", "solver", "validation"],
-    # figure, figure_records (isoslide.figures)
-    "figures": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups", "history",
+    "records": ["atomic", "budget", "building", "building_kernel", "datasets", "dop853", "groups", "history",
                 "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses",
                 "record_study", "records", "scene", "solver", "validation"],
+    # figure, figure_records (isoslide.figures)
+    "figures": ["atomic", "budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups",
+                "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance",
+                "pulses", "record_study", "records", "scene", "solver", "validation"],
     # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
-    "accuracy": ["accuracy", "budget", "building", "building_kernel", "config", "datasets", "dop853", "groups",
-                 "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance",
-                 "pulses", "scene", "solver", "sweep", "validation"],
+    "accuracy": ["accuracy", "atomic", "budget", "building", "building_kernel", "config", "datasets", "dop853",
+                 "groups", "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress",
+                 "provenance", "pulses", "scene", "solver", "sweep", "validation"],
     # index_page (isoslide.index_page)
     "index": ["budget", "index_page", "provenance"],
     # fragility_chunk, fragility_dataset (isoslide.fragility_study)
-    "fragility": ["budget", "building", "building_kernel", "datasets", "dop853", "fragility", "fragility_study",
-                  "groups", "history", "history_io", "intensity", "jit_cache", "kernel", "models", "peers",
-                  "piecewise", "progress", "provenance", "pulses", "record_study", "records", "scene", "solver",
-                  "validation"],
+    "fragility": ["atomic", "budget", "building", "building_kernel", "datasets", "dop853", "fragility",
+                  "fragility_study", "groups", "history", "history_io", "intensity", "jit_cache", "kernel",
+                  "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study", "records",
+                  "scene", "solver", "validation"],
     # fragility_figure; the fragility report (isoslide.fragility_plot, datasets.open_dataset)
-    "fragility_plot": ["budget", "datasets", "fragility", "fragility_plot", "groups", "models", "provenance",
-                       "validation"],
+    "fragility_plot": ["atomic", "budget", "datasets", "fragility", "fragility_plot", "groups", "models",
+                       "provenance", "validation"],
     # fragility_pelicun (isoslide.pelicun_export)
-    "pelicun": ["budget", "datasets", "groups", "models", "pelicun_export", "provenance", "validation"],
+    "pelicun": ["atomic", "budget", "datasets", "groups", "models", "pelicun_export", "provenance", "validation"],
     # isolation_rigid, isolation_design; the isolation report (isoslide.isolation_study)
-    "isolation": ["budget", "building", "building_kernel", "config", "datasets", "design", "dop853", "groups",
-                  "history", "history_io", "intensity", "isolation_study", "jit_cache", "kernel", "models", "peers",
-                  "piecewise", "progress", "provenance", "pulses", "record_study", "records", "scene", "solver",
-                  "sweep", "validation"],
+    "isolation": ["atomic", "budget", "building", "building_kernel", "config", "datasets", "design", "dop853",
+                  "groups", "history", "history_io", "intensity", "isolation_study", "jit_cache", "kernel",
+                  "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study", "records",
+                  "scene", "solver", "sweep", "validation"],
     # isolation_figure (isoslide.isolation_plot)
-    "isolation_plot": ["budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups",
+    "isolation_plot": ["atomic", "budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups",
                        "history", "isolation_plot", "jit_cache", "kernel", "models", "peers", "piecewise",
                        "progress", "provenance", "pulses", "record_study", "records", "scene", "solver",
                        "validation"],
