@@ -1,5 +1,8 @@
 """Model labels: every label a solve produces has a flag code, and every listed label is produced."""
 
+import json
+from pathlib import Path
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -8,6 +11,9 @@ import isoslide
 from isoslide import datasets
 from isoslide.models import BUILDING_LABELS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, label
 from isoslide.pulses import sampled
+
+CODES_FILE = Path(__file__).parent / "data" / "model_codes.json"
+"""Committed flag codes of the model labels; codes are append-only."""
 
 RECORD = sampled(np.sin(np.linspace(0.0, 2.0 * np.pi, 201)), 0.005)
 """A short sampled record: one sine cycle of unit amplitude over one T_p."""
@@ -77,8 +83,50 @@ def produced():
     return [isoslide.solve(sc, **kw).model for sc, kw in PATHS]
 
 
+def pinned_codes() -> dict:
+    """The committed flag code of every label (``tests/data/model_codes.json``), never regenerated here."""
+    return json.loads(CODES_FILE.read_text())["codes"]
+
+
 def test_every_listed_label_is_produced_by_some_solve(produced):
     assert sorted(produced) == sorted(MODEL_LABELS)
+
+
+def test_every_produced_label_has_a_flag_code(produced):
+    """encode_models accepts every label a solve produced and maps it to its position in MODEL_LABELS."""
+    codes, attrs = datasets.encode_models(np.array(produced))
+    assert codes.tolist() == [MODEL_LABELS.index(name) for name in produced]
+    assert attrs["flag_meanings"].split() == list(MODEL_LABELS)
+
+
+def test_pinned_flag_codes_are_contiguous_from_zero():
+    """The committed codes are 0, 1, ..., n - 1 with no gap or repeat (so the file itself is sound)."""
+    pinned = pinned_codes()
+    assert sorted(pinned.values()) == list(range(len(pinned)))
+
+
+def test_flag_codes_are_append_only():
+    """No committed label disappears or changes its code; new labels come after the committed ones."""
+    pinned = pinned_codes()
+    missing = sorted(set(pinned) - set(MODEL_LABELS))
+    assert not missing, f"labels removed from MODEL_LABELS: {missing}"
+    moved = {n: (c, MODEL_LABELS.index(n)) for n, c in pinned.items() if MODEL_LABELS.index(n) != c}
+    assert not moved, f"labels whose flag code changed (committed, now): {moved}"
+    codes, _ = datasets.encode_models(np.array(list(pinned)))
+    assert codes.tolist() == list(pinned.values())
+
+
+def test_every_label_has_a_pinned_flag_code():
+    """Each label in MODEL_LABELS is in the committed code file (append a new label there on purpose)."""
+    unpinned = [n for n in MODEL_LABELS if n not in pinned_codes()]
+    assert not unpinned, f"labels without a committed flag code in {CODES_FILE.name}: {unpinned}"
+
+
+def test_flag_codes_fit_the_int8_flag_variable():
+    assert len(MODEL_LABELS) - 1 <= np.iinfo(np.int8).max
+    codes, attrs = datasets.encode_models(np.array(MODEL_LABELS))
+    assert codes.dtype == np.int8 and codes.tolist() == list(range(len(MODEL_LABELS)))
+    assert attrs["flag_values"].tolist() == codes.tolist()
 
 
 def test_labels_round_trip_through_a_dataset_flag_variable(produced, tmp_path):
@@ -90,24 +138,37 @@ def test_labels_round_trip_through_a_dataset_flag_variable(produced, tmp_path):
     assert back.values.tolist() == produced
 
 
-def test_solve_many_labels_are_listed():
-    scenes = [sc for sc, kw in PATHS if not kw]
-    batch = isoslide.solve_many(scenes)
-    assert set(batch.model.tolist()) <= set(MODEL_LABELS)
-    assert "no-slide" in batch.model.tolist() and "fixed-base+no-slide" in batch.model.tolist()
+def test_solve_many_labels_match_the_single_solves(produced):
+    """solve_many labels each scene as solve does, and every label it gives has a flag code.
+
+    Scenes solve_many answers ``no-slide`` from the shared stuck demand alone may lack the
+    ``+piecewise`` part the single solve adds, so that part is left out of the comparison.
+    """
+    plain = [i for i, (sc, kw) in enumerate(PATHS) if not kw]
+    batch = isoslide.solve_many([PATHS[i][0] for i in plain]).model.tolist()
+    datasets.encode_models(np.array(batch))
+    assert not sorted(set(batch) - set(MODEL_LABELS))
+
+    def paper_part(name):
+        return name.removesuffix("+piecewise") if "no-slide" in name else name
+
+    assert [paper_part(m) for m in batch] == [paper_part(produced[i]) for i in plain]
+
+
+def test_peer_methods_carry_their_own_label(produced):
+    """solve(..., method=m) is labelled m, for each peer label (and the peer paths cover them all)."""
+    peers = [(kw["method"], produced[i]) for i, (sc, kw) in enumerate(PATHS) if "method" in kw]
+    assert [m for m, _ in peers] == [name for _, name in peers]
+    assert sorted(m for m, _ in peers) == sorted(PEER_LABELS)
 
 
 def test_label_rejects_an_unknown_friction_law():
     with pytest.raises(ValueError, match="friction = 'viscous'"):
         label(False, False, "viscous", False)
-    assert set(PEER_LABELS) <= set(MODEL_LABELS)
 
 
-def test_piecewise_then_building_labels_are_appended_after_the_older_codes():
-    n = len(BUILDING_LABELS)
-    assert MODEL_LABELS[-n:] == BUILDING_LABELS
-    assert MODEL_LABELS[-n - len(PIECEWISE_LABELS):-n] == PIECEWISE_LABELS
-    assert MODEL_LABELS.index("fixed-base+static-kinetic") == 12
+def test_piecewise_label_needs_coulomb_friction():
     assert label(True, False, "coulomb", False, piecewise=True) == "fixed-base+coulomb+piecewise"
+    assert all(name.endswith("+piecewise") for name in PIECEWISE_LABELS)
     with pytest.raises(ValueError, match="piecewise = True needs friction = 'coulomb'"):
         label(False, False, "stribeck", False, piecewise=True)
