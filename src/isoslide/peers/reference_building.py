@@ -1,41 +1,53 @@
 """Independent event-driven reference solver of the general building (plain Python + SciPy).
 
-The general building extends the paper's model (Fig. 1-b) to Fig. 1-a: a nonlinear isolator
-(bilinear bearing, or sliding bearing with true stick), a flexible superstructure, and contents on
-the base slab or on the roof.  Like :mod:`isoslide.peers.reference` it integrates phase by phase
-with :func:`scipy.integrate.solve_ivp` (``DOP853``) and locates every transition with
-``solve_ivp``'s events; it is written from the equations below only, independently of the compiled
-kernel, to cross-check it.
+The general building extends the paper's model (Fig. 1-b) to Fig. 1-a and beyond: a nonlinear
+isolator (bilinear bearing, or sliding bearing with true stick), a flexible superstructure of
+``N`` storeys (a shear chain), and contents on the base slab or on any floor above it.  Like
+:mod:`isoslide.peers.reference` it integrates phase by phase with
+:func:`scipy.integrate.solve_ivp` (``DOP853``) and locates every transition with ``solve_ivp``'s
+events; it is written from the equations below only, independently of the compiled kernel, to
+cross-check it.
 
 Model (dimensionless: ``tau = t/T_p``, lengths ``a_p T_p**2``, masses ``M_b``, forces ``M_b a_p``)
 ------------------------------------------------------------------------------------------------
-Parameters: ``mst = Pi11`` if ``Pi12 > 0`` else 0, ``mb = 1 - mst``, ``m = Pi8``,
-``kd = (2 pi/Pi3)**2``, ``cb = 2 Pi4 (2 pi/Pi3)``, ``ks = mst (2 pi/Pi12)**2``,
-``cs = 2 Pi13 (2 pi/Pi12) mst``, ``q = Pi9``, ``ke = Pi9/Pi10`` (bilinear), ``thr = Pi2/Pi5`` and
-the friction level ``phi(v) = thr sech(Pi6 v) + Pi2 (1 - sech(Pi6 v)) + Pi7 |v|``.
+Parameters: ``kd = (2 pi/Pi3)**2``, ``cb = 2 Pi4 (2 pi/Pi3)``, ``q = Pi9``, ``ke = Pi9/Pi10``
+(bilinear), ``m = Pi8``, ``thr = Pi2/Pi5`` and the friction level
+``phi(v) = thr sech(Pi6 v) + Pi2 (1 - sech(Pi6 v)) + Pi7 |v|``.
 
-States ``y = (x, x', xs, xs', u, u', fh)``: slab rel. ground, superstructure rel. slab, block rel.
-its floor, hysteretic isolator force.  ``Ab = p + x''`` and ``As = Ab + xs''`` are absolute
-accelerations, ``A_F`` that of the block's floor (``Ab`` on the base, ``As`` on the roof of a
-flexible superstructure; a rigid superstructure's roof is the base)::
+Superstructure.  Rigid when ``Pi12 = 0``: no floor states, slab mass ``mb = 1``, and the contents
+are on the slab whatever ``scene.floor`` says.  Flexible when ``Pi12 > 0``: ``N = scene.storeys``
+floors above the slab, of masses ``m_j = Pi11 w_j`` (``w_j = floor_masses[j-1]``, or ``1/N``),
+slab mass ``mb = 1 - Pi11``.  Storey ``j = 1 .. N`` joins floor ``j-1`` and floor ``j`` (floor 0 is
+the slab) with stiffness ``kappa r_j`` (``r_j = storey_stiffnesses[j-1]``, or 1).  ``Ks`` is the
+``N x N`` fixed-base (slab held) stiffness matrix of this shear chain and ``Ms = diag(m_j)``;
+``kappa`` makes the smallest eigenvalue of ``Ms^-1 Ks`` equal to ``(2 pi/Pi12)**2`` (the fixed-base
+fundamental period is ``T_s``).  Damping is classical with ratio ``Pi13`` in every fixed-base mode:
+``Cs = Ms Phi diag(2 Pi13 omega_i) Phi^T Ms``, ``Phi`` the mass-normalised fixed-base modes
+(``Phi^T Ms Phi = I``), ``omega_i**2`` the eigenvalues.  With ``N = 1``: ``ks = m_1 (2 pi/Pi12)**2``,
+``cs = 2 Pi13 (2 pi/Pi12) m_1``.
 
-    F = kd x + cb x' + fh          (isolator on the slab)
-    S = ks xs + cs xs'             (superstructure on the slab)
-    slab:            mb Ab  = -F + S + [R on the base]
-    superstructure:  mst As = -S + [R on the roof]
-    block:           m (A_F + u'') = -R
+States ``y = (x, x', xs_1 .. xs_N, xs_1' .. xs_N', u, u', fh)``: slab rel. ground, floors rel.
+slab, block rel. its floor, hysteretic isolator force (a rigid superstructure keeps one
+unused floor slot at zero).  ``Ab = p + x''`` is the slab's absolute acceleration,
+``A_j = Ab + xs_j''`` floor ``j``'s, ``A_F`` that of the block's floor ``k`` (``k = 0`` the slab)::
+
+    F = kd x + cb x' + fh                   (isolator on the slab)
+    f = Ks xs + Cs xs'                      (superstructure on its floors, a vector)
+    slab:      mb Ab  = -F + sum_j f_j + [R on the slab]
+    floor j:   m_j A_j = -f_j + [R on floor j]
+    block:     m (A_F + u'') = -R
 
 Block: stuck ``u' = 0``, ``R = -m A_F`` while ``|A_F| <= thr``; sliding in ``s = sgn(u')``,
 ``R = m s phi(|u'|)``.  Isolator: linear ``fh = 0``; bilinear (elastic-perfectly-plastic,
 stiffness ``ke``, strength ``q``) ``fh' = ke x'`` while elastic, ``fh = +-q`` while yielding (from
 ``|fh| = q`` until ``x'`` changes sign); sliding bearing ``fh = q sgn(x')`` while sliding, held
 (``x' = x'' = 0``, ``Ab = p``) while the force it must supply,
-``fh_needed = -mb p - kd x + S + [R on the base]``, is within ``|fh_needed| <= q``.  A fixed base
-(``Pi3 = 0``) is a bearing held for ever.  Every acceleration is explicit in the mode (no linear
-solve): with the slab held ``Ab = p``; moving, ``Ab = (-F + S)/(mb + m)`` (block stuck on the
-base), ``(-F + S + R)/mb`` (sliding on the base) or ``(-F + S)/mb`` (block on the roof); the
-superstructure ``As = -S/mst``, on the roof ``-S/(mst + m)`` (stuck) or ``(-S + R)/mst``
-(sliding).
+``fh_needed = -mb p - kd x + sum_j f_j + [R on the slab]``, is within ``|fh_needed| <= q``.  A fixed
+base (``Pi3 = 0``) is a bearing held for ever.  Every acceleration is explicit in the mode (no
+linear solve; the floors' forces depend on the state only): with the slab held ``Ab = p``;
+moving, ``Ab = (-F + S)/(mb + m)`` (block stuck on the slab), ``(-F + S + R)/mb`` (sliding on the
+slab) or ``(-F + S)/mb`` (block upstairs), ``S = sum_j f_j``; floor ``j`` ``A_j = -f_j/m_j``, and
+the block's floor ``-f_k/(m_k + m)`` (stuck) or ``(-f_k + R)/m_k`` (sliding).
 
 Mode selection
 --------------
@@ -57,9 +69,9 @@ that starts with a tiny acceleration and ends within one step is still found.
 Settlement bound
 ----------------
 After the pulse, with the block stuck and the bearing held, elastic or linear, the system is free
-and linear: ``M z'' + C z' + K z = f`` with ``z = (x, xs)`` (only ``xs`` with the slab held; none
-for a held slab under a rigid superstructure).  About its equilibrium ``z*`` the energy
-``E = (dz' M dz' + dz K dz)/2`` never increases (``C >= 0``), and every demand (the floor
+and linear: ``M z'' + C z' + K z = f`` with ``z = (x, xs_1 .. xs_N)`` (only the ``xs`` with the
+slab held; none for a held slab under a rigid superstructure).  About its equilibrium ``z*`` the
+energy ``E = (dz' M dz' + dz K dz)/2`` never increases (``C >= 0``), and every demand (the floor
 acceleration ``A_F``, the bilinear force ``fh``, the held bearing's ``fh_needed``) is affine,
 ``d = d0 + c . w`` with ``w = (z - z*, z')``; so for all later times
 ``|d| <= |d0| + sqrt(2 E c^T P^-1 c)``, ``P = diag(K, M)`` (Cauchy-Schwarz).  The run settles
@@ -71,10 +83,12 @@ slowest decay rate of the free system, 0 for an undamped one) ends with ``settle
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
 from scipy.integrate import solve_ivp
 
 from ..history import History
@@ -83,16 +97,69 @@ from ..scene import Scene
 from .result import PeerResult, counted
 
 __all__ = ["LEDGER_NAMES", "Building", "BuildingRun", "building_of", "default_horizon", "energies", "run_building",
-           "solve_reference_building"]
+           "shear_building", "solve_reference_building"]
 
-# state indices
-X, XD, XS, XSD, U, UD, FH = range(7)
-N_STATE = 7
+X, XD, XS = 0, 1, 2
+"""Indices of the slab's displacement and velocity and of the first floor's displacement in the
+state; the other indices depend on the number of floors (:class:`Building`)."""
 LEDGER_NAMES = ("work", "viscous", "isolator", "friction")
 """Ledger integrals appended to the state when requested: input work, viscous, isolator
 (hysteretic or bearing friction) and contents-friction dissipation, units ``M_b a_p**2 T_p**2``."""
 
 _ULP4 = 4e-15   # relative slack of the stick limits (see isoslide.peers.reference)
+
+
+def shear_building(masses, stiffnesses, period: float, damping: float) -> tuple:
+    """Fixed-base matrices of a shear chain scaled to a fundamental period.
+
+    Parameters
+    ----------
+    masses : sequence of float
+        Floor masses, bottom to top (any consistent unit, e.g. ``M_b`` or kg), all positive.
+    stiffnesses : sequence of float
+        Relative storey stiffnesses, bottom to top (storey ``j`` joins floor ``j-1`` and floor
+        ``j``; floor 0 is the held slab), all positive; only their ratios matter.
+    period : float
+        Fixed-base fundamental period (the unit of time), ``> 0``.
+    damping : float
+        Damping ratio of every fixed-base mode, ``>= 0``.
+
+    Returns
+    -------
+    (K, C, omega) : tuple of ndarray
+        Stiffness and damping matrices (``N x N``; units mass/time**2 and mass/time), and the
+        fixed-base circular frequencies in ascending order (units 1/time), ``omega[0] = 2 pi/period``.
+    """
+    m = np.asarray(masses, dtype=float)
+    r = np.asarray(stiffnesses, dtype=float)
+    n = m.size
+    if n < 1 or r.size != n:
+        raise ValueError(f"stiffnesses has {r.size} values; allowed: one per floor ({n} floors, at least 1)")
+    if not np.all(m > 0.0) or not np.all(np.isfinite(m)):
+        raise ValueError(f"masses = {m.tolist()!r} is out of range; allowed: every value 0 < value < inf")
+    if not np.all(r > 0.0) or not np.all(np.isfinite(r)):
+        raise ValueError(f"stiffnesses = {r.tolist()!r} is out of range; allowed: every value 0 < value < inf")
+    if not (math.isfinite(period) and period > 0.0):
+        raise ValueError(f"period = {period!r} is out of range; allowed range: 0 < value < inf")
+    if not (math.isfinite(damping) and damping >= 0.0):
+        raise ValueError(f"damping = {damping!r} is out of range; allowed range: 0 <= value < inf")
+    unit = np.zeros((n, n))
+    for j in range(n):                 # storey j+1: floor j (the slab when j = 0) to floor j+1
+        unit[j, j] += r[j]
+        if j:
+            unit[j - 1, j - 1] += r[j]
+            unit[j, j - 1] -= r[j]
+            unit[j - 1, j] -= r[j]
+    M = np.diag(m)
+    lam, phi = scipy.linalg.eigh(unit, M)   # unit phi = M phi lam, phi^T M phi = I
+    w1 = 2.0 * math.pi / period
+    kappa = w1 * w1 / lam[0]
+    omega = np.sqrt(kappa * lam)
+    omega[0] = w1
+    K = kappa * unit
+    Mphi = M @ phi
+    C = (Mphi * (2.0 * damping * omega)) @ Mphi.T
+    return K, 0.5 * (C + C.T), omega
 
 
 @dataclass(frozen=True)
@@ -102,19 +169,25 @@ class Building:
     Attributes
     ----------
     mst, mb, m : float
-        Superstructure, slab and block masses (units ``M_b``).
+        Superstructure (all floors), slab and block masses (units ``M_b``).
     kd, cb : float
         Isolator post-yield (linear) stiffness and viscous coefficient.
-    ks, cs : float
-        Superstructure stiffness and viscous coefficient.
+    ms : ndarray
+        Floor masses ``m_1 .. m_N``, bottom to top (empty when rigid).
+    Ks, Cs : ndarray
+        Fixed-base stiffness and damping matrices of the floors (``N x N``; ``0 x 0`` when rigid).
+    omega : ndarray
+        Fixed-base circular frequencies, ascending (units ``1/T_p``; empty when rigid).
     q, ke : float
         Isolator strength and elastic stiffness (``ke = 0`` unless bilinear).
     thr : float
         Static friction level ``Pi2/Pi5`` (units ``a_p``).
     kind : {"linear", "bilinear", "sliding", "fixed"}
         Isolator; ``"fixed"`` is a fixed base (``Pi3 = 0``).
-    flexible, roof : bool
-        Flexible superstructure; contents on its mass (flexible and ``floor == "roof"``).
+    flexible : bool
+        Flexible superstructure (``Pi12 > 0``).
+    floor : int
+        The block's floor: 0 the slab (always when rigid), ``N`` the roof.
     """
 
     mst: float
@@ -122,17 +195,59 @@ class Building:
     m: float
     kd: float
     cb: float
-    ks: float
-    cs: float
+    ms: np.ndarray
+    Ks: np.ndarray
+    Cs: np.ndarray
+    omega: np.ndarray
     q: float
     ke: float
     thr: float
     kind: str
     flexible: bool
-    roof: bool
+    floor: int
     pi2: float = field(repr=False, default=0.0)
     pi6: float = field(repr=False, default=0.0)
     pi7: float = field(repr=False, default=0.0)
+
+    @property
+    def n(self) -> int:
+        """Number of floors ``N`` above the slab (0 when rigid)."""
+        return int(self.ms.size)
+
+    @property
+    def slots(self) -> int:
+        """Floor slots in the state (``N``, or one unused slot when rigid)."""
+        return max(1, self.n)
+
+    @property
+    def XSD(self) -> int:   # noqa: N802 - a state index, named like X, XD, XS
+        """Index of the first floor's velocity in the state."""
+        return XS + self.slots
+
+    @property
+    def U(self) -> int:     # noqa: N802
+        """Index of the block's sliding displacement in the state."""
+        return XS + 2 * self.slots
+
+    @property
+    def UD(self) -> int:    # noqa: N802
+        """Index of the block's sliding velocity in the state."""
+        return self.U + 1
+
+    @property
+    def FH(self) -> int:    # noqa: N802
+        """Index of the hysteretic isolator force in the state."""
+        return self.U + 2
+
+    @property
+    def n_state(self) -> int:
+        """Length of the state (without the ledger)."""
+        return self.U + 3
+
+    @property
+    def upstairs(self) -> bool:
+        """True when the block is on a floor above the slab."""
+        return self.floor > 0
 
     @property
     def holds(self) -> bool:
@@ -160,7 +275,6 @@ def building_of(scene: Scene) -> Building:
     Building
     """
     flexible = scene.pi12 > 0.0
-    mst = scene.pi11 if flexible else 0.0
     if scene.pi3 == 0.0:
         kind, kd, cb = "fixed", 0.0, 0.0
     else:
@@ -168,15 +282,20 @@ def building_of(scene: Scene) -> Building:
         kd, cb = w * w, 2.0 * scene.pi4 * w
         kind = "linear" if scene.pi9 == 0.0 else ("bilinear" if scene.pi10 > 0.0 else "sliding")
     if flexible:
-        ws = 2.0 * math.pi / scene.pi12
-        ks, cs = mst * ws * ws, 2.0 * scene.pi13 * ws * mst
+        n = scene.storeys
+        shares = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses, dtype=float)
+        ms = scene.pi11 * shares
+        r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses, dtype=float)
+        Ks, Cs, omega = shear_building(ms, r, scene.pi12, scene.pi13)
+        mst, floor = scene.pi11, scene.floor_index
     else:
-        ks = cs = 0.0
+        ms, Ks, Cs, omega = np.zeros(0), np.zeros((0, 0)), np.zeros((0, 0)), np.zeros(0)
+        mst, floor = 0.0, 0
     q = math.inf if kind == "fixed" else scene.pi9
     ke = scene.pi9 / scene.pi10 if kind == "bilinear" else 0.0
-    return Building(mst=mst, mb=1.0 - mst, m=scene.pi8, kd=kd, cb=cb, ks=ks, cs=cs, q=q, ke=ke,
-                    thr=scene.pi2 / scene.pi5, kind=kind, flexible=flexible,
-                    roof=flexible and scene.floor == "roof", pi2=scene.pi2, pi6=scene.pi6, pi7=scene.pi7)
+    return Building(mst=mst, mb=1.0 - mst, m=scene.pi8, kd=kd, cb=cb, ms=ms, Ks=Ks, Cs=Cs, omega=omega, q=q,
+                    ke=ke, thr=scene.pi2 / scene.pi5, kind=kind, flexible=flexible, floor=floor, pi2=scene.pi2,
+                    pi6=scene.pi6, pi7=scene.pi7)
 
 
 def _dynamics(B: Building, p: float, y, sb: int, si: int):
@@ -188,7 +307,7 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int):
     p : float
         Ground acceleration (units ``a_p``).
     y : sequence
-        State ``(x, x', xs, xs', u, u', fh, ...)``.
+        State (module docstring).
     sb : int
         Block mode: 0 stuck, +-1 sliding.
     si : int
@@ -198,32 +317,40 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int):
     Returns
     -------
     tuple
-        ``(x'', xs'', u'', fh', A_F, fh_needed, R, fh)``; ``fh_needed`` is nan unless the slab is held.
+        ``(x'', xs'', u'', fh', A_F, fh_needed, R, fh)``: ``xs''`` an array of the floor slots,
+        ``fh_needed`` nan unless the slab is held.
     """
     held = B.holds and si == 0
-    x, xd, xs, xsd, ud = y[X], y[XD], y[XS], y[XSD], y[UD]
-    S = B.ks * xs + B.cs * xsd if B.flexible else 0.0
+    n = B.n
+    x, xd, ud = y[X], y[XD], y[B.UD]
+    if n:
+        f = B.Ks @ y[XS:XS + n] + B.Cs @ y[B.XSD:B.XSD + n]
+        S = float(f.sum())
+    else:
+        S = 0.0
     if B.kind == "bilinear":
-        fh = y[FH]
+        fh = y[B.FH]
     elif B.kind == "sliding":
         fh = si * B.q
     else:
         fh = 0.0
     F = B.kd * x + B.cb * xd + fh
     m = B.m
+    k = B.floor
     if sb != 0:
         ph = B.phi(ud)
         R = m * sb * ph
-    if B.roof:
+    if k:
         Ab = p if held else (-F + S) / B.mb
+        A = -f / B.ms
         if sb == 0:
-            As = -S / (B.mst + m)
-            R = -m * As
+            A[k - 1] = -f[k - 1] / (B.ms[k - 1] + m)
+            R = -m * A[k - 1]
             udd = 0.0
         else:
-            As = (-S + R) / B.mst
-            udd = -As - sb * ph
-        AF = As
+            A[k - 1] = (-f[k - 1] + R) / B.ms[k - 1]
+            udd = -A[k - 1] - sb * ph
+        AF = A[k - 1]
     else:
         if held:
             Ab = p
@@ -239,16 +366,16 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int):
         else:
             Ab = (-F + S + R) / B.mb
             udd = -Ab - sb * ph
-        As = -S / B.mst if B.flexible else Ab
+        A = -f / B.ms if n else None
         AF = Ab
     if held:
         xdd = 0.0
-        fh_need = -B.mb * p - B.kd * x + S + (0.0 if B.roof else R)
+        fh_need = -B.mb * p - B.kd * x + S + (0.0 if k else R)
         fh = fh_need
     else:
         xdd = Ab - p
         fh_need = math.nan
-    xsdd = As - Ab if B.flexible else 0.0
+    xsdd = A - Ab if n else np.zeros(1)
     fhd = B.ke * xd if (B.kind == "bilinear" and si == 0) else 0.0
     return xdd, xsdd, udd, fhd, AF, fh_need, R, fh
 
@@ -277,10 +404,10 @@ def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, force
     lim_q = B.q * (1.0 + _ULP4)
     if forced_b:
         cb_modes, free_b = [forced_b], False
-    elif sb == 0 or y[UD] == 0.0:
+    elif sb == 0 or y[B.UD] == 0.0:
         cb_modes, free_b = [0, 1, -1], True
     else:
-        cb_modes, free_b = [_sign(y[UD])], False
+        cb_modes, free_b = [_sign(y[B.UD])], False
     if B.kind == "sliding":
         if forced_i:
             ci_modes, free_i = [forced_i], False
@@ -306,7 +433,7 @@ def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, force
             if i != 0 and free_i and not i * xdd > 0.0:
                 continue
         return b, i
-    raise RuntimeError(f"no consistent stick/slip mode at the state {list(y[:N_STATE])!r}, p = {p!r}")
+    raise RuntimeError(f"no consistent stick/slip mode at the state {list(y[:B.n_state])!r}, p = {p!r}")
 
 
 def _stop_event(s: int, k: int, t0: float, y0, acc0: float):
@@ -329,7 +456,7 @@ def _stop_event(s: int, k: int, t0: float, y0, acc0: float):
 
 def _bilinear_mode(B: Building, p: float, y, sb: int, si: int) -> int:
     """Elastic (0) or yielding (+-1) mode of a bilinear bearing at a phase start (not an event)."""
-    fh, xd = y[FH], y[XD]
+    fh, xd = y[B.FH], y[XD]
     if si == 0:
         if abs(fh) >= B.q * (1.0 - _ULP4):
             s = _sign(fh)
@@ -347,49 +474,64 @@ def _free_system(B: Building, y, si: int):
     Returns
     -------
     tuple
-        ``(M, C, K, z_eq, idx, demands)``: mass, damping and stiffness matrices of the moving
-        coordinates ``y[idx]`` (displacements; velocities are ``idx + 1``), their equilibrium, and
-        a list of ``(limit, d0, c)``: each demand is ``d0 + c . (z - z_eq, z')``.
+        ``(M, C, K, z_eq, idx, vel, demands)``: mass, damping and stiffness matrices of the moving
+        coordinates ``y[idx]`` (displacements; their velocities are ``y[vel]``), their
+        equilibrium, and a list of ``(limit, d0, c)``: each demand is ``d0 + c . (z - z_eq, z')``.
     """
     held = B.holds and si == 0
-    m = B.m
+    m, n, k = B.m, B.n, B.floor
     dem = []
+    floors = list(range(XS, XS + n))
+    floor_vel = list(range(B.XSD, B.XSD + n))
     if held:
-        if not B.flexible:
+        if not n:
             if B.kind == "sliding":
                 dem.append((B.q, -B.kd * y[X], np.zeros(0)))
-            return np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0)), np.zeros(0), [], dem
-        mass = B.mst + (m if B.roof else 0.0)
-        M, C, K = np.array([[mass]]), np.array([[B.cs]]), np.array([[B.ks]])
-        idx = [XS]
-        if B.roof:
-            dem.append((B.thr, 0.0, -np.array([B.ks, B.cs]) / mass))
-        if B.kind == "sliding":
-            dem.append((B.q, -B.kd * y[X], np.array([B.ks, B.cs])))
-        return M, C, K, np.zeros(1), idx, dem
+            return np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0)), np.zeros(0), [], [], dem
+        masses = B.ms.copy()
+        if k:
+            masses[k - 1] += m
+        M, C, K = np.diag(masses), B.Cs, B.Ks
+        if k:      # A_F = -f_k / (m_k + m)
+            dem.append((B.thr, 0.0, -np.concatenate([B.Ks[k - 1], B.Cs[k - 1]]) / masses[k - 1]))
+        if B.kind == "sliding":   # fh_needed = -kd x + sum_j f_j
+            dem.append((B.q, -B.kd * y[X], np.concatenate([B.Ks.sum(axis=0), B.Cs.sum(axis=0)])))
+        return M, C, K, np.zeros(n), floors, floor_vel, dem
     k1 = B.kd + B.ke
-    off = y[FH] - B.ke * y[X] if B.kind == "bilinear" else 0.0   # fh = off + ke x while elastic
+    off = y[B.FH] - B.ke * y[X] if B.kind == "bilinear" else 0.0   # fh = off + ke x while elastic
     x_eq = -off / k1
-    fh_x = np.array([B.ke, 0.0])                     # d fh / d (x, x')
-    if not B.flexible:
+    if not n:
         M, C, K = np.array([[1.0 + m]]), np.array([[B.cb]]), np.array([[k1]])
         dem.append((B.thr, 0.0, -np.array([k1, B.cb]) / (1.0 + m)))
         if B.kind == "bilinear":
-            dem.append((B.q, off + B.ke * x_eq, fh_x))
-        return M, C, K, np.array([x_eq]), [X], dem
-    m_slab = B.mb + (0.0 if B.roof else m)
-    m_st = B.mst + (m if B.roof else 0.0)
-    M = np.array([[m_slab + m_st, m_st], [m_st, m_st]])
-    C = np.diag([B.cb, B.cs])
-    K = np.diag([k1, B.ks])
-    # w = (x - x_eq, xs, x', xs')
-    if B.roof:
-        dem.append((B.thr, 0.0, -np.array([0.0, B.ks, 0.0, B.cs]) / m_st))
+            dem.append((B.q, off + B.ke * x_eq, np.array([B.ke, 0.0])))
+        return M, C, K, np.array([x_eq]), [X], [XD], dem
+    m_slab = B.mb + (0.0 if k else m)
+    m_fl = B.ms.copy()
+    if k:
+        m_fl[k - 1] += m
+    # kinetic energy: m_slab x'^2 + sum_j m_fl_j (x' + xs_j')^2, over 2
+    M = np.zeros((n + 1, n + 1))
+    M[0, 0] = m_slab + m_fl.sum()
+    M[0, 1:] = M[1:, 0] = m_fl
+    M[1:, 1:] = np.diag(m_fl)
+    C = np.zeros((n + 1, n + 1))
+    C[0, 0], C[1:, 1:] = B.cb, B.Cs
+    K = np.zeros((n + 1, n + 1))
+    K[0, 0], K[1:, 1:] = k1, B.Ks
+    # w = (x - x_eq, xs_1 .. xs_N, x', xs_1' .. xs_N')
+    if k:
+        c = np.zeros(2 * n + 2)
+        c[1:n + 1], c[n + 2:] = -B.Ks[k - 1], -B.Cs[k - 1]
+        dem.append((B.thr, 0.0, c / m_fl[k - 1]))
     else:
-        dem.append((B.thr, 0.0, np.array([-k1, B.ks, -B.cb, B.cs]) / m_slab))
+        c = np.concatenate([[-k1], B.Ks.sum(axis=0), [-B.cb], B.Cs.sum(axis=0)])
+        dem.append((B.thr, 0.0, c / m_slab))
     if B.kind == "bilinear":
-        dem.append((B.q, off + B.ke * x_eq, np.array([B.ke, 0.0, 0.0, 0.0])))
-    return M, C, K, np.array([x_eq, 0.0]), [X, XS], dem
+        c = np.zeros(2 * n + 2)
+        c[0] = B.ke
+        dem.append((B.q, off + B.ke * x_eq, c))
+    return M, C, K, np.concatenate([[x_eq], np.zeros(n)]), [X] + floors, [XD] + floor_vel, dem
 
 
 def _settle_margin_fn(B: Building, y0, si: int):
@@ -398,19 +540,18 @@ def _settle_margin_fn(B: Building, y0, si: int):
     Non-decreasing along the free response; ``g >= 0`` means no interface can slip or yield again.
     Returns None when there is no demand (nothing can ever slip).
     """
-    M, C, K, z_eq, idx, dem = _free_system(B, y0, si)
+    M, C, K, z_eq, idx, vel, dem = _free_system(B, y0, si)
     if not dem:
         return None
     n = len(idx)
     P = np.zeros((2 * n, 2 * n))
     P[:n, :n], P[n:, n:] = K, M
     scale = [math.sqrt(float(c @ np.linalg.solve(P, c))) if n else 0.0 for _, _, c in dem]
-    vel = [i + 1 for i in idx]
 
     def g(t, yy):
         if n:
-            dz = np.array([yy[i] for i in idx]) - z_eq
-            v = np.array([yy[i] for i in vel])
+            dz = yy[idx] - z_eq
+            v = yy[vel]
             two_e = float(dz @ K @ dz + v @ M @ v)
         else:
             two_e = 0.0
@@ -424,12 +565,11 @@ def _slowest_rate(B: Building) -> float:
     """Slowest decay rate of the free linear systems (0 if one of them is undamped)."""
     rates = []
     for si in ([0] if B.kind == "fixed" else [0, 1] if B.kind == "sliding" else [0]):
-        y = np.zeros(N_STATE)
+        y = np.zeros(B.n_state)
         if B.kind == "sliding" and si == 1:   # moving slab on kd alone
-            Bl = Building(**{**B.__dict__, "kind": "linear", "q": 0.0})
-            M, C, K, _, idx, _ = _free_system(Bl, y, 0)
+            M, C, K, _, idx, _, _ = _free_system(dataclasses.replace(B, kind="linear", q=0.0), y, 0)
         else:
-            M, C, K, _, idx, _ = _free_system(B, y, si)
+            M, C, K, _, idx, _, _ = _free_system(B, y, si)
         n = len(idx)
         if n == 0:
             continue
@@ -445,8 +585,7 @@ def _periods(B: Building) -> list:
     out = []
     if B.kd > 0.0:
         out.append(2.0 * math.pi * math.sqrt(1.0 / (B.kd + B.ke)))
-    if B.flexible:
-        out.append(2.0 * math.pi * math.sqrt(B.mst / B.ks))
+    out.extend(2.0 * math.pi / w for w in B.omega)
     return out
 
 
@@ -466,40 +605,58 @@ class BuildingRun:
     Attributes
     ----------
     result : PeerResult
-        As :func:`solve_reference_building` returns it.
+        As :func:`solve_reference_building` returns it; for ``N > 1`` floors its history's
+        ``xs, xsd`` are the roof's (floor ``N``).
     ledger : dict or None
         With ``ledger=True``: ``"work"``, ``"viscous"``, ``"isolator"``, ``"friction"`` (the
         integrals of :data:`LEDGER_NAMES` at the history's times) and ``"kinetic"``,
         ``"potential"`` (energies at those times), units ``M_b a_p**2 T_p**2``.
+    floors : tuple of ndarray or None
+        With a history of a flexible superstructure: ``(xs, xsd)``, every floor's displacement and
+        velocity relative to the slab (shape ``(N, n_times)``, units ``a_p T_p**2`` and ``a_p T_p``).
     """
 
     result: PeerResult
     ledger: dict | None = None
+    floors: tuple | None = None
 
 
-def energies(scene: Scene, h: History) -> tuple:
+def energies(scene: Scene, h: History, floors: tuple | None = None) -> tuple:
     """Kinetic and potential energy along a history (units ``M_b a_p**2 T_p**2``).
 
     Velocities are relative to the ground; the potential energy holds the springs ``kd``,
-    ``ks`` and the bilinear bearing's elastic part ``fh**2 / (2 ke)``.
+    ``Ks`` and the bilinear bearing's elastic part ``fh**2 / (2 ke)``.
 
     Parameters
     ----------
     scene : Scene
     h : History
         From this module (building states present where the scene has them).
+    floors : tuple of ndarray or None
+        ``(xs, xsd)`` of every floor, shape ``(N, n_times)`` (:attr:`BuildingRun.floors`);
+        needed when the superstructure has more than one floor, else taken from ``h``.
 
     Returns
     -------
     (kinetic, potential) : tuple of ndarray
     """
     B = building_of(scene)
-    xs = h.xs if h.xs is not None else np.zeros_like(h.x)
-    xsd = h.xsd if h.xsd is not None else np.zeros_like(h.x)
-    v_st = h.xd + xsd
-    v_blk = h.xd + (xsd if B.roof else 0.0) + h.ud
-    kin = 0.5 * (B.mb * h.xd ** 2 + B.mst * v_st ** 2 + B.m * v_blk ** 2)
-    pot = 0.5 * B.kd * h.x ** 2 + 0.5 * B.ks * xs ** 2
+    n = B.n
+    if floors is None:
+        if n > 1:
+            raise ValueError(f"floors = None is invalid for a superstructure of {n} floors; allowed: "
+                             "the (xs, xsd) arrays of every floor (BuildingRun.floors)")
+        xs = (h.xs if h.xs is not None else np.zeros_like(h.x))[None, :]
+        xsd = (h.xsd if h.xsd is not None else np.zeros_like(h.x))[None, :]
+    else:
+        xs, xsd = (np.asarray(a, dtype=float) for a in floors)
+        if xs.shape != (n, h.x.size) or xsd.shape != (n, h.x.size):
+            raise ValueError(f"floors has the shapes {xs.shape}, {xsd.shape}; allowed: ({n}, {h.x.size}) each")
+    kin = 0.5 * (B.mb * h.xd ** 2 + B.m * (h.xd + (xsd[B.floor - 1] if B.floor else 0.0) + h.ud) ** 2)
+    pot = 0.5 * B.kd * h.x ** 2
+    if n:
+        kin = kin + 0.5 * (B.ms @ (h.xd[None, :] + xsd) ** 2)
+        pot = pot + 0.5 * np.einsum("it,ij,jt->t", xs, B.Ks, xs)
     if B.kind == "bilinear":
         pot = pot + h.fh ** 2 / (2.0 * B.ke)
     return kin, pot
@@ -519,7 +676,8 @@ def solve_reference_building(scene: Scene, rtol: float = 1e-12, history: bool = 
         Tolerances passed to ``solve_ivp`` (DOP853); ``atol`` in the state's units.
     history : bool
         Also return the :class:`~isoslide.history.History` (with ``xs, xsd`` for a flexible
-        superstructure, ``fh, iso_phase`` for a bilinear or sliding bearing).
+        superstructure, the roof's when it has several floors; ``fh, iso_phase`` for a bilinear
+        or sliding bearing).
     tau_max : float or None
         Horizon in units of ``T_p``; default :func:`default_horizon`.
     max_events : int
@@ -573,7 +731,8 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
     nl = len(LEDGER_NAMES) if ledger else 0
 
     tau = float(pulse.tau_start)
-    y = np.zeros(N_STATE + nl)
+    y = np.zeros(B.n_state + nl)
+    XSD, U, UD, FH, n_fl = B.XSD, B.U, B.UD, B.FH, B.slots
     sb, si = 0, 0
     forced_b = forced_i = 0
     event_transition = False
@@ -634,14 +793,19 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         def rhs(t, yy, mb_=mb_, mi_=mi_):
             p = p_of(t)
             xdd, xsdd, udd, fhd, _, _, R, fh = _dynamics(B, p, yy, mb_, mi_)
-            d = [yy[XD], xdd, yy[XSD], xsdd, yy[UD], udd, fhd]
+            d = np.empty(yy.size)
+            d[X], d[XD] = yy[XD], xdd
+            d[XS:XSD] = yy[XSD:U]
+            d[XSD:U] = xsdd
+            d[U], d[UD], d[FH] = yy[UD], udd, fhd
             if nl:
-                v_blk = yy[XD] + (yy[XSD] if B.roof else 0.0) + yy[UD]
-                mom = B.mb * yy[XD] + B.mst * (yy[XD] + yy[XSD]) + B.m * v_blk
-                visc = B.cb * yy[XD] ** 2 + B.cs * yy[XSD] ** 2
+                xsd = yy[XSD:XSD + B.n]
+                v_blk = yy[XD] + (xsd[B.floor - 1] if B.floor else 0.0) + yy[UD]
+                mom = B.mb * yy[XD] + float(B.ms @ (yy[XD] + xsd)) + B.m * v_blk
+                visc = B.cb * yy[XD] ** 2 + float(xsd @ B.Cs @ xsd)
                 iso = fh * yy[XD] - (fh * fhd / B.ke if B.kind == "bilinear" else 0.0)
-                d += [-p * mom, visc, iso, R * yy[UD]]
-            return np.array(d)
+                d[FH + 1:] = (-p * mom, visc, iso, R * yy[UD])
+            return d
 
         specs = []          # (event function, what it marks, direction of the zero crossing)
         xdd0, _, udd0 = _dynamics(B, p0, y, sb, si)[:3]
@@ -723,7 +887,7 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
 
     if abs(y[U]) > peak:
         peak, tau_peak = abs(y[U]), tau
-    h = led = None
+    h = led = fl = None
     if hist is not None:
         if hist:
             tt = np.concatenate([a for a, _, _, _ in hist])
@@ -734,17 +898,20 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
             tt, yy = np.array([tau]), y[:, None]
             ph_b = ph_i = np.zeros(1, dtype=np.int8)
         fh = yy[FH].copy()
+        top = XS + B.n - 1                     # the roof's slot
         if B.kind == "sliding":
             fh = np.array([_dynamics(B, p_at(t), col, b, i)[7] for t, col, b, i in
                            zip(tt, yy.T, ph_b, ph_i, strict=True)])
         iso = B.kind in ("bilinear", "sliding")
         h = History(tau=tt, x=yy[X].copy(), xd=yy[XD].copy(), u=yy[U].copy(), ud=yy[UD].copy(), phase=ph_b,
-                    xs=yy[XS].copy() if B.flexible else None, xsd=yy[XSD].copy() if B.flexible else None,
+                    xs=yy[top].copy() if B.flexible else None, xsd=yy[top + n_fl].copy() if B.flexible else None,
                     fh=fh if iso else None, iso_phase=ph_i if iso else None)
+        if B.flexible:
+            fl = (yy[XS:XS + B.n].copy(), yy[XSD:XSD + B.n].copy())
         if ledger:
-            led = {name: yy[N_STATE + k].copy() for k, name in enumerate(LEDGER_NAMES)}
-            led["kinetic"], led["potential"] = energies(scene, h)
+            led = {name: yy[B.n_state + k].copy() for k, name in enumerate(LEDGER_NAMES)}
+            led["kinetic"], led["potential"] = energies(scene, h, fl)
     res = PeerResult(method="reference", pi1=float(peak), pi1_residual=float(y[U]), tau_peak=float(tau_peak),
                      settled=settled, n_events=n_events, tau_end=float(tau), nfev=int(nfev), integrator="DOP853",
                      history=h)
-    return BuildingRun(result=res, ledger=led)
+    return BuildingRun(result=res, ledger=led, floors=fl)
