@@ -1,4 +1,4 @@
-"""Optional peer: the paper's model and the general building in OpenSees.
+"""Optional peer: the paper's model and the general building (any number of storeys) in OpenSees.
 
 Needs ``pip install -e .[peers]`` (``openseespy``; on Linux its binary ``openseespylinux``, pinned in
 ``environment.lock``: openseespy 3.8 needs Python >= 3.12, Python 3.11 gets 3.7.1.2).
@@ -60,11 +60,24 @@ class OpenSeesModel:
         Isolator's ``ElasticPP`` part: yield force and yield displacement (``Pi10`` for a bilinear
         bearing, the stick displacement for a sliding bearing); ``q = 0``: none.
     ks, cs : float
-        Superstructure spring and dashpot (``Elastic`` with damping tangent); 0 when rigid.
+        Single-storey superstructure's spring and dashpot (``Elastic`` with damping tangent); 0
+        when rigid or with several storeys (see ``stiffnesses`` and ``damping``).
     thr, d_block : float
         Block's ``ElasticPP`` friction spring: yield force ``m thr`` and yield displacement.
     fixed, flexible, roof : bool
-        Fixed base (the slab is the ground), flexible superstructure, contents on its mass.
+        Fixed base (the slab is the ground), flexible superstructure, contents on its top floor.
+    storeys : int
+        Floors above the slab (1 for a rigid superstructure).
+    floor : int
+        The contents' floor: 0 the slab, ``storeys`` the top floor (0 when rigid).
+    masses : tuple of float
+        Floor masses ``m_j = Pi11 w_j`` bottom to top (units ``M_b``; empty when rigid).
+    stiffnesses : tuple of float
+        Storey stiffnesses ``kappa r_j`` bottom to top, storey ``j`` joining floors ``j - 1`` and
+        ``j`` (units ``M_b / T_p^2``; empty when rigid).
+    damping : tuple of tuple of float
+        Rows of the fixed-base damping matrix ``C_s = M_s Phi diag(2 Pi13 omega_i) Phi^T M_s``
+        (units ``M_b / T_p``; empty when rigid).
     """
 
     mb: float
@@ -81,6 +94,45 @@ class OpenSeesModel:
     fixed: bool
     flexible: bool
     roof: bool
+    storeys: int = 1
+    floor: int = 0
+    masses: tuple = ()
+    stiffnesses: tuple = ()
+    damping: tuple = ()
+
+    def matrices(self) -> tuple:
+        """Fixed-base mass, stiffness and damping matrices ``(M_s, K_s, C_s)`` of the floors.
+
+        Returns
+        -------
+        (ndarray, ndarray, ndarray)
+            ``storeys x storeys`` (units ``M_b``, ``M_b / T_p^2``, ``M_b / T_p``), floor 1 first;
+            empty arrays for a rigid superstructure.
+        """
+        return (np.diag(self.masses), _storey_stiffness_matrix(np.asarray(self.stiffnesses, dtype=float)),
+                np.array(self.damping, dtype=float).reshape(len(self.masses), len(self.masses)))
+
+    def links(self) -> list:
+        """The superstructure's two-node elements: ``(i, j, k, c)`` for floors ``i < j`` (0 the slab).
+
+        Storey ``j`` is a spring ``k`` between floors ``j - 1`` and ``j``; ``c`` is the dashpot
+        that realises ``C_s`` exactly: ``-C_s[i, j]`` between two floors, the row sum of ``C_s``
+        between floor ``j`` and the slab.  Pairs with neither a spring nor a dashpot are left out;
+        the bottom storey comes first.
+
+        Returns
+        -------
+        list of (int, int, float, float)
+        """
+        n = len(self.masses)
+        out = []
+        for i in range(n):
+            for j in range(i + 1, n + 1):
+                k = self.stiffnesses[j - 1] if j == i + 1 else 0.0
+                c = math.fsum(self.damping[j - 1]) if i == 0 else -self.damping[i - 1][j - 1]
+                if k != 0.0 or c != 0.0:
+                    out.append((i, j, k, c))
+        return out
 
     def periods(self) -> list:
         """Shortest natural periods of the model's stiff parts (units ``T_p``), for the time step."""
@@ -88,9 +140,56 @@ class OpenSeesModel:
         if not self.fixed:
             k = self.kd + (self.q / self.d_iso if self.q > 0.0 else 0.0)
             out.append(2.0 * math.pi * math.sqrt(self.mb / k))
-        if self.flexible:                                              # slab and superstructure
+        if self.flexible and self.storeys == 1:                         # slab and superstructure
             out.append(2.0 * math.pi * math.sqrt(self.mst * self.mb / (self.ks * (self.mst + self.mb))))
+        elif self.flexible:                           # the building's highest mode, slab free unless held
+            M, K, _ = self.matrices()
+            if not self.fixed:
+                k0 = self.stiffnesses[0]
+                K = np.pad(K, ((1, 0), (1, 0)))
+                K[0, 0] += k0 + self.kd + (self.q / self.d_iso if self.q > 0.0 else 0.0)
+                K[0, 1] = K[1, 0] = -k0
+                M = np.diag(np.concatenate(([self.mb], self.masses)))
+            out.append(2.0 * math.pi / math.sqrt(max(_modes(M, K)[0])))
         return out
+
+
+def _storey_stiffness_matrix(k: np.ndarray) -> np.ndarray:
+    """Fixed-base stiffness matrix of a shear building with storey stiffnesses ``k`` (bottom first)."""
+    n = k.size
+    K = np.zeros((n, n))
+    for j in range(n):                     # storey j + 1 joins floor j (the slab for j = 0) and floor j + 1
+        K[j, j] += k[j]
+        if j > 0:
+            K[j - 1, j - 1] += k[j]
+            K[j - 1, j] -= k[j]
+            K[j, j - 1] -= k[j]
+    return K
+
+
+def _modes(M: np.ndarray, K: np.ndarray) -> tuple:
+    """Eigenvalues ``omega^2`` (ascending) and mass-normalised modes of ``K phi = omega^2 M phi``, ``M`` diagonal."""
+    s = 1.0 / np.sqrt(np.diag(M))
+    lam, V = np.linalg.eigh(s[:, None] * K * s[None, :])
+    return lam, s[:, None] * V
+
+
+def _superstructure(scene: Scene) -> tuple:
+    """Floor masses, storey stiffnesses and damping rows of a flexible superstructure (see :class:`OpenSeesModel`)."""
+    n, mst = scene.storeys, scene.pi11
+    ws = 2.0 * math.pi / scene.pi12
+    if n == 1:                                   # closed forms of the single superstructure mass
+        return (mst,), (mst * ws * ws,), ((2.0 * scene.pi13 * ws * mst,),)
+    w = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses, dtype=float)
+    r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses, dtype=float)
+    M = np.diag(mst * w)
+    lam, _ = _modes(M, _storey_stiffness_matrix(r))
+    k = r * (ws * ws / lam[0])                   # fundamental fixed-base period T_s = Pi12
+    lam, phi = _modes(M, _storey_stiffness_matrix(k))
+    Mphi = M @ phi
+    C = Mphi @ np.diag(2.0 * scene.pi13 * np.sqrt(lam)) @ Mphi.T
+    C = 0.5 * (C + C.T)
+    return tuple(float(v) for v in mst * w), tuple(float(v) for v in k), tuple(tuple(float(v) for v in row) for row in C)
 
 
 def _positive(name: str, value) -> float:
@@ -137,16 +236,30 @@ def opensees_model(scene: Scene, stiffness: float = 1e6, stick_displacement: flo
         if scene.pi9 > 0.0:
             q, d_iso = scene.pi9, (scene.pi10 if scene.pi10 > 0.0 else d)
     ks = cs = 0.0
+    storeys, floor, masses, stiffnesses, damping = 1, 0, (), (), ()
     if flexible:
-        ws = 2.0 * math.pi / scene.pi12
-        ks, cs = mst * ws * ws, 2.0 * scene.pi13 * ws * mst
+        storeys, floor = scene.storeys, scene.floor_index
+        masses, stiffnesses, damping = _superstructure(scene)
+        if storeys == 1:
+            ks, cs = stiffnesses[0], damping[0][0]
     return OpenSeesModel(mb=1.0 - mst, mst=mst, m=max(scene.pi8, 1e-6), kd=kd, cb=cb, q=q, d_iso=d_iso,
                          ks=ks, cs=cs, thr=thr, d_block=d, fixed=fixed, flexible=flexible,
-                         roof=flexible and scene.floor == "roof")
+                         roof=flexible and floor == storeys, storeys=storeys, floor=floor, masses=masses,
+                         stiffnesses=stiffnesses, damping=damping)
 
 
 GROUND, SLAB, TOP, BLOCK = 1, 2, 3, 4
-"""Node tags: the ground (fixed), the slab, the superstructure's mass and the block."""
+"""Node tags: the ground (fixed), the slab, the superstructure's top floor and the block."""
+
+FLOOR_TAG, LINK_TAG = 10, 10
+"""Tags of floor ``j`` between the slab and the top floor (``FLOOR_TAG + j``), and of the
+superstructure's links after the bottom storey (material and element ``LINK_TAG + l``; the
+bottom storey is material and element 3)."""
+
+
+def _floor_node(M: OpenSeesModel, j: int, slab: int) -> int:
+    """Node tag of floor ``j`` (0 the slab, whose node is ``slab``)."""
+    return slab if j == 0 else (TOP if j == M.storeys else FLOOR_TAG + j)
 
 
 def _build(ops, M: OpenSeesModel) -> tuple:
@@ -167,12 +280,14 @@ def _build(ops, M: OpenSeesModel) -> tuple:
             ops.element("zeroLength", 2, GROUND, SLAB, "-mat", 2, "-dir", 1)
     floor = slab
     if M.flexible:
-        ops.node(TOP, 0.0)
-        ops.mass(TOP, M.mst)
-        ops.uniaxialMaterial("Elastic", 3, M.ks, M.cs)          # k_s xs + c_s xs'
-        ops.element("zeroLength", 3, slab, TOP, "-mat", 3, "-dir", 1)
-        if M.roof:
-            floor = TOP
+        for j in range(1, M.storeys + 1):
+            ops.node(_floor_node(M, j, slab), 0.0)
+            ops.mass(_floor_node(M, j, slab), M.masses[j - 1])
+        for n, (i, j, k, c) in enumerate(M.links()):            # k (z_j - z_i) + c (z_j' - z_i')
+            tag = 3 if n == 0 else LINK_TAG + n
+            ops.uniaxialMaterial("Elastic", tag, k, c)
+            ops.element("zeroLength", tag, _floor_node(M, i, slab), _floor_node(M, j, slab), "-mat", tag, "-dir", 1)
+        floor = _floor_node(M, M.floor, slab)
     ops.node(BLOCK, 0.0)
     ops.mass(BLOCK, M.m)
     k_r = M.m * M.thr / M.d_block
@@ -240,11 +355,20 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
       ``ElasticPP`` of yield force ``Pi9`` and yield displacement ``Pi10`` (bilinear bearing) or the
       stick displacement (sliding bearing: true stick regularised); a fixed base (``Pi3 = 0``)
       ties the slab to the ground;
-    * flexible superstructure (``Pi12 > 0``): a mass ``mst = Pi11`` on ``Elastic(k_s)`` with damping
-      tangent ``c_s`` from the slab (``k_s = mst (2 pi / Pi12)^2``, ``c_s = 2 Pi13 mst 2 pi / Pi12``);
-    * block (mass ``Pi8``, at least ``1e-6``) on its floor (slab, or the superstructure for
-      ``floor = "roof"``) by an ``ElasticPP`` of yield force ``Pi8 Pi2/Pi5`` and yield displacement
-      the stick displacement (the paper's bilinear regularisation).
+    * flexible superstructure (``Pi12 > 0``) of one storey: a mass ``mst = Pi11`` on ``Elastic(k_s)``
+      with damping tangent ``c_s`` from the slab (``k_s = mst (2 pi / Pi12)^2``,
+      ``c_s = 2 Pi13 mst 2 pi / Pi12``);
+    * of ``N = storeys > 1`` storeys: floor masses ``m_j = Pi11 w_j`` (``w_j`` the scene's
+      ``floor_masses``, or ``1/N``), storey ``j`` an ``Elastic(kappa r_j)`` between floors ``j - 1``
+      and ``j`` (``r_j`` its ``storey_stiffnesses``, or 1; ``kappa`` sets the fixed-base fundamental
+      period to ``Pi12``), and classical damping of ratio ``Pi13`` in every fixed-base mode,
+      ``C_s = M_s Phi diag(2 Pi13 omega_i) Phi^T M_s``, realised exactly by ``Elastic`` dashpots:
+      ``-C_s[i, j]`` between floors ``i`` and ``j``, the row sum of ``C_s`` between floor ``i`` and
+      the slab (:meth:`OpenSeesModel.links`);
+    * block (mass ``Pi8``, at least ``1e-6``) on its floor (``scene.floor_index``: the slab, a floor
+      between, or the top floor; the slab when the superstructure is rigid) by an ``ElasticPP`` of
+      yield force ``Pi8 Pi2/Pi5`` and yield displacement the stick displacement (the paper's
+      bilinear regularisation).
 
     The ground acceleration is sampled every ``dtau`` (a ``Path`` series); average-acceleration
     Newmark with Newton iterations (a step whose iterations cycle between the springs' branches is
@@ -264,12 +388,13 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
     dtau : float or None
         Time step (units ``T_p``); default ``min(1e-3, T_min / 10)``, ``T_min`` the shortest
         period of :meth:`OpenSeesModel.periods` (block's stick spring, isolator's initial
-        stiffness, slab with superstructure).
+        stiffness, slab with superstructure: its highest mode).
     history : bool
         Also return the step-by-step :class:`~isoslide.history.History` (``phase``: the block's
         spring at its yield force in the direction of ``u'``; for a bilinear or sliding bearing
         ``fh`` = its ``ElasticPP`` force and ``iso_phase`` likewise; ``xs, xsd`` for a flexible
-        superstructure).
+        superstructure: its top floor relative to the slab; ``u, u'`` relative to the contents'
+        floor).
     stick_displacement : float or None
         Yield displacement (units ``a_p T_p^2``) of the block's spring and of a sliding bearing's;
         None: ``(Pi2/Pi5) / K`` (see :func:`opensees_model`).
