@@ -7,23 +7,23 @@ group and seven input groups, and the five parameters of the general building
 (hysteretic isolator, flexible superstructure; see :mod:`isoslide.building`)
 into five more:
 
-========  =====================  =========================================  =================
-group     definition             meaning                                    valid range
-========  =====================  =========================================  =================
-Pi1       u_max / (a_p T_p^2)    peak sliding displacement (the result)     >= 0
-Pi2       mu_k g / a_p           kinetic friction strength                  0 < Pi2 < inf
-Pi3       T_b / T_p              isolation-to-pulse period ratio, 0 = fixed 0 <= Pi3 <= 1e4
-Pi4       xi_b                   isolation damping ratio (>= 1 overdamped)  0 <= Pi4 <= 1e3
-Pi5       mu_k / mu_s            kinetic-to-static friction ratio           0 < Pi5 <= 1
-Pi6       beta a_p T_p           Stribeck transition sharpness              0 <= Pi6 <= 1e12
-Pi7       gamma g T_p            viscous contact group                      0 <= Pi7 <= 1e6
-Pi8       m_EC / M_b             contents-to-isolated mass ratio            0 <= Pi8 <= 1e3
-Pi9       Q / (M_b a_p)          isolator strength; 0 = linear isolator     0 <= Pi9 <= 1e6
-Pi10      D_y / (a_p T_p^2)      isolator yield displacement; 0 = sliding   0 <= Pi10 <= 1e6
-Pi11      m_st / M_b             superstructure mass fraction               0 <= Pi11 < 1
-Pi12      T_s / T_p              superstructure period; 0 = rigid          0 <= Pi12 <= 1e4
-Pi13      xi_s                   superstructure damping ratio               0 <= Pi13 <= 1e3
-========  =====================  =========================================  =================
+=====  ===================  ==========================================  ================
+group  definition           meaning                                     valid range
+=====  ===================  ==========================================  ================
+Pi1    u_max / (a_p T_p^2)  peak sliding displacement (the result)      >= 0
+Pi2    mu_k g / a_p         kinetic friction strength                   0 < Pi2 < inf
+Pi3    T_b / T_p            isolation-to-pulse period ratio, 0 = fixed  0 <= Pi3 <= 1e4
+Pi4    xi_b                 isolation damping ratio (>= 1 overdamped)   0 <= Pi4 <= 1e3
+Pi5    mu_k / mu_s          kinetic-to-static friction ratio            0 < Pi5 <= 1
+Pi6    beta a_p T_p         Stribeck transition sharpness               0 <= Pi6 <= 1e12
+Pi7    gamma g T_p          viscous contact group                       0 <= Pi7 <= 1e6
+Pi8    m_EC / M_b           contents-to-isolated mass ratio             0 <= Pi8 <= 1e3
+Pi9    Q / (M_b a_p)        isolator strength; 0 = linear isolator      0 <= Pi9 <= 1e6
+Pi10   D_y / (a_p T_p^2)    isolator yield displacement; 0 = sliding    0 <= Pi10 <= 1e6
+Pi11   m_st / M_b           superstructure mass fraction                0 <= Pi11 < 1
+Pi12   T_s / T_p            superstructure period; 0 = rigid            0 <= Pi12 <= 1e4
+Pi13   xi_s                 superstructure damping ratio                0 <= Pi13 <= 1e3
+=====  ===================  ==========================================  ================
 
 ``M_b = m_b + m_st`` is the whole isolated mass (base slab and superstructure,
 the contents excluded) and ``T_b = 2 pi sqrt(M_b / k_d)`` the isolation
