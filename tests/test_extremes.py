@@ -23,7 +23,7 @@ from isoslide import Scene, solve
 from isoslide.accuracy import DOMAIN
 from isoslide.pulses import PULSE_NAMES, sampled
 from isoslide.scene import G_STANDARD, PI_RANGES
-from isoslide.solver import peak_stuck_demand, solve_many
+from isoslide.solver import DEFAULT_HORIZON, peak_stuck_demand, solve_many
 
 COST_LIMIT_S = 5.0
 """No scene of the domain may take longer than this (wall clock, on a loaded 2-core machine)."""
@@ -80,11 +80,26 @@ def sliding_scenes(draw, pulses=SLIDING_PULSES):
     return out
 
 
-def check_solution(s, horizon=50.0):
+def check_solution(s, sc: Scene, horizon: float = DEFAULT_HORIZON):
+    """A finite answer within its physical bounds, and diagnostics that match what happened.
+
+    Pi1 >= 0 and the permanent displacement within the peak; Pi1 = 0 exactly (with no residual
+    and no stick/slip transition) when the label says the block never slid, Pi1 > 0 with at
+    least one transition when it slid; integrator steps taken (at least one per located
+    transition); the peak inside the followed window, which ends at the horizon unless the
+    response settled first.
+    """
     assert math.isfinite(s.pi1) and s.pi1 >= 0.0
     assert math.isfinite(s.pi1_residual) and abs(s.pi1_residual) <= s.pi1 * (1 + 1e-12) + 1e-300
     assert math.isfinite(s.tau_peak) and math.isfinite(s.tau_end)
-    assert s.n_steps >= 0 and s.n_events >= 0
+    if "no-slide" in s.model:
+        assert s.pi1 == 0.0 and s.pi1_residual == 0.0 and s.n_events == 0, s
+    else:
+        assert s.pi1 > 0.0 and s.n_events >= 1, s
+    assert s.n_steps >= max(s.n_events, 1), s
+    end = sc.pulse.tau_end + horizon * max(sc.pi3, 1.0)
+    assert sc.pulse.tau_start <= s.tau_peak <= s.tau_end <= end * (1 + 1e-12), s
+    assert s.settled or s.tau_end >= end * (1 - 1e-12), s
 
 
 # ----------------------------------------------------------------------------------------------
@@ -117,7 +132,7 @@ def test_corners_of_the_base(pi2, pi3, pi4):
         t0 = time.perf_counter()
         s = solve(sc)
         assert time.perf_counter() - t0 < COST_LIMIT_S, sc
-        check_solution(s)
+        check_solution(s, sc)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -152,7 +167,7 @@ def test_valid_building_is_solved_finite_nonnegative_and_bounded(sc):
     t0 = time.perf_counter()
     s = solve(sc, horizon=50.0)
     dt = time.perf_counter() - t0
-    check_solution(s)
+    check_solution(s, sc, horizon=50.0)
     assert dt < BUILDING_COST_LIMIT_S, f"{dt:.2f} s for {sc!r}"
 
 @HYP
@@ -161,7 +176,7 @@ def test_valid_scene_is_solved_finite_nonnegative_and_fast(sc):
     t0 = time.perf_counter()
     s = solve(sc)
     dt = time.perf_counter() - t0
-    check_solution(s)
+    check_solution(s, sc)
     assert dt < COST_LIMIT_S, f"{dt:.2f} s for {sc!r}"
     if s.pi1 == 0.0:
         assert "no-slide" in s.model
@@ -327,7 +342,7 @@ def test_valid_scene_heavy_sweep(sc):
     t0 = time.perf_counter()
     s = solve(sc)
     assert time.perf_counter() - t0 < COST_LIMIT_S, sc
-    check_solution(s)
+    check_solution(s, sc)
     assert solve_many([sc]).pi1[0] == s.pi1
 
 
