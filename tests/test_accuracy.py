@@ -15,9 +15,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from isoslide import Scene, accuracy, bench, groups
+from isoslide import Scene, accuracy, bench, groups, solve
+from isoslide.building import reduction
 from isoslide.datasets import open_dataset, write_netcdf
 from isoslide.peers import solve_reference
+from isoslide.solver import peak_stuck_demand
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -61,10 +63,8 @@ def test_scene_set_is_deterministic_and_covers_studies_and_hard_classes():
     assert [e.scene for e in a] == [e.scene for e in b]
     studies = {e.study for e in a if e.cls == "study"}
     assert studies == set(accuracy.PAPER_STUDIES)
-    classes = {e.cls for e in a}
-    for c in ("near-threshold", "above-threshold", "resonance", "undamped", "overdamped", "sharp-stribeck",
-              "heavy", "long-period", "viscous", "low-friction", "stiff-base", "pulses"):
-        assert c in classes
+    missing = {e.cls for e in accuracy.hard_scenes()} - {e.cls for e in a}
+    assert not missing, f"hard classes left out of the default scene set: {sorted(missing)}"
     assert all(isinstance(e.scene, Scene) and e.label for e in a)
     # a different seed draws other study scenes
     c = accuracy.scene_set(None, {"seed": 1})
@@ -80,17 +80,45 @@ def test_scene_set_from_a_pipeline_config():
     assert {e.study for e in s} == set(cfg["studies"])
 
 
-def test_hard_scenes_sit_where_they_claim():
-    from isoslide.solver import peak_stuck_demand, solve
+def _near_threshold(sc: Scene) -> bool:
+    A = peak_stuck_demand(sc, rtol=1e-12)
+    return 0.989 * A < sc.static_level < A and solve(sc).pi1 > 0.0
 
-    for e in accuracy.hard_scenes():
-        sc = e.scene
-        if e.cls == "above-threshold":
-            assert solve(sc).pi1 == 0.0
-        if e.cls == "near-threshold":
-            A = peak_stuck_demand(sc, rtol=1e-12)
-            assert 0.989 * A < sc.static_level < A
-            assert solve(sc).pi1 > 0.0
+
+def _reduced_bearing(sc: Scene) -> bool:
+    return reduction(sc)[0] in ("bearing-stuck", "bearing-elastic")
+
+
+HARD_CLASS_CLAIMS = {
+    "near-threshold": _near_threshold,
+    "above-threshold": lambda sc: solve(sc).pi1 == 0.0,
+    "resonance": lambda sc: sc.pi3 == 1.0 and 0.0 < sc.pi4 <= 0.05,
+    "undamped": lambda sc: sc.pi3 > 0.0 and sc.pi4 <= 1e-3,
+    "overdamped": lambda sc: sc.pi3 > 0.0 and sc.pi4 >= 1.0,
+    "sharp-stribeck": lambda sc: sc.pi5 < 1.0 and sc.pi6 >= 1e4,
+    "heavy": lambda sc: sc.pi3 > 0.0 and sc.pi8 >= 0.3,
+    "long-period": lambda sc: sc.pi3 >= 5.0,
+    "viscous": lambda sc: sc.pi7 >= 10.0,
+    "low-friction": lambda sc: sc.pi2 <= 1e-3,
+    "stiff-base": lambda sc: 0.0 < sc.pi3 <= 1e-2,
+    "pulses": lambda sc: sc.pulse.name != Scene(pi2=1.0, pi3=0.0).pulse.name,
+    "friction-pendulum": lambda sc: sc.isolator == "sliding" and not sc.flexible and not _reduced_bearing(sc),
+    "lead-rubber": lambda sc: sc.isolator == "bilinear" and not sc.flexible and not _reduced_bearing(sc),
+    "flexible": lambda sc: sc.flexible and sc.pi3 > 0.0,
+    "strong-bearing": _reduced_bearing,
+}
+"""What each class of :func:`isoslide.accuracy.hard_scenes` claims about its scenes."""
+
+
+def test_hard_scenes_sit_where_they_claim():
+    """Every hard scene meets its class's claim, and every class has a claim here."""
+    entries = accuracy.hard_scenes()
+    unclaimed = sorted({e.cls for e in entries} - set(HARD_CLASS_CLAIMS))
+    assert not unclaimed, f"hard classes without a claim in HARD_CLASS_CLAIMS: {unclaimed}"
+    absent = sorted(set(HARD_CLASS_CLAIMS) - {e.cls for e in entries})
+    assert not absent, f"claimed classes no hard scene belongs to: {absent}"
+    wrong = [e.label for e in entries if not HARD_CLASS_CLAIMS[e.cls](e.scene)]
+    assert not wrong, f"hard scenes outside their class: {wrong}"
 
 
 def test_subset_spreads_over_classes_and_avoids_long_runs():
