@@ -5,7 +5,8 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.history.Histo
 
 :func:`solve_reference` (:mod:`.reference`)
     Plain SciPy event-driven solver (DOP853 with events); ``solve(scene, method="reference")``.
-    A general building (bearings, flexible superstructure, contents on the roof) goes to
+    A general building (bearings, a flexible superstructure of one or more storeys, contents on
+    any floor) goes to
     :func:`~.reference_building.solve_reference_building` (:mod:`.reference_building`).
 :func:`solve_regularized` (:mod:`.regularized`)
     The paper's method: the signum replaced by a stiff elastic-plastic spring, SciPy
