@@ -100,6 +100,23 @@ def test_the_comparison_target_is_a_parameter():
     assert label == "opensees" and finer == direct
 
 
+@pytest.mark.parametrize("name", [n for n in SCENES if SCENES[n].flexible])
+def test_one_storey_building_is_the_single_superstructure_mass(name):
+    """storeys = 1 (the default) is one mass on one spring-dashpot: explicit or not, the same run."""
+    sc = SCENES[name]
+    one = S(**{**sc.pis(), "floor": sc.floor, "storeys": 1, "floor_masses": (2.0,), "storey_stiffnesses": (3.0,)})
+    assert opensees_model(one, stick_displacement=1e-6) == opensees_model(sc, stick_displacement=1e-6)
+    a = solve_opensees(sc, tau_max=4.0, dtau=1e-3, stick_displacement=1e-6, history=True)
+    b = solve_opensees(one, tau_max=4.0, dtau=1e-3, stick_displacement=1e-6, history=True)
+    assert a.pi1 == b.pi1 and np.array_equal(a.history.xs, b.history.xs) and a.history.xs.ndim == 1
+
+
+def test_the_auto_target_of_a_one_storey_scene_is_the_exact_solver():
+    sc = SCENES["lead-rubber"]
+    tau_max = _tau_max(sc)
+    assert oc.target_pi1(sc, "auto", tau_max) == oc.target_pi1(sc, "exact", tau_max)
+
+
 def test_roof_of_a_rigid_superstructure_is_the_base():
     a = solve_opensees(SCENES["friction pendulum"], tau_max=6.0, stiffness=1e5)
     b = solve_opensees(S(pi2=0.2, pi3=2.0, pi9=0.05, floor="roof"), tau_max=6.0, stiffness=1e5)
@@ -146,6 +163,7 @@ def test_model_parameters_follow_the_building_equations():
     assert (M.q, M.d_iso) == (sc.pi9, sc.pi10)
     assert M.ks == pytest.approx(0.5 * ws * ws) and M.cs == pytest.approx(2 * sc.pi13 * ws * 0.5)
     assert M.roof and M.flexible and not M.fixed and M.d_block == 1e-6
+    assert (M.storeys, M.floor, M.masses) == (1, 1, (0.5,)) and M.links() == [(0, 1, M.ks, M.cs)]
     fp = opensees_model(SCENES["friction pendulum"], stick_displacement=2e-6)
     assert fp.d_iso == 2e-6 and not fp.roof and fp.mst == 0.0
 

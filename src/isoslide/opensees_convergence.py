@@ -4,14 +4,18 @@ OpenSees (:func:`isoslide.peers.solve_opensees`) replaces each true stick by an 
 spring of small yield displacement (the *stick displacement*) and integrates with a fixed Newmark
 step; isoslide solves the stick-slip problem exactly.  :func:`opensees_convergence` runs OpenSees at
 a sequence of ``(dtau, stick displacement)`` pairs and tabulates ``Pi1`` and its relative error
-against a target: isoslide's exact solver, its event-driven reference peer, a given value, or a
-finer OpenSees run.  ``python -m isoslide.opensees_convergence`` prints the table for a friction
-pendulum (``--scene`` for others; needs ``pip install -e .[peers]``).
+against a target: isoslide's exact solver, its event-driven reference peer, a given value, a
+finer OpenSees run, or the first of these that models the scene's building (``"auto"``, the
+default: for a building of several storeys a solver that reads only one storey is passed over).
+``python -m isoslide.opensees_convergence`` prints the table for a friction pendulum (``--scene``
+for others, ``--suite storeys`` for the buildings of :data:`STOREY_SCENES`; needs
+``pip install -e .[peers]``).
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
@@ -20,16 +24,17 @@ from .peers import opensees_available, solve_opensees
 from .scene import Scene
 from .solver import solve
 
-__all__ = ["Convergence", "ConvergenceRow", "DEFAULT_PAIRS", "TARGETS", "format_table", "main",
-           "opensees_convergence", "target_pi1"]
+__all__ = ["Convergence", "ConvergenceRow", "DEFAULT_PAIRS", "STOREY_SCENES", "TARGETS", "format_table",
+           "main", "modelled_pi1", "opensees_convergence", "target_pi1"]
 
 DEFAULT_PAIRS = ((1e-2, 1e-4), (3e-3, 1e-5), (1e-3, 1e-6), (3e-4, 1e-7), (1e-4, 1e-8))
 """``(dtau, stick displacement)`` pairs, both shrinking (units ``T_p`` and ``a_p T_p^2``)."""
 
-TARGETS = ("exact", "reference", "opensees")
+TARGETS = ("exact", "reference", "opensees", "auto")
 """Named comparison targets: ``isoslide.solve`` (exact stick-slip solver, ``rtol = 1e-9``), its
-event-driven SciPy reference peer (``method="reference"``), and OpenSees at the finest pair's step
-and stick displacement each divided by :data:`FINER`."""
+event-driven SciPy reference peer (``method="reference"``), OpenSees at the finest pair's step
+and stick displacement each divided by :data:`FINER`, and the first of these three that models
+the scene's building (see :func:`modelled_pi1`)."""
 
 FINER = 10.0
 """Refinement of the ``"opensees"`` target over the finest pair."""
@@ -100,14 +105,68 @@ def _check_pairs(pairs) -> tuple:
     return tuple(out)
 
 
+def _solver_pi1(target: str, scene: Scene, tau_max: float) -> float:
+    """``Pi1`` of isoslide's exact solver (``"exact"``) or its reference peer (``"reference"``)."""
+    if target == "exact":
+        return solve(scene, rtol=1e-9, horizon=tau_max - scene.pulse.tau_end).pi1
+    return solve(scene, method="reference", tau_max=tau_max).pi1
+
+
+def _one_storey(scene: Scene) -> Scene:
+    """The scene as a solver reading one storey only sees it.
+
+    A single-storey superstructure of the same ``Pi11, Pi12, Pi13``; the contents on its top floor
+    if they are on the top floor, else on the slab.
+    """
+    return dataclasses.replace(scene, storeys=1, floor_masses=None, storey_stiffnesses=None,
+                               floor="roof" if scene.floor_index == scene.storeys else "base")
+
+
+UNSUPPORTED = (NotImplementedError, ValueError, TypeError)
+"""Exceptions by which a solver refuses a building it does not model."""
+
+
+def modelled_pi1(target: str, scene: Scene, tau_max: float) -> float | None:
+    """``Pi1`` by isoslide's ``"exact"`` solver or ``"reference"`` peer; None if it does not model the building.
+
+    A solver models a flexible building of ``storeys > 1`` when it accepts it and its ``Pi1``
+    differs from its ``Pi1`` of the single-storey building of the same ``Pi11, Pi12, Pi13`` (a
+    solver that reads one storey only gives exactly the same value).  Other scenes are always
+    modelled.
+
+    Parameters
+    ----------
+    target : {"exact", "reference"}
+    scene : Scene
+    tau_max : float
+        End time, units ``T_p``.
+
+    Returns
+    -------
+    float or None
+    """
+    if target not in ("exact", "reference"):
+        raise ValueError(f"target = {target!r} is invalid here; allowed: 'exact', 'reference'")
+    if not (scene.flexible and scene.storeys > 1):
+        return _solver_pi1(target, scene, tau_max)
+    try:
+        value = _solver_pi1(target, scene, tau_max)
+        single = _solver_pi1(target, _one_storey(scene), tau_max)
+    except UNSUPPORTED:
+        return None
+    return None if value == single else value
+
+
 def target_pi1(scene: Scene, target, tau_max: float, pairs=DEFAULT_PAIRS) -> tuple:
     """The comparison value: ``(label, Pi1)``.
 
     Parameters
     ----------
     scene : Scene
-    target : {"exact", "reference", "opensees"} or float
+    target : {"exact", "reference", "opensees", "auto"} or float
         See :data:`TARGETS`; a number is taken as the target ``Pi1`` itself (label ``"given"``).
+        ``"auto"`` is labelled with the target it chose.  ``"exact"`` and ``"reference"`` raise a
+        ValueError for a building the solver does not model (:func:`modelled_pi1`).
     tau_max : float
         End time, units ``T_p`` (the exact solver's horizon is ``tau_max - pulse.tau_end``).
     pairs : sequence of (float, float)
@@ -122,29 +181,37 @@ def target_pi1(scene: Scene, target, tau_max: float, pairs=DEFAULT_PAIRS) -> tup
         if not (math.isfinite(value) and value >= 0.0):
             raise ValueError(f"target = {target!r} is out of range; allowed: {', '.join(TARGETS)} or 0 <= value < inf")
         return "given", value
-    if target == "exact":
-        return target, solve(scene, rtol=1e-9, horizon=tau_max - scene.pulse.tau_end).pi1
-    if target == "reference":
-        return target, solve(scene, method="reference", tau_max=tau_max).pi1
+    if target in ("exact", "reference"):
+        value = modelled_pi1(target, scene, tau_max)
+        if value is None:
+            raise ValueError(f"target = {target!r} does not model this building (storeys = {scene.storeys}, "
+                             f"floor = {scene.floor!r}); allowed here: 'opensees', 'auto' or a number")
+        return target, value
     if target == "opensees":
         pairs = _check_pairs(pairs)
         dtau = min(p[0] for p in pairs) / FINER
         stick = min(p[1] for p in pairs) / FINER
         return target, solve_opensees(scene, tau_max=tau_max, dtau=dtau, stick_displacement=stick).pi1
+    if target == "auto":
+        for name in ("exact", "reference"):
+            value = modelled_pi1(name, scene, tau_max)
+            if value is not None:
+                return name, value
+        return target_pi1(scene, "opensees", tau_max, pairs)
     raise ValueError(f"target = {target!r} is invalid; allowed: {', '.join(map(repr, TARGETS))} or a number")
 
 
-def opensees_convergence(scene: Scene, pairs=DEFAULT_PAIRS, target="exact",
+def opensees_convergence(scene: Scene, pairs=DEFAULT_PAIRS, target="auto",
                          horizon: float = DEFAULT_HORIZON) -> Convergence:
     """OpenSees' ``Pi1`` and relative error over ``(dtau, stick displacement)`` pairs.
 
     Parameters
     ----------
     scene : Scene
-        A scene with rate-independent friction (any isolator, superstructure and floor).
+        A scene with rate-independent friction (any isolator, superstructure, storeys and floor).
     pairs : sequence of (float, float)
         ``(dtau, stick_displacement)``, units ``T_p`` and ``a_p T_p^2``, each > 0.
-    target : {"exact", "reference", "opensees"} or float
+    target : {"exact", "reference", "opensees", "auto"} or float
         What the errors are measured against (:func:`target_pi1`).
     horizon : float
         Time after the pulse every run goes to, units ``T_p``, > 0.
@@ -179,14 +246,48 @@ def format_table(conv: Convergence) -> str:
 EXAMPLE = {"pi2": 0.2, "pi3": 2.0, "pi9": 0.05}
 """Friction pendulum of the command line's default scene (``T_b = 2 T_p``, ``mu = 0.05 a_p/g``)."""
 
+_FP = {"pi2": 0.2, "pi3": 2.0, "pi9": 0.05}
+_LRB = {"pi2": 0.2, "pi3": 2.0, "pi4": 0.05, "pi9": 0.05, "pi10": 0.005}
+_FRAME = {"pi11": 0.5, "pi12": 0.3, "pi13": 0.02}
+STOREY_SCENES = {
+    "2 storeys, friction pendulum, floor 1": Scene(**_FP, **_FRAME, storeys=2, floor=1),
+    "2 storeys, lead-rubber, roof": Scene(**_LRB, **_FRAME, storeys=2, floor="roof"),
+    "5 storeys, friction pendulum, floor 3": Scene(**_FP, **_FRAME, storeys=5, floor=3),
+    "5 storeys, lead-rubber, roof": Scene(**_LRB, **_FRAME, storeys=5, floor="roof"),
+    "5 storeys tapered, friction pendulum, roof": Scene(**_FP, **_FRAME, storeys=5, floor="roof",
+                                                       floor_masses=(1.2, 1.1, 1.0, 0.9, 0.8),
+                                                       storey_stiffnesses=(1.6, 1.4, 1.2, 1.0, 0.8)),
+    "8 storeys, friction pendulum, floor 4": Scene(**_FP, **_FRAME, storeys=8, floor=4),
+    "8 storeys, lead-rubber, roof": Scene(**_LRB, **_FRAME, storeys=8, floor="roof"),
+}
+"""Buildings of several storeys for ``--suite storeys``: a friction pendulum (``T_b = 2 T_p``,
+``mu = 0.05 a_p/g``) and a lead-rubber bearing (``Pi10 = 0.005``) under a superstructure of half
+the isolated mass with ``T_s = 0.3 T_p`` and 2 % damping in every mode; contents on a middle floor
+or the roof; one building with floor masses and storey stiffnesses decreasing upwards."""
+
+SUITES = {"storeys": STOREY_SCENES}
+"""Named sets of scenes the command line can tabulate."""
+
+
+def _field(key: str, value: str):
+    """A ``Scene`` field from the command line's ``KEY=VALUE``."""
+    if key == "floor":
+        return int(value) if value.lstrip("-").isdigit() else value
+    if key == "storeys":
+        return int(value) if value.lstrip("-").isdigit() else float(value)
+    if key in ("floor_masses", "storey_stiffnesses"):
+        return tuple(float(v) for v in value.split(","))
+    return float(value)
+
 
 def main(argv=None) -> int:
-    """``python -m isoslide.opensees_convergence [--scene k=v ...] [--target T] [--grid]``."""
+    """``python -m isoslide.opensees_convergence [--scene k=v ... | --suite storeys] [--target T] [--grid]``."""
     ap = argparse.ArgumentParser(prog="python -m isoslide.opensees_convergence", description=__doc__.split("\n")[0])
     ap.add_argument("--scene", nargs="*", default=[], metavar="KEY=VALUE",
-                    help="Scene fields (pi2=0.2 pi9=0.05 floor=roof ...); default " +
-                    " ".join(f"{k}={v}" for k, v in EXAMPLE.items()))
-    ap.add_argument("--target", default="exact", help=f"one of {', '.join(TARGETS)} or a number")
+                    help="Scene fields (pi2=0.2 pi9=0.05 storeys=5 floor=3 floor_masses=1,1,1,1,2 ...); "
+                    "default " + " ".join(f"{k}={v}" for k, v in EXAMPLE.items()))
+    ap.add_argument("--suite", choices=sorted(SUITES), help="tabulate every scene of a named set instead")
+    ap.add_argument("--target", default="auto", help=f"one of {', '.join(TARGETS)} or a number")
     ap.add_argument("--grid", action="store_true",
                     help="every step with every stick displacement of the default pairs")
     ap.add_argument("--horizon", type=float, default=DEFAULT_HORIZON)
@@ -196,15 +297,18 @@ def main(argv=None) -> int:
     fields = dict(EXAMPLE) if not args.scene else {}
     for kv in args.scene:
         k, _, v = kv.partition("=")
-        fields[k] = v if k == "floor" else float(v)
+        fields[k] = _field(k, v)
     target = args.target if args.target in TARGETS else float(args.target)
     pairs = DEFAULT_PAIRS
     if args.grid:
         pairs = tuple(itertools.product(sorted({p[0] for p in pairs}, reverse=True),
                                         sorted({p[1] for p in pairs}, reverse=True)))
-    scene = Scene(**fields)
-    print(scene)
-    print(format_table(opensees_convergence(scene, pairs, target, args.horizon)))
+    scenes = SUITES[args.suite] if args.suite else {"": Scene(**fields)}
+    for name, scene in scenes.items():
+        if name:
+            print(f"\n{name}")
+        print(scene)
+        print(format_table(opensees_convergence(scene, pairs, target, args.horizon)), flush=True)
     return 0
 
 

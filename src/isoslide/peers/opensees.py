@@ -393,8 +393,8 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
         Also return the step-by-step :class:`~isoslide.history.History` (``phase``: the block's
         spring at its yield force in the direction of ``u'``; for a bilinear or sliding bearing
         ``fh`` = its ``ElasticPP`` force and ``iso_phase`` likewise; ``xs, xsd`` for a flexible
-        superstructure: its top floor relative to the slab; ``u, u'`` relative to the contents'
-        floor).
+        superstructure: relative to the slab, of its mass for one storey, else of every floor,
+        one column per floor bottom to top; ``u, u'`` relative to the contents' floor).
     stick_displacement : float or None
         Yield displacement (units ``a_p T_p^2``) of the block's spring and of a sliding bearing's;
         None: ``(Pi2/Pi5) / K`` (see :func:`opensees_model`).
@@ -433,8 +433,13 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
     iso = M.q > 0.0
     umax, tau_peak, u = 0.0, float(pulse.tau_start), 0.0
     rows = [] if history else None
+    tops = [_floor_node(M, j, slab) for j in range(1, M.storeys + 1)] if M.flexible else []
+    several = len(tops) > 1
+    floors = [] if history and several else None      # every floor's (xs, xs') with several storeys
     if rows is not None:
         rows.append((tau_peak,) + (0.0,) * 7 + (0, 0))
+        if floors is not None:
+            floors.append(np.zeros((2, len(tops))))
     for i in range(n):
         if not _step(ops, dtau):
             ops.wipe()
@@ -448,6 +453,8 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
             ud = ops.nodeVel(BLOCK, 1) - fd
             xs = _disp(ops, TOP) - x if M.flexible else 0.0
             xsd = _vel(ops, TOP) - xd if M.flexible else 0.0
+            if floors is not None:
+                floors.append(np.array([[_disp(ops, t) - x for t in tops], [_vel(ops, t) - xd for t in tops]]))
             fh = ops.eleResponse(2, "material", 1, "stress")[0] if iso else 0.0
             force = ops.eleResponse(4, "material", 1, "stress")[0]
             rows.append((float(tt[i + 1]), x, xd, u, ud, xs, xsd, fh,
@@ -456,9 +463,12 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
     h = None
     if rows is not None:
         a = np.array(rows, dtype=float)
+        xs, xsd = (a[:, 5], a[:, 6]) if M.flexible else (None, None)
+        if floors is not None:
+            f = np.array(floors)
+            xs, xsd = f[:, 0, :], f[:, 1, :]
         h = History(tau=a[:, 0], x=a[:, 1], xd=a[:, 2], u=a[:, 3], ud=a[:, 4],
-                    phase=phase_of(a[:, 8] != 0.0, a[:, 4]),
-                    xs=a[:, 5] if M.flexible else None, xsd=a[:, 6] if M.flexible else None,
+                    phase=phase_of(a[:, 8] != 0.0, a[:, 4]), xs=xs, xsd=xsd,
                     fh=a[:, 7] if iso else None, iso_phase=a[:, 9].astype(np.int8) if iso else None)
     return PeerResult(method="opensees", pi1=umax, pi1_residual=float(u), tau_peak=tau_peak,
                       settled=False, tau_end=float(tt[-1]), n_steps=n, stiffness=M.thr / M.d_block,
