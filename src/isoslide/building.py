@@ -68,6 +68,7 @@ from dataclasses import replace
 import numpy as np
 
 from . import building_kernel as bk
+from .model import shear_building
 from .pulses import SAMPLED
 from .scene import Scene
 
@@ -111,10 +112,11 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
         A name from :data:`REDUCTIONS` and the equivalent paper-model scene (``None`` for
         ``"general"``).
     """
-    paper_keys = {"pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "floor": "base"}
+    paper_keys = {"pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "floor": "base", "storeys": 1,
+                  "floor_masses": None, "storey_stiffnesses": None}
     if scene.paper_model:
         return "paper", replace(scene, **paper_keys)
-    if scene.pi3 == 0.0 and not (scene.flexible and scene.floor == "roof"):
+    if scene.pi3 == 0.0 and not (scene.flexible and scene.floor_index > 0):
         return "fixed-base", replace(scene, **paper_keys)
     if scene.flexible:
         return "general", None
@@ -133,14 +135,47 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
     return "general", None
 
 
+def superstructure(scene: Scene) -> tuple:
+    """Floor masses, fixed-base stiffness and damping matrices of a flexible superstructure.
+
+    Units ``M_b``, ``M_b / T_p^2`` and ``M_b / T_p``.  Floor ``j`` (1-based, bottom to top) has the
+    mass ``Pi11 w_j`` (``w_j`` the scene's ``floor_masses``, uniform ``1/N`` by default); storey
+    ``j`` joins floor ``j - 1`` (0 the slab) and floor ``j`` with the stiffness ``kappa r_j``
+    (``r_j`` the scene's ``storey_stiffnesses``, 1 by default), ``kappa`` chosen so that the
+    fixed-base fundamental period (slab held) is ``Pi12``.  The damping is classical with ratio
+    ``Pi13`` in every fixed-base mode: ``Cs = Ms Phi diag(2 Pi13 omega_i) Phi^T Ms`` with the
+    mass-normalised modes ``Phi``.  One floor: ``k_s = m_st (2 pi/Pi12)^2``,
+    ``c_s = 2 Pi13 (2 pi/Pi12) m_st`` exactly.
+
+    Returns
+    -------
+    (masses, Ks, Cs) : ndarrays of shapes ``(N,)``, ``(N, N)``, ``(N, N)``
+    """
+    n = scene.storeys
+    mst = scene.pi11
+    ws = 2.0 * math.pi / scene.pi12
+    if n == 1:
+        return np.array([mst]), np.array([[mst * ws * ws]]), np.array([[2.0 * scene.pi13 * ws * mst]])
+    w = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses)
+    r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses)
+    masses = mst * w
+    shape = shear_building.stiffness_matrix(r)
+    omega, _ = shear_building.fixed_base_modes(masses, shape)
+    Ks = (ws / omega[0]) ** 2 * shape
+    omega, phi = shear_building.fixed_base_modes(masses, Ks)
+    return masses, Ks, shear_building.classical_damping(masses, omega, phi, scene.pi13)
+
+
 def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) -> np.ndarray:
     """Model parameters of :func:`isoslide.building_kernel.run` for a general scene.
 
     ``pi8`` overrides the scene's (0: one-way coupling); ``coulomb`` skips the Stribeck terms
-    (friction at the static level ``Pi2/Pi5`` at every speed).
+    (friction at the static level ``Pi2/Pi5`` at every speed).  A rigid superstructure is one
+    floor that moves with the slab; a flexible one has the floors of :func:`superstructure`.
     """
-    P = np.zeros(bk.N_P)
     flex = scene.flexible
+    n = scene.storeys if flex else 1
+    P = np.zeros(bk.n_parameters(n))
     mst = scene.pi11 if flex else 0.0
     P[bk.P_MB] = 1.0 - mst
     P[bk.P_MST] = mst
@@ -152,10 +187,15 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
         kind = {"linear": bk.KIND_LINEAR, "bilinear": bk.KIND_BILINEAR, "sliding": bk.KIND_SLIDING}[scene.isolator]
     else:
         kind = bk.KIND_FIXED
+    P[bk.P_N] = n
     if flex:
-        ws = 2.0 * math.pi / scene.pi12
-        P[bk.P_KS] = mst * ws * ws
-        P[bk.P_CS] = 2.0 * scene.pi13 * ws * mst
+        masses, Ks, Cs = superstructure(scene)
+        P[bk.P_ARRAYS:bk.P_ARRAYS + n] = masses
+        P[bk.P_ARRAYS + n:bk.P_ARRAYS + n + n * n] = Ks.ravel()
+        P[bk.P_ARRAYS + n + n * n:] = Cs.ravel()
+        P[bk.P_KS] = Ks[0, 0]
+        P[bk.P_CS] = Cs[0, 0]
+        P[bk.P_FLOOR] = scene.floor_index
     P[bk.P_Q] = scene.pi9 if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else 0.0
     P[bk.P_KE] = scene.pi9 / scene.pi10 if kind == bk.KIND_BILINEAR else 0.0
     P[bk.P_THR] = scene.static_level
@@ -163,18 +203,27 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     P[bk.P_PI6] = scene.pi6
     P[bk.P_PI7] = scene.pi7
     P[bk.P_COULOMB] = 1.0 if coulomb else 0.0
-    P[bk.P_ROOF] = 1.0 if (flex and scene.floor == "roof") else 0.0
+    P[bk.P_ROOF] = 1.0 if (flex and scene.floor_index > 0) else 0.0
     P[bk.P_KIND] = float(kind)
     P[bk.P_FLEX] = 1.0 if flex else 0.0
     return P
+
+
+def shortest_period(scene: Scene) -> float:
+    """Shortest fixed-base period of a flexible superstructure (units of T_p); ``Pi12`` for one floor."""
+    if scene.storeys == 1:
+        return scene.pi12
+    masses, Ks, _ = superstructure(scene)
+    omega, _ = shear_building.fixed_base_modes(masses, Ks)
+    return 2.0 * math.pi / omega[-1]
 
 
 def free_step(scene: Scene) -> float:
     """Longest step after the pulse (units of T_p): an eighth of the shortest period followed.
 
     The periods are the isolation period (the bilinear bearing's elastic one,
-    ``Pi3 sqrt(k_d / (k_d + k_e))``, when shorter) and the superstructure's; a pulse period
-    when there is none.
+    ``Pi3 sqrt(k_d / (k_d + k_e))``, when shorter) and the superstructure's shortest fixed-base
+    one (:func:`shortest_period`); a pulse period when there is none.
     """
     periods = [1.0]
     if scene.pi3 > 0.0:
@@ -183,12 +232,12 @@ def free_step(scene: Scene) -> float:
             kd = (2.0 * math.pi / scene.pi3) ** 2
             periods.append(scene.pi3 * math.sqrt(kd / (kd + scene.pi9 / scene.pi10)))
     if scene.flexible:
-        periods.append(scene.pi12)
+        periods.append(shortest_period(scene))
     return min(periods) / 8.0
 
 
-def _empty_modal() -> tuple:
-    return np.zeros((0, bk.NY), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128)
+def _empty_modal(ny: int) -> tuple:
+    return np.zeros((0, ny), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128)
 
 
 def _free_system(P: np.ndarray, code: int, params: np.ndarray, held: bool) -> tuple:
@@ -198,17 +247,18 @@ def _free_system(P: np.ndarray, code: int, params: np.ndarray, held: bool) -> tu
     :func:`isoslide.building_kernel.deriv` (affine in ``y``) at a time after any pulse.
     """
     kind = int(P[bk.P_KIND])
+    n = int(P[bk.P_N])
+    ny = bk.state_size(n)
     idx = [] if held else [bk.Y_X, bk.Y_XD]
     if P[bk.P_FLEX] != 0.0:
-        idx += [bk.Y_XS, bk.Y_XSD]
+        idx += list(range(bk.Y_XS, bk.Y_XS + 2 * n))
     if kind == bk.KIND_BILINEAR and not held:
-        idx.append(bk.Y_FH)
-    n = len(idx)
+        idx.append(ny - 1)
     late = 1e30   # after every pulse and record: p = 0
-    out = np.zeros(bk.NY)
-    A = np.zeros((n, n))
+    out = np.zeros(ny)
+    A = np.zeros((len(idx), len(idx)))
     for j, col in enumerate(idx):
-        y = np.zeros(bk.NY)
+        y = np.zeros(ny)
         y[col] = 1.0
         bk.deriv(0.0, 0.0, late, y, P, code, params, out)
         A[:, j] = out[idx]
@@ -220,39 +270,42 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
 
     For the free linear system after the pulse (block stuck; the isolator elastic, ``Wm, Cm``, or
     holding the slab, ``Wh, Ch``): ``W`` maps the state ``y`` to modal coordinates (rows: modes,
-    columns: the seven states) and ``C[j, k] = c_j . v_k`` gives demand ``j`` (0: the block's floor
+    columns: the states) and ``C[j, k] = c_j . v_k`` gives demand ``j`` (0: the block's floor
     acceleration; 1: the bilinear bearing's force, or the force holding a sliding bearing) per unit
     of mode ``k``.  Empty where the configuration cannot occur, has no moving state, or its
     eigenvectors are too ill-conditioned (condition number above 1e8) for a trustworthy bound.
     """
     kind = int(P[bk.P_KIND])
+    n = int(P[bk.P_N])
+    ny = bk.state_size(n)
     code, params = scene.pulse.code, scene.pulse.param_array
     out = []
     for held in (False, True):
         if held != (kind in (bk.KIND_SLIDING, bk.KIND_FIXED)):
-            out.extend(_empty_modal())
+            out.extend(_empty_modal(ny))
             continue
         A, idx = _free_system(P, code, params, held)
         if not idx:
-            out.extend(_empty_modal())
+            out.extend(_empty_modal(ny))
             continue
         lam, V = np.linalg.eig(A)
         if np.max(lam.real) > 1e-12 * max(1.0, np.max(np.abs(lam))) or np.linalg.cond(V) > 1e8:
-            out.extend(_empty_modal())
+            out.extend(_empty_modal(ny))
             continue
         Winv = np.linalg.inv(V)
-        W = np.zeros((len(idx), bk.NY), dtype=np.complex128)
+        W = np.zeros((len(idx), ny), dtype=np.complex128)
         W[:, idx] = Winv
         demand_rows = [0] + ([1] if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else [])
         c = np.zeros((len(demand_rows), len(idx)))
         for k, col in enumerate(idx):
-            y = np.zeros(bk.NY)
+            y = np.zeros(ny)
             y[col] = 1.0
             im = 0.0
-            fh = y[bk.Y_FH] if kind == bk.KIND_BILINEAR else 0.0
-            c[0, k] = bk._floor_stuck(im, y[bk.Y_X], y[bk.Y_XD], y[bk.Y_XS], y[bk.Y_XSD], fh, 0.0, P)
+            fh = y[ny - 1] if kind == bk.KIND_BILINEAR else 0.0
+            zp, zv = y[bk.Y_XS:bk.Y_XS + n], y[bk.Y_XS + n:bk.Y_XS + 2 * n]
+            c[0, k] = bk._floor_stuck(im, y[bk.Y_X], y[bk.Y_XD], zp, zv, fh, 0.0, P)
             if len(demand_rows) > 1:
-                c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, y[bk.Y_XS], y[bk.Y_XSD], 0.0, 0.0, P)
+                c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, zp, zv, 0.0, 0.0, P)
         # a relative margin for the round-off of the eigen-decomposition
         margin = 1.0 + 1e-12 + 1e-14 * np.linalg.cond(V)
         out.extend([W, (margin * (c @ V)).astype(np.complex128)])

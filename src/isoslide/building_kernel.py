@@ -1,30 +1,37 @@
 """Compiled event-driven kernel of the general building (numba).
 
 The general building of :mod:`isoslide.building` (the paper's Fig. 1-a): a slab
-on a hysteretic isolator, a rigid or flexible superstructure, and sliding
-contents on the slab ("base") or on the superstructure ("roof").  Units: time
-``T_p``, lengths ``a_p T_p^2``, accelerations ``a_p``, masses ``M_b``, forces
-``M_b a_p``; primes are ``d/dtau``.
+on a hysteretic isolator, a rigid superstructure or a flexible one of ``n``
+floors, and sliding contents on the slab (floor 0) or on floor ``k`` of the
+superstructure.  Units: time ``T_p``, lengths ``a_p T_p^2``, accelerations
+``a_p``, masses ``M_b``, forces ``M_b a_p``; primes are ``d/dtau``.
 
-State ``y = [x, x', xs, xs', u, u', fh]``: slab displacement relative to the
-ground, superstructure displacement relative to the slab, block displacement
-relative to its floor, and the hysteretic isolator force (a state of the
-bilinear bearing only).  Two modes: the block's ``bm`` (0 stuck, +-1 sliding
-in that direction) and the isolator's ``im`` (0 stuck sliding bearing or
-elastic bilinear bearing, +-1 sliding or yielding).  Model parameters ``P``
-(indices ``P_*``) are set by :func:`isoslide.building.parameters`.
+State ``y = [x, x', xs_1 .. xs_n, xs_1' .. xs_n', u, u', fh]`` (length
+``2 n + 5``, :func:`state_size`): slab displacement relative to the ground,
+the floors' displacements relative to the slab, block displacement relative to
+its floor, and the hysteretic isolator force (a state of the bilinear bearing
+only).  Two modes: the block's ``bm`` (0 stuck, +-1 sliding in that direction)
+and the isolator's ``im`` (0 stuck sliding bearing or elastic bilinear
+bearing, +-1 sliding or yielding).  Model parameters ``P`` (indices ``P_*``,
+then the floor masses and the superstructure's fixed-base stiffness and
+damping matrices from ``P_ARRAYS`` on) are set by
+:func:`isoslide.building.parameters`.
 
-Forces: isolator ``F = kd x + cb x' + fh``, superstructure ``S = ks xs + cs
-xs'``, friction of the block on its floor ``R`` (the block gets ``-R``)::
+Forces: isolator ``F = kd x + cb x' + fh``, storey forces on the floors
+``G = Ks xs + Cs xs'`` (fixed-base matrices, floors relative to the slab) and
+their sum on the slab ``S = sum_j G_j``, friction of the block on its floor
+``R`` (the block gets ``-R``)::
 
     slab            mb Ab = -F + S + [R on the base]
-    superstructure  mst As = -S + [R on the roof]
+    floor j         m_j A_j = -G_j + [R on floor j]
     block           m (A_F + u'') = -R
 
-with absolute accelerations ``Ab = p + x''``, ``As = Ab + xs''`` and the floor's
-``A_F``.  Every mode gives the accelerations explicitly (:func:`_accels`).  A
-stuck block has ``R = -m A_F`` and stays stuck while ``|A_F| <= thr``; a
-sliding one ``R = m s phi(|u'|)``.  A stuck sliding bearing holds the slab
+with absolute accelerations ``Ab = p + x''``, ``A_j = Ab + xs_j''`` and the
+floor's ``A_F``.  Every mode gives the accelerations explicitly
+(:func:`_accels`): the mass matrix is diagonal.  A stuck block has
+``R = -m A_F`` and stays stuck while ``|A_F| <= thr``; a sliding one
+``R = m s phi(|u'|)``.  With one floor this is the slab and one
+superstructure mass of the paper's Fig. 1-a, step for step.  A stuck sliding bearing holds the slab
 (``x' = x'' = 0``) with the force ``fh = -mb p - kd x + S + [R on the base]``
 while ``|fh| <= q``, and slides with ``fh = q sgn(x')``.  A bilinear bearing's
 ``fh`` follows ``fh' = ke x'`` until ``|fh| = q`` and stays at ``+-q`` until
@@ -43,14 +50,15 @@ means every stuck interface's needed force is within its limit and every
 sliding one accelerates in its own direction.
 
 Settlement (:func:`_settled`): after the pulse, with the block stuck and the
-isolator stuck or elastic, the free system is linear and its energy ``E``
+isolator stuck or elastic, the free system is linear.  With at most one floor its energy ``E``
 about its equilibrium cannot grow; every demand ``d = d0 + c.y`` obeys
 ``|d| <= |d0| + sqrt(2 E c' P^-1 c)`` (``P`` the energy's quadratic form).
 Its modes give a second bound, ``|d| <= |d0| + sum_k |c.v_k| |a_k|`` (modal
 coordinates ``a_k``, eigenvalues with ``Re lambda_k <= 0``), much sharper when
 one mode dominates (a stiff superstructure's energy makes the first bound
-large while hardly moving the floor).  Once either bound puts every demand
-within its limit nothing can slip or yield again.
+large while hardly moving the floor); with several floors the modal bound
+alone is used.  Once a bound puts every demand within its limit nothing can
+slip or yield again.
 """
 
 from __future__ import annotations
@@ -61,18 +69,34 @@ import numpy as np
 from numba import njit
 
 from . import jit_cache
+from .model.friction import stribeck
 from .kernel import (ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
                      _step_factor, hermite_root)
 from .pulses import accel_at, jerk_at
 
-NY = 7
-"""Length of the state vector."""
-Y_X, Y_XD, Y_XS, Y_XSD, Y_U, Y_UD, Y_FH = range(NY)
+Y_X, Y_XD, Y_XS = range(3)
+"""Fixed state indices: slab displacement and velocity, the first floor's displacement."""
 
 (P_MB, P_MST, P_M, P_KD, P_CB, P_KS, P_CS, P_Q, P_KE, P_THR, P_PI2, P_PI6, P_PI7, P_COULOMB, P_ROOF,
- P_KIND, P_FLEX) = range(17)
-N_P = 17
-"""Length of the model-parameter array."""
+ P_KIND, P_FLEX, P_N, P_FLOOR) = range(19)
+P_ARRAYS = 19
+"""Start of the arrays in the model parameters: floor masses ``(n,)``, then ``Ks`` and ``Cs``
+``(n, n)`` row by row; ``P_N`` holds ``n``, ``P_FLOOR`` the contents' floor (0 the slab)."""
+
+
+def n_parameters(n: int) -> int:
+    """Length of the model-parameter array of a building of ``n`` floors."""
+    return P_ARRAYS + n + 2 * n * n
+
+
+def state_size(n: int) -> int:
+    """Length of the state vector of a building of ``n`` floors."""
+    return 2 * n + 5
+
+
+def history_width(n: int) -> int:
+    """Columns of a history row of a building of ``n`` floors."""
+    return state_size(n) + 3
 
 KIND_LINEAR, KIND_BILINEAR, KIND_SLIDING, KIND_FIXED = range(4)
 """Isolator kinds (``P[P_KIND]``): linear, bilinear bearing, sliding bearing, fixed base."""
@@ -83,12 +107,27 @@ N_R = 8
 # float results
 F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX = range(6)
 N_F = 6
-# history columns
-H_TAU, H_X, H_XD, H_XS, H_XSD, H_U, H_UD, H_FH, H_PHASE, H_IPHASE = range(10)
-N_H = 10
+# history columns: [tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im] (see history_columns)
+H_TAU, H_X, H_XD, H_XS = range(4)
+
+
+def history_columns(n: int) -> dict:
+    """Column of each quantity in a history row of a building of ``n`` floors.
+
+    ``xs`` and ``xsd`` are the first columns of the floors' displacements and velocities (``n``
+    each); ``fh`` is the isolator's hysteretic force (the holding force of a held slab), ``phase``
+    and ``iso_phase`` the block's and the isolator's modes.
+    """
+    ny = state_size(n)
+    return {"tau": H_TAU, "x": H_X, "xd": H_XD, "xs": H_XS, "xsd": H_XS + n, "u": 3 + 2 * n,
+            "ud": 4 + 2 * n, "fh": ny, "phase": ny + 1, "iso_phase": ny + 2}
 
 # event kinds
 EV_BLOCK, EV_BEAR, EV_YIELD, EV_BSPEED, EV_ISPEED, EV_BPEAK, EV_IPEAK, EV_XD = range(8)
+
+
+_stribeck = njit(cache=True)(stribeck)
+jit_cache.seed(_stribeck)
 
 
 @njit(cache=True)
@@ -97,13 +136,7 @@ def friction(v, P):
     thr = P[P_THR]
     if P[P_COULOMB] == 1.0:
         return thr, 0.0
-    av = abs(v)
-    e = math.exp(-P[P_PI6] * av)
-    sech = 2.0 * e / (1.0 + e * e)
-    tanh = (1.0 - e * e) / (1.0 + e * e)
-    pi2 = P[P_PI2]
-    return (thr * sech + pi2 * (1.0 - sech) + P[P_PI7] * av,
-            -(thr - pi2) * P[P_PI6] * sech * tanh + P[P_PI7])
+    return _stribeck(v, thr, P[P_PI2], P[P_PI6], P[P_PI7], 1.0)
 
 
 @njit(cache=True)
@@ -118,97 +151,139 @@ def _hysteretic(im, y, P):
     """Hysteretic isolator force of a moving slab (bilinear: the state; sliding: ``q im``)."""
     kind = P[P_KIND]
     if kind == KIND_BILINEAR:
-        return y[Y_FH]
+        return y[y.shape[0] - 1]
     if kind == KIND_SLIDING:
         return P[P_Q] * im
     return 0.0
 
 
 @njit(cache=True)
-def _accels(bm, im, p, y, P):
-    """Accelerations of a mode: ``(Ab, As, A_F, u'', fh, R)``.
+def _storey_force(j, zp, zv, P):
+    """Force of the superstructure on floor ``j`` (0-based), negated: ``G_j = (Ks zp + Cs zv)_j``.
 
-    ``Ab, As`` absolute slab and superstructure accelerations, ``A_F`` the
-    contents' floor's, ``u''`` the block's relative acceleration, ``fh`` the
-    hysteretic isolator force (for a held slab, the force that holds it) and
-    ``R`` the friction force of the block on its floor.
+    ``zp``, ``zv``: the floors' displacements and velocities relative to the slab (or their rates:
+    ``G`` is linear in them).
     """
+    n = int(P[P_N])
+    ks = P_ARRAYS + n + j * n
+    cs = ks + n * n
+    acc = 0.0
+    for k in range(n):
+        acc += P[ks + k] * zp[k]
+    for k in range(n):
+        acc += P[cs + k] * zv[k]
+    return acc
+
+
+@njit(cache=True)
+def _base_shear(zp, zv, P):
+    """Force of the superstructure on the slab, ``S = sum_j G_j`` (linear in ``zp, zv``)."""
+    acc = 0.0
+    for j in range(int(P[P_N])):
+        acc += _storey_force(j, zp, zv, P)
+    return acc
+
+
+@njit(cache=True)
+def _accels(bm, im, p, y, P, A):
+    """Accelerations of a mode: ``(Ab, A_F, u'', fh, R)``; the floors' into ``A``.
+
+    ``Ab`` absolute slab acceleration, ``A[j]`` floor ``j + 1``'s absolute acceleration, ``A_F``
+    the contents' floor's, ``u''`` the block's relative acceleration, ``fh`` the hysteretic isolator
+    force (for a held slab, the force that holds it) and ``R`` the friction force of the block on
+    its floor.
+    """
+    n = int(P[P_N])
+    ny = y.shape[0]
     m = P[P_M]
     mb = P[P_MB]
-    mst = P[P_MST]
     roof = P[P_ROOF] != 0.0
     flex = P[P_FLEX] != 0.0
-    S = P[P_KS] * y[Y_XS] + P[P_CS] * y[Y_XSD]
+    fl = int(P[P_FLOOR]) - 1
+    zp = y[Y_XS:Y_XS + n]
+    zv = y[Y_XS + n:Y_XS + 2 * n]
     ph = 0.0
     if bm != 0.0:
-        ph, _ = friction(y[Y_UD], P)
+        ph, _ = friction(y[ny - 2], P)
     rs = m * bm * ph
+    S = 0.0
+    for j in range(n):
+        if flex:
+            G = _storey_force(j, zp, zv, P)
+            S += G
+            mj = P[P_ARRAYS + j]
+            if roof and j == fl:
+                A[j] = -G / (mj + m) if bm == 0.0 else (-G + rs) / mj
+            else:
+                A[j] = -G / mj
     if _held(im, P):
         Ab = p
-        if roof:
-            As = -S / (mst + m) if bm == 0.0 else (-S + rs) / mst
-        else:
-            As = -S / mst if flex else Ab
-        AF = As if roof else Ab
-        R = rs if bm != 0.0 else -m * AF
-        fh = -mb * p - P[P_KD] * y[Y_X] + S + (0.0 if roof else R)
+        fh = 0.0
     else:
         fh = _hysteretic(im, y, P)
         F = P[P_KD] * y[Y_X] + P[P_CB] * y[Y_XD] + fh
         if roof:
             Ab = (-F + S) / mb
-            As = -S / (mst + m) if bm == 0.0 else (-S + rs) / mst
-            AF = As
         else:
             Ab = (-F + S) / (mb + m) if bm == 0.0 else (-F + S + rs) / mb
-            As = -S / mst if flex else Ab
-            AF = Ab
-        R = rs if bm != 0.0 else -m * AF
+    if not flex:
+        for j in range(n):
+            A[j] = Ab
+    AF = A[fl] if roof else Ab
+    R = rs if bm != 0.0 else -m * AF
+    if _held(im, P):
+        fh = -mb * p - P[P_KD] * y[Y_X] + S + (0.0 if roof else R)
     udd = 0.0 if bm == 0.0 else -AF - bm * ph
-    return Ab, As, AF, udd, fh, R
+    return Ab, AF, udd, fh, R
 
 
 @njit(cache=True)
 def deriv(bm, im, tau, y, P, code, params, out):
     """Right-hand side of the mode ``(bm, im)`` at ``(tau, y)``, written into ``out``."""
+    n = int(P[P_N])
+    ny = y.shape[0]
     p = accel_at(code, params, tau)
-    Ab, As, AF, udd, fh, R = _accels(bm, im, p, y, P)
+    A = out[Y_XS + n:Y_XS + 2 * n]
+    Ab, AF, udd, fh, R = _accels(bm, im, p, y, P, A)
     if _held(im, P):
         out[Y_X] = 0.0
         out[Y_XD] = 0.0
     else:
         out[Y_X] = y[Y_XD]
         out[Y_XD] = Ab - p
-    out[Y_XS] = y[Y_XSD]
-    out[Y_XSD] = As - Ab
-    out[Y_U] = y[Y_UD]
-    out[Y_UD] = udd
-    out[Y_FH] = P[P_KE] * y[Y_XD] if (P[P_KIND] == KIND_BILINEAR and im == 0.0) else 0.0
+    for j in range(n):
+        out[Y_XS + j] = y[Y_XS + n + j]
+        out[Y_XS + n + j] = A[j] - Ab
+    out[ny - 3] = y[ny - 2]
+    out[ny - 2] = udd
+    out[ny - 1] = P[P_KE] * y[Y_XD] if (P[P_KIND] == KIND_BILINEAR and im == 0.0) else 0.0
 
 
 @njit(cache=True)
-def _floor_stuck(im, x, xd, xs, xsd, fh, p, P):
+def _floor_stuck(im, x, xd, zp, zv, fh, p, P):
     """Floor acceleration ``A_F`` of a stuck block (units of a_p).
 
-    Linear and homogeneous in ``(x, x', xs, xs', fh, p)``: given their rates it returns the rate.
+    Linear and homogeneous in ``(x, x', zp, zv, fh, p)`` (``zp``, ``zv`` the floors' displacements
+    and velocities relative to the slab): given their rates it returns the rate.
     """
     m = P[P_M]
-    S = P[P_KS] * xs + P[P_CS] * xsd
     if P[P_ROOF] != 0.0:
-        return -S / (P[P_MST] + m)
+        fl = int(P[P_FLOOR]) - 1
+        return -_storey_force(fl, zp, zv, P) / (P[P_ARRAYS + fl] + m)
     if _held(im, P):
         return p
+    S = _base_shear(zp, zv, P) if P[P_FLEX] != 0.0 else 0.0
     return (-(P[P_KD] * x + P[P_CB] * xd + fh) + S) / (P[P_MB] + m)
 
 
 @njit(cache=True)
-def _bearing_need(bm, x, xs, xsd, p, rs, P):
+def _bearing_need(bm, x, zp, zv, p, rs, P):
     """Force (units of M_b a_p) that holds a stuck sliding bearing's slab to the ground.
 
     ``rs = m bm phi`` is the sliding block's friction force; linear and homogeneous in
-    ``(x, xs, xs', p, rs)``: given their rates it returns the rate.
+    ``(x, zp, zv, p, rs)``: given their rates it returns the rate.
     """
-    S = P[P_KS] * xs + P[P_CS] * xsd
+    S = _base_shear(zp, zv, P) if P[P_FLEX] != 0.0 else 0.0
     r = 0.0
     if P[P_ROOF] == 0.0:
         r = rs if bm != 0.0 else -P[P_M] * p
@@ -224,21 +299,28 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     EV_BPEAK, EV_IPEAK: the rates of EV_BLOCK and EV_BEAR (derivative not given: NaN).
     EV_XD     ``sig x'`` (the rate of an elastic bilinear bearing's ``sig fh``, over ``ke``)
     """
+    n = int(P[P_N])
+    ny = y.shape[0]
+    ud = ny - 2
+    fhi = ny - 1
     deriv(bm, im, tau, y, P, code, params, work)
     if kind == EV_XD:
         return sig * y[Y_XD], sig * work[Y_XD]
     if kind == EV_BSPEED:
-        return bm * y[Y_UD], bm * work[Y_UD]
+        return bm * y[ud], bm * work[ud]
     if kind == EV_ISPEED:
         return im * y[Y_XD], im * work[Y_XD]
     if kind == EV_YIELD:
-        return sig * y[Y_FH] - P[P_Q], sig * P[P_KE] * y[Y_XD]
+        return sig * y[fhi] - P[P_Q], sig * P[P_KE] * y[Y_XD]
     p = accel_at(code, params, tau)
     pd = jerk_at(code, params, tau)
+    zp = y[Y_XS:Y_XS + n]
+    zv = y[Y_XS + n:Y_XS + 2 * n]
+    za = work[Y_XS + n:Y_XS + 2 * n]
     if kind == EV_BLOCK or kind == EV_BPEAK:
         fh = _hysteretic(im, y, P)
-        g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], y[Y_XS], y[Y_XSD], fh, p, P) - P[P_THR]
-        dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], y[Y_XSD], work[Y_XSD], work[Y_FH], pd, P)
+        g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, P) - P[P_THR]
+        dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], zv, za, work[fhi], pd, P)
         if kind == EV_BPEAK:
             return dg, math.nan
         return g, dg
@@ -246,11 +328,11 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     rs = 0.0
     rsd = 0.0
     if bm != 0.0:
-        ph, dph = friction(y[Y_UD], P)
+        ph, dph = friction(y[ud], P)
         rs = P[P_M] * bm * ph
-        rsd = P[P_M] * dph * work[Y_UD]
-    g = sig * _bearing_need(bm, y[Y_X], y[Y_XS], y[Y_XSD], p, rs, P) - P[P_Q]
-    dg = sig * _bearing_need(bm, 0.0, y[Y_XSD], work[Y_XSD], pd, rsd, P)
+        rsd = P[P_M] * dph * work[ud]
+    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, P) - P[P_Q]
+    dg = sig * _bearing_need(bm, 0.0, zv, za, pd, rsd, P)
     if kind == EV_IPEAK:
         return dg, math.nan
     return g, dg
@@ -260,30 +342,31 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
 
 
 @njit(cache=True)
-def _error_scale(i, a, b, atol, rtol):
-    """Tolerance of state component ``i`` (the block's ``u, u'`` get ``atol * ATOL_SLIDE``)."""
-    return (atol * ATOL_SLIDE if (i == Y_U or i == Y_UD) else atol) + rtol * max(abs(a), abs(b))
+def _error_scale(i, ny, a, b, atol, rtol):
+    """Tolerance of state component ``i`` of ``ny`` (the block's ``u, u'`` get ``atol * ATOL_SLIDE``)."""
+    return (atol * ATOL_SLIDE if (i == ny - 3 or i == ny - 2) else atol) + rtol * max(abs(a), abs(b))
 
 
 @njit(cache=True)
 def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
     """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
 
-    ``K`` (``(NS + 1, NY)``) receives the stages, row ``NS`` the right-hand side at the step end;
+    ``K`` (``(NS + 1, len(y))``) receives the stages, row ``NS`` the right-hand side at the step end;
     stages at the step end see the pulse's left limit.
     """
     t_left = _left_limit(tau + h)
-    ys = np.empty(NY)
+    ny = y.shape[0]
+    ys = np.empty(ny)
     deriv(bm, im, tau, y, P, code, params, K[0])
     for st in range(1, NS):
-        for i in range(NY):
+        for i in range(ny):
             acc = 0.0
             for j in range(st):
                 acc += A[st, j] * K[j, i]
             ys[i] = y[i] + h * acc
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
         deriv(bm, im, ts, ys, P, code, params, K[st])
-    for i in range(NY):
+    for i in range(ny):
         acc = 0.0
         for j in range(NS):
             acc += B[j] * K[j, i]
@@ -291,8 +374,8 @@ def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
     deriv(bm, im, t_left, ynew, P, code, params, K[NS])
     e5 = 0.0
     e3 = 0.0
-    for i in range(NY):
-        sc = _error_scale(i, y[i], ynew[i], atol, rtol)
+    for i in range(ny):
+        sc = _error_scale(i, ny, y[i], ynew[i], atol, rtol)
         a5 = 0.0
         a3 = 0.0
         for j in range(NS + 1):
@@ -309,13 +392,14 @@ def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
 @njit(cache=True)
 def verify(bm, im, tau, y, h, ycand, P, code, params, atol, rtol, K):
     """Richardson check of one step: scaled error of ``ycand`` against two half steps."""
-    ya = np.empty(NY)
-    yb = np.empty(NY)
+    ny = y.shape[0]
+    ya = np.empty(ny)
+    yb = np.empty(ny)
     rk_step(bm, im, tau, y, 0.5 * h, P, code, params, atol, rtol, K, ya)
     rk_step(bm, im, tau + 0.5 * h, ya, 0.5 * h, P, code, params, atol, rtol, K, yb)
     e = 0.0
-    for i in range(NY):
-        e = max(e, abs(yb[i] - ycand[i]) / _error_scale(i, y[i], ycand[i], atol, rtol))
+    for i in range(ny):
+        e = max(e, abs(yb[i] - ycand[i]) / _error_scale(i, ny, y[i], ycand[i], atol, rtol))
     return e
 
 
@@ -392,7 +476,7 @@ def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code,
     g1, r1 = _event(kind, sig, bm, im, t_end, y1, P, code, params, work)
     if g1 > 0.0:
         if g0 >= 0.0:
-            for i in range(NY):
+            for i in range(y.shape[0]):
                 ye[i] = y[i]
             return True, 0.0, 0.0
         h0 = hermite_root(g0, r0, g1, r1, h)
@@ -436,7 +520,7 @@ def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, 
         if gp > 0.0:
             return locate(kind, 0.0, bm, im, tau, y, hp, gp, h, g1, -1.0, check, P, code, params, atol, rtol,
                           K, ye, work, cnt)
-        for i in range(NY):
+        for i in range(y.shape[0]):
             ye[i] = y[i]
         return 0.0, 0.0
     h0 = hermite_root(g0, r0, g1, r1, h)
@@ -448,9 +532,12 @@ def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, 
 
 
 @njit(cache=True)
-def _consistent(b, i, free_b, free_i, p, y, P):
-    """Whether the modes ``(b, i)`` are consistent at a state where the free interfaces are at rest."""
-    Ab, As, AF, udd, fh, R = _accels(b, i, p, y, P)
+def _consistent(b, i, free_b, free_i, p, y, P, A):
+    """Whether the modes ``(b, i)`` are consistent at a state where the free interfaces are at rest.
+
+    ``A`` is scratch space for the floors' accelerations.
+    """
+    Ab, AF, udd, fh, R = _accels(b, i, p, y, P, A)
     if free_b:
         if b == 0.0:
             if abs(AF) > P[P_THR]:
@@ -475,6 +562,7 @@ def _select_modes(bm, im, free_b, free_i, tau, y, P, code, params):
     slides in the direction its stuck demand pushes it.
     """
     p = accel_at(code, params, tau)
+    A = np.empty(int(P[P_N]))
     cands = (0.0, 1.0, -1.0)
     for nslide in range(3):
         for b in cands:
@@ -486,15 +574,15 @@ def _select_modes(bm, im, free_b, free_i, tau, y, P, code, params):
                 n = (1 if (free_b and b != 0.0) else 0) + (1 if (free_i and i != 0.0) else 0)
                 if n != nslide:
                     continue
-                if _consistent(b, i, free_b, free_i, p, y, P):
+                if _consistent(b, i, free_b, free_i, p, y, P, A):
                     return b, i
     b = bm
     i = im
     if free_b:
-        AF = _accels(0.0, im if not free_i else 0.0, p, y, P)[2]
+        AF = _accels(0.0, im if not free_i else 0.0, p, y, P, A)[1]
         b = -1.0 if AF > 0.0 else 1.0
     if free_i:
-        fh = _accels(bm if not free_b else 0.0, 0.0, p, y, P)[4]
+        fh = _accels(bm if not free_b else 0.0, 0.0, p, y, P, A)[3]
         i = 1.0 if fh > 0.0 else -1.0
     return b, i
 
@@ -512,7 +600,7 @@ def _modal_within(W, Cm, y, limits, offsets):
     a = np.zeros(n, dtype=np.complex128)
     for k in range(n):
         acc = 0.0 + 0.0j
-        for i in range(NY):
+        for i in range(W.shape[1]):
             acc += W[k, i] * y[i]
         a[k] = acc
     for j in range(Cm.shape[0]):
@@ -551,7 +639,12 @@ def _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
 
 @njit(cache=True)
 def _energy_settled(im, y, P):
-    """The energy bound of :func:`_settled` (the block stuck, the isolator stuck or elastic)."""
+    """The energy bound of :func:`_settled` (the block stuck, the isolator stuck or elastic).
+
+    Written for at most one floor; with several floors it proves nothing (the modal bound does).
+    """
+    if P[P_N] > 1.0:
+        return False
     kind = P[P_KIND]
     m = P[P_M]
     roof = P[P_ROOF] != 0.0
@@ -560,7 +653,7 @@ def _energy_settled(im, y, P):
     cs = P[P_CS]
     thr = P[P_THR]
     xs = y[Y_XS]
-    xsd = y[Y_XSD]
+    xsd = y[Y_XS + 1]
     if _held(im, P):
         if not flex:
             return True
@@ -580,7 +673,7 @@ def _energy_settled(im, y, P):
     d0 = 0.0
     xstar = 0.0
     if kind == KIND_BILINEAR:
-        xp = x - y[Y_FH] / ke
+        xp = x - y[y.shape[0] - 1] / ke
         xstar = ke * xp / kk
         d0 = ke * (xstar - xp)
     dx = x - xstar
@@ -611,21 +704,23 @@ def _energy_settled(im, y, P):
 
 @njit(cache=True)
 def _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params):
-    """Append ``[tau, x, x', xs, xs', u, u', fh, bm, im]`` to the history while it has room."""
+    """Append ``[tau, x, x', xs.., xs'.., u, u', fh, bm, im]`` to the history while it has room."""
     if nh < hist_cap:
+        ny = y.shape[0]
         hist[nh, H_TAU] = tau
-        for i in range(Y_FH):
+        for i in range(ny - 1):
             hist[nh, H_X + i] = y[i]
-        hist[nh, H_FH] = _accels(bm, im, accel_at(code, params, tau), y, P)[4]
-        hist[nh, H_PHASE] = bm
-        hist[nh, H_IPHASE] = im
+        A = np.empty(int(P[P_N]))
+        hist[nh, ny] = _accels(bm, im, accel_at(code, params, tau), y, P, A)[3]
+        hist[nh, ny + 1] = bm
+        hist[nh, ny + 2] = im
         return nh + 1
     return nh
 
 
 @njit(cache=True)
 def _copy(dst, src):
-    for i in range(NY):
+    for i in range(src.shape[0]):
         dst[i] = src[i]
 
 
@@ -648,20 +743,26 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     floats : ndarray of float64, shape (N_F,)
         ``F_UMAX`` (= Pi1), ``F_TPEAK``, ``F_URES`` (final u), ``F_TEND``, ``F_XMAX`` largest
         ``|x|`` at step ends and transitions, ``F_VMAX`` largest ``|u'|`` at step ends.
-    hist : ndarray, shape (ints[R_HIST], N_H)
-        Rows ``[tau, x, x', xs, xs', u, u', fh, bm, im]``.
+    hist : ndarray, shape (ints[R_HIST], history_width(n))
+        Rows ``[tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im]`` (:func:`history_columns`).
     """
     thr = P[P_THR]
     q = P[P_Q]
     kind = P[P_KIND]
-    y = np.zeros(NY)
-    y1 = np.empty(NY)
-    ye = np.empty(NY)
-    yb = np.empty(NY)
-    K = np.empty((NS + 1, NY))
-    work = np.empty(NY)
+    nfl = int(P[P_N])
+    ny = 2 * nfl + 5
+    Y_U = ny - 3
+    Y_UD = ny - 2
+    Y_FH = ny - 1
+    y = np.zeros(ny)
+    y1 = np.empty(ny)
+    ye = np.empty(ny)
+    yb = np.empty(ny)
+    K = np.empty((NS + 1, ny))
+    work = np.empty(ny)
+    A = np.empty(nfl)
     cnt = np.zeros(1, dtype=np.int64)
-    hist = np.empty((hist_cap if hist_cap > 0 else 1, N_H))
+    hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 3))
     tau = tau_start
     bm = 0.0
     im = 0.0
@@ -691,7 +792,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         # --- mode checks at the accepted point (round-off past a limit) ---------
         p_now = accel_at(code, params, tau)
         if bm == 0.0 or (kind == KIND_SLIDING and im == 0.0):
-            Ab, As, AF, udd, fh, R = _accels(bm, im, p_now, y, P)
+            Ab, AF, udd, fh, R = _accels(bm, im, p_now, y, P, A)
             free_b = bm == 0.0 and abs(AF) > thr
             free_i = kind == KIND_SLIDING and im == 0.0 and abs(fh) > q
             if free_b or free_i:
@@ -846,7 +947,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                         events += 1
                 else:
                     # a yielding bilinear bearing unloads unless x' only touches zero
-                    Ab, As, AF, udd, fh, R = _accels(bm, im, accel_at(code, params, tau), y, P)
+                    Ab, AF, udd, fh, R = _accels(bm, im, accel_at(code, params, tau), y, P, A)
                     if im * (Ab - accel_at(code, params, tau)) > 0.0:
                         i_just = True
                     else:

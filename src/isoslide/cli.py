@@ -49,6 +49,11 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_USAGE, f"isoslide: error: {message}\n")
 
 
+def _floor(text: str):
+    """``--floor``: a named floor or a floor's number (checked against ``--storeys`` by the scene)."""
+    return int(text) if text.strip().lstrip("+-").isdigit() else text
+
+
 def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--pulse", default=None, choices=PULSE_NAMES,
                    help="pulse shape (default ricker; not with --record)")
@@ -61,9 +66,13 @@ def _common(p: argparse.ArgumentParser) -> None:
                    help="write the time history (ground, floor, block) to FILE: .csv, .h5 or .hdf5")
     p.add_argument("--plot", metavar="FILE",
                    help="plot accelerations and sliding (stick/slip shaded) to FILE: .png, .pdf or .svg")
-    p.add_argument("--floor", choices=FLOORS, default=FLOORS[0],
-                   help="floor carrying the contents: the isolated slab or the superstructure's roof "
-                        f"(default {FLOORS[0]}; the same floor with a rigid superstructure)")
+    p.add_argument("--floor", type=_floor, default=FLOORS[0],
+                   help=f"floor carrying the contents: {FLOORS[0]} (the isolated slab, 0), {FLOORS[1]} (the "
+                        "superstructure's top floor) or a floor's number 0 .. storeys "
+                        f"(default {FLOORS[0]}; the slab's with a rigid superstructure)")
+    p.add_argument("--storeys", type=int, default=1,
+                   help="floors of a uniform flexible superstructure (default 1); its fixed-base "
+                        "fundamental period is T_s, its damping ratio xi_s in every mode")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
 
 
@@ -140,7 +149,8 @@ def _scene(args):
     excitation = rec if rec is not None else (args.pulse or "ricker")
     info = None if rec is None else {"record": _record_dict(rec)}
     if args.command == "solve":
-        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=excitation, floor=args.floor)
+        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=excitation, floor=args.floor,
+                      storeys=args.storeys)
         if rec is not None:
             info["fitted_pulse"] = _fit_dict(rec.fit())
         return scene, info
@@ -167,7 +177,7 @@ def _scene(args):
         raise ValueError("the following arguments are required: --T-b (or --R and --mu-b for a friction pendulum)")
     scene = Scene.from_physical(a_p, T_p, args.M_b, T_b, args.xi_b, args.m_ec, args.mu_s, args.mu_k,
                                 args.beta, args.gamma, args.g, excitation, Q_d=Q_d, D_y=D_y, m_st=args.m_st,
-                                T_s=args.T_s, xi_s=args.xi_s, floor=args.floor)
+                                T_s=args.T_s, xi_s=args.xi_s, floor=args.floor, storeys=args.storeys)
     return scene, info
 
 
@@ -185,7 +195,7 @@ def _solve(args) -> int:
     sol = solve(scene, rtol=args.rtol, history=want_history)
     out = {"pi1": sol.pi1, "pi1_residual": sol.pi1_residual, "tau_peak": sol.tau_peak,
            "settled": sol.settled, "model": sol.model, "n_steps": sol.n_steps, "n_events": sol.n_events,
-           "scene": {**scene.pis(), "floor": scene.floor, "pulse": scene.pulse.name}}
+           "scene": {**scene.pis(), "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name}}
     if scene.scale is not None:
         out.update({"u_max_m": sol.u_max, "u_residual_m": sol.u_residual, "t_peak_s": sol.t_peak})
         out["scene"].update({"a_p": scene.scale.a_p, "T_p": scene.scale.T_p} if info else {})

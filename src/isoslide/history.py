@@ -25,7 +25,8 @@ class History:
         0 while stuck, +1 / -1 while sliding in the positive / negative direction.
     xs, xsd : ndarray or None
         Superstructure displacement relative to the slab (``a_p T_p^2``) and velocity
-        (``a_p T_p``); ``None`` for the paper's model (rigid superstructure).
+        (``a_p T_p``); ``None`` for the paper's model (rigid superstructure).  One column per
+        floor, bottom to top (shape ``(rows, storeys)``), for more than one storey.
     fh : ndarray or None
         Hysteretic isolator force over ``M_b a_p`` (bilinear bearing: its elastic-plastic
         part; sliding bearing: the friction force, or the force holding it while stuck);

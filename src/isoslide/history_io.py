@@ -150,17 +150,21 @@ def _building_floor(h: History, scene: Scene, model: str, ground: np.ndarray) ->
     """Floor acceleration (units of a_p), displacement and velocity of a general building's contents."""
     P = building.parameters(scene, pi8=0.0 if "one-way" in model else None, coulomb="coulomb" in model)
     n = h.tau.size
-    y = np.zeros(bk.NY)
+    nfl = int(P[bk.P_N])
+    y = np.zeros(bk.state_size(nfl))
+    floors = np.empty(nfl)
     acc = np.empty(n)
-    xs = h.xs if h.xs is not None else np.zeros(n)
-    xsd = h.xsd if h.xsd is not None else np.zeros(n)
+    xs = np.zeros((n, nfl)) if h.xs is None else np.asarray(h.xs).reshape(n, -1)
+    xsd = np.zeros((n, nfl)) if h.xsd is None else np.asarray(h.xsd).reshape(n, -1)
     fh = h.fh if h.fh is not None else np.zeros(n)
     iso = h.iso_phase if h.iso_phase is not None else np.zeros(n, dtype=np.int8)
     for i in range(n):
-        y[:] = (h.x[i], h.xd[i], xs[i], xsd[i], h.u[i], h.ud[i], fh[i])
-        acc[i] = bk._accels(float(h.phase[i]), float(iso[i]), ground[i], y, P)[2]
-    roof = scene.flexible and scene.floor == "roof"
-    return acc, h.x + xs if roof else h.x, h.xd + xsd if roof else h.xd
+        y[:] = (h.x[i], h.xd[i], *xs[i], *xsd[i], h.u[i], h.ud[i], fh[i])
+        acc[i] = bk._accels(float(h.phase[i]), float(iso[i]), ground[i], y, P, floors)[1]
+    k = scene.floor_index if scene.flexible else 0
+    if k == 0:
+        return acc, h.x, h.xd
+    return acc, h.x + xs[:, k - 1], h.xd + xsd[:, k - 1]
 
 
 def history_table(solution, scene: Scene) -> HistoryTable:

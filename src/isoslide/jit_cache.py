@@ -37,8 +37,10 @@ from .atomic import atomic_path
 
 SHIPPED_DIR = Path(__file__).resolve().parent / "data" / "kernel_cache"
 ENV_SWITCH = "ISOSLIDE_SHIPPED_KERNELS"
-# the modules whose numba functions are cached (cache=True), in compile order
-KERNEL_MODULES = ("pulses", "kernel", "piecewise", "building_kernel")
+# the source files whose numba functions are cached (cache=True), by numba's file stem, in compile order
+KERNEL_SOURCES = {"pulses": "pulses.py", "kernel": "kernel.py", "piecewise": "piecewise.py",
+                  "friction": "model/friction.py", "building_kernel": "building_kernel.py"}
+KERNEL_MODULES = tuple(KERNEL_SOURCES)
 
 
 def enabled() -> bool:
@@ -135,7 +137,7 @@ def status(shipped_dir: Path = SHIPPED_DIR) -> list[dict]:
         module = index.name.split(".", 1)[0]
         version, stamp, overloads = read_index(index)
         if module not in sources:
-            sources[module] = hashlib.sha256((here / f"{module}.py").read_bytes()).digest()
+            sources[module] = hashlib.sha256((here / KERNEL_SOURCES[module]).read_bytes()).digest()
         rows.append({"index": index.name, "module": module, "entries": len(overloads),
                      "source": stamp == sources[module], "numba": version == numba.__version__,
                      "cpu": sum(1 for key in overloads if key[1] == magic)})

@@ -42,7 +42,11 @@ PI_RANGES = {g.name: (g.lo, g.hi, g.lo_in, g.hi_in) for g in INPUTS}
 """Valid range of each input group: (low, high, low inclusive, high inclusive), from the registry."""
 
 FLOORS = ("base", "roof")
-"""Floors the contents can sit on: the isolated slab, or the superstructure's mass."""
+"""Named floors the contents can sit on: the isolated slab (floor ``0``), or the superstructure's top
+floor (floor ``storeys``); the floors between are given by their number."""
+
+MAX_STOREYS = 64
+"""Most storeys a superstructure may have."""
 
 ISOLATORS = ("linear", "bilinear", "sliding")
 """Isolator kinds (:attr:`Scene.isolator`): the paper's linear spring-dashpot (``Pi9 = 0``), a
@@ -110,9 +114,24 @@ class Scene:
         ``T_s / T_p``, superstructure period over pulse period; 0 is a rigid superstructure.
     pi13 : float, default 0
         ``xi_s``, superstructure damping ratio.
-    floor : {"base", "roof"}, default "base"
-        Floor carrying the contents: the isolated slab or the superstructure's mass (the same
-        floor when the superstructure is rigid).
+    floor : {"base", "roof"} or int, default "base"
+        Floor carrying the contents: ``"base"`` (or ``0``) the isolated slab, ``"roof"`` (or
+        ``storeys``) the top floor, an integer ``1 .. storeys - 1`` a floor between (every floor is
+        the slab's when the superstructure is rigid).  Stored as ``"base"``, ``"roof"`` or the
+        floor's number in between.
+    storeys : int, default 1
+        Number of floors of the superstructure above the slab (``1 <= storeys <= 64``); read only
+        with a flexible superstructure (``Pi12 > 0``).  A uniform shear building: each floor of mass
+        ``Pi11 M_b / storeys``, equal storey stiffnesses chosen so that the fixed-base fundamental
+        period (slab held) is ``T_s``, classical damping with ratio ``Pi13`` in every fixed-base
+        mode.  ``storeys = 1`` is a single superstructure mass.
+    floor_masses : tuple of float or None
+        Non-uniform building: the floors' shares of the superstructure's mass, bottom to top
+        (``storeys`` positive values, normalised to sum 1); ``None`` is uniform.
+    storey_stiffnesses : tuple of float or None
+        Non-uniform building: the storeys' relative stiffnesses, bottom to top (``storeys``
+        positive values, normalised to 1 for the bottom storey; their scale is set by ``T_s``);
+        ``None`` is uniform.
     scale : PhysicalScale or None
         Set by :meth:`from_physical`, so results can be given in metres.
 
@@ -133,7 +152,10 @@ class Scene:
     pi11: float = _DEFAULTS["pi11"]
     pi12: float = _DEFAULTS["pi12"]
     pi13: float = _DEFAULTS["pi13"]
-    floor: str = FLOORS[0]
+    floor: str | int = FLOORS[0]
+    storeys: int = 1
+    floor_masses: tuple | None = None
+    storey_stiffnesses: tuple | None = None
     scale: PhysicalScale | None = field(default=None, compare=False)
 
     def __post_init__(self):
@@ -142,14 +164,22 @@ class Scene:
         if self.pi12 > 0.0 and not 0.0 < self.pi11 < 1.0:
             raise ValueError(f"pi11 = {self.pi11!r} is out of range with a flexible superstructure "
                              f"(pi12 = {self.pi12!r} > 0); allowed range: 0 < value < 1")
-        if self.floor not in FLOORS:
-            raise ValueError(f"floor = {self.floor!r} is invalid; allowed: {', '.join(map(repr, FLOORS))}")
+        object.__setattr__(self, "storeys", _check_storeys(self.storeys))
+        object.__setattr__(self, "floor", _canonical_floor(self.floor, self.storeys))
+        for name in ("floor_masses", "storey_stiffnesses"):
+            object.__setattr__(self, name, _check_shape(name, getattr(self, name), self.storeys))
+        if self.floor_masses is not None:
+            total = math.fsum(self.floor_masses)
+            object.__setattr__(self, "floor_masses", tuple(m / total for m in self.floor_masses))
+        if self.storey_stiffnesses is not None:
+            k0 = self.storey_stiffnesses[0]
+            object.__setattr__(self, "storey_stiffnesses", tuple(k / k0 for k in self.storey_stiffnesses))
         object.__setattr__(self, "pulse", _resolve_pulse(self.pulse))
 
     @classmethod
     def from_physical(cls, a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0,
                       g=G_STANDARD, pulse="ricker", Q_d=0.0, D_y=0.0, m_st=0.0, T_s=0.0, xi_s=0.0,
-                      floor="base") -> "Scene":
+                      floor="base", storeys=1, floor_masses=None, storey_stiffnesses=None) -> "Scene":
         """Build a scene from physical parameters in SI units.
 
         Parameters
@@ -188,8 +218,16 @@ class Scene:
             Superstructure period on a fixed slab ``2 pi sqrt(m_st/k_s)``, s (0 = rigid).
         xi_s : float
             Superstructure damping ratio ``c_s / (2 sqrt(k_s m_st))``.
-        floor : {"base", "roof"}
-            Floor carrying the contents.
+        floor : {"base", "roof"} or int
+            Floor carrying the contents (``0 .. storeys``, see :class:`Scene`).
+        storeys : int
+            Floors of a uniform superstructure of mass ``m_st`` and fixed-base fundamental period
+            ``T_s`` (see :class:`Scene`).
+        floor_masses, storey_stiffnesses : sequence of float, optional
+            A non-uniform superstructure, given together: the floors' masses (kg) and the storeys'
+            stiffnesses (N/m), bottom to top.  Then ``storeys`` is their length, ``m_st`` their
+            total mass and ``T_s`` their fixed-base fundamental period (leave ``m_st`` and ``T_s``
+            at 0, or give the same values).
         """
         a_p = check_range("a_p", a_p, 0.0, math.inf, False, False)
         T_p = check_range("T_p", T_p, 0.0, math.inf, False, False)
@@ -206,13 +244,21 @@ class Scene:
         D_y = check_range("D_y", D_y, 0.0, math.inf, True, False)
         T_s = check_range("T_s", T_s, 0.0, math.inf, True, False)
         xi_s = check_range("xi_s", xi_s, 0.0, math.inf, True, False)
+        if (floor_masses is None) != (storey_stiffnesses is None):
+            raise ValueError("floor_masses and storey_stiffnesses are given together; allowed: both or neither")
+        if floor_masses is not None:
+            storeys = len(floor_masses)
+            floor_masses = _check_shape("floor_masses", floor_masses, storeys)
+            storey_stiffnesses = _check_shape("storey_stiffnesses", storey_stiffnesses, storeys)
+            m_st, T_s = _derived_superstructure(m_st, T_s, floor_masses, storey_stiffnesses)
         m_st = check_range("m_st", m_st, 0.0, M_b, T_s == 0.0, False)
         return cls(
             pi2=mu_k * g / a_p, pi3=T_b / T_p, pi4=xi_b, pi5=mu_k / mu_s,
             pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b,
             pulse=_resolve_pulse(pulse, a_p=a_p, T_p=T_p),
             pi9=Q_d / (M_b * a_p), pi10=D_y / (a_p * T_p**2), pi11=m_st / M_b, pi12=T_s / T_p,
-            pi13=xi_s, floor=floor, scale=PhysicalScale(a_p, T_p, M_b, g),
+            pi13=xi_s, floor=floor, storeys=storeys, floor_masses=floor_masses,
+            storey_stiffnesses=storey_stiffnesses, scale=PhysicalScale(a_p, T_p, M_b, g),
         )
 
     @property
@@ -247,6 +293,16 @@ class Scene:
         return self.pi12 > 0.0
 
     @property
+    def floor_index(self) -> int:
+        """Number of the contents' floor: 0 the slab, ``storeys`` the roof."""
+        return {"base": 0, "roof": self.storeys}.get(self.floor, self.floor)
+
+    @property
+    def uniform(self) -> bool:
+        """True for a uniform superstructure (equal floor masses and storey stiffnesses)."""
+        return self.floor_masses is None and self.storey_stiffnesses is None
+
+    @property
     def paper_model(self) -> bool:
         """True when the scene is the paper's model (Fig. 1-b).
 
@@ -258,6 +314,51 @@ class Scene:
     def pis(self) -> dict:
         """The input groups as a dict ``{"pi2": ..., ..., "pi13": ...}``."""
         return {k: getattr(self, k) for k in INPUT_NAMES}
+
+
+def _check_storeys(storeys) -> int:
+    """``storeys`` as an int in ``1 .. MAX_STOREYS``, or a ValueError naming it."""
+    ok = not isinstance(storeys, bool) and isinstance(storeys, (int, float)) and float(storeys).is_integer() \
+        and 1 <= storeys <= MAX_STOREYS
+    if not ok:
+        raise ValueError(f"storeys = {storeys!r} is out of range; allowed: an integer, 1 <= value <= {MAX_STOREYS}")
+    return int(storeys)
+
+
+def _canonical_floor(floor, storeys: int):
+    """``"base"`` for floor 0, ``"roof"`` for floor ``storeys``, the number of a floor between."""
+    if isinstance(floor, str):
+        if floor in FLOORS:
+            return floor
+    elif not isinstance(floor, bool) and isinstance(floor, (int, float)) and float(floor).is_integer() \
+            and 0 <= floor <= storeys:
+        k = int(floor)
+        return FLOORS[0] if k == 0 else (FLOORS[1] if k == storeys else k)
+    raise ValueError(f"floor = {floor!r} is invalid; allowed: {', '.join(map(repr, FLOORS))} or an integer, "
+                     f"0 <= value <= {storeys} (storeys = {storeys})")
+
+
+def _derived_superstructure(m_st, T_s, masses: tuple, stiffnesses: tuple) -> tuple:
+    """``(m_st, T_s)`` of a superstructure given floor by floor; given values must agree to 1e-9."""
+    from .model.shear_building import fundamental_period
+
+    derived = {"m_st": math.fsum(masses), "T_s": float(fundamental_period(masses, stiffnesses))}
+    for name, given in (("m_st", m_st), ("T_s", T_s)):
+        given = check_range(name, given, 0.0, math.inf, True, False)
+        if given != 0.0 and abs(given - derived[name]) > 1e-9 * derived[name]:
+            raise ValueError(f"{name} = {given!r} disagrees with the floors given ({derived[name]!r}); "
+                             f"allowed: 0 or {derived[name]!r}")
+    return derived["m_st"], derived["T_s"]
+
+
+def _check_shape(name: str, values, storeys: int):
+    """A tuple of ``storeys`` positive finite floats (or ``None``), or a ValueError naming ``name``."""
+    if values is None:
+        return None
+    values = tuple(values)
+    if len(values) != storeys:
+        raise ValueError(f"{name} has {len(values)} values; allowed: one per storey (storeys = {storeys})")
+    return tuple(check_range(f"{name}[{i}]", v, 0.0, math.inf, False, False) for i, v in enumerate(values))
 
 
 def friction_pendulum(R, mu, M_b, g=G_STANDARD) -> dict:

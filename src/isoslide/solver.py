@@ -523,7 +523,7 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     isolator = "fixed-base" if scene.pi3 == 0.0 else {"sliding": "sliding-bearing"}.get(scene.isolator,
                                                                                            scene.isolator)
     law = "coulomb" if coulomb else "stribeck"
-    label = building_label(isolator, scene.flexible, scene.floor == "roof",
+    label = building_label(isolator, scene.flexible, scene.floor_index > 0,
                            ints[building_kernel.R_SLIPPED] == 0, law, pi8 == 0.0)
     sol = _solution(scene, ints, floats, label)
     if history:
@@ -533,13 +533,18 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
 
 def _building_history(h: np.ndarray, scene: Scene) -> History:
     """The general kernel's history rows as a :class:`History` (building states included)."""
-    bk = building_kernel
-    return History(tau=h[:, bk.H_TAU].copy(), x=h[:, bk.H_X].copy(), xd=h[:, bk.H_XD].copy(),
-                   u=h[:, bk.H_U].copy(), ud=h[:, bk.H_UD].copy(), phase=h[:, bk.H_PHASE].astype(np.int8),
-                   xs=h[:, bk.H_XS].copy() if scene.flexible else None,
-                   xsd=h[:, bk.H_XSD].copy() if scene.flexible else None,
-                   fh=h[:, bk.H_FH].copy() if scene.pi9 > 0.0 else None,
-                   iso_phase=h[:, bk.H_IPHASE].astype(np.int8) if scene.pi9 > 0.0 else None)
+    n = scene.storeys if scene.flexible else 1
+    c = building_kernel.history_columns(n)
+
+    def part(name):
+        return h[:, c[name]:c[name] + n].copy() if n > 1 else h[:, c[name]].copy()
+
+    return History(tau=h[:, c["tau"]].copy(), x=h[:, c["x"]].copy(), xd=h[:, c["xd"]].copy(),
+                   u=h[:, c["u"]].copy(), ud=h[:, c["ud"]].copy(), phase=h[:, c["phase"]].astype(np.int8),
+                   xs=part("xs") if scene.flexible else None,
+                   xsd=part("xsd") if scene.flexible else None,
+                   fh=h[:, c["fh"]].copy() if scene.pi9 > 0.0 else None,
+                   iso_phase=h[:, c["iso_phase"]].astype(np.int8) if scene.pi9 > 0.0 else None)
 
 
 def _solution(scene, ints, floats, label, hist=None) -> Solution:
