@@ -43,33 +43,17 @@ wildcard_constraints:
     frag="|".join(FRAGILITY_DATASETS),
 
 
-include: "workflow/rules/sweep.smk"
-include: "workflow/rules/similarity.smk"
-include: "workflow/rules/figures.smk"
-include: "workflow/rules/records.smk"
-include: "workflow/rules/accuracy.smk"
-include: "workflow/rules/fragility.smk"
-include: "workflow/rules/isolation.smk"
-include: "workflow/rules/reports.smk"
+# Each study's rules (the study registry, isoslide.studies.registry, lists their files; the
+# reports' come last).
+for _rule_file in registry.rule_files():
+
+    include: f"workflow/rules/{_rule_file}"
 
 
+# Every study's datasets, figures and further files, every report and the index page (registry).
 rule all:
     input:
-        DATASETS,
-        "results/datasets/similarity.nc",
-        FIGURE_FILES,
-        "results/datasets/fig4_record.nc",
-        "results/datasets/records.nc",
-        RECORD_FIGURE_FILES,
-        "results/datasets/accuracy.nc",
-        "results/timings/accuracy_timings.nc",
-        expand("results/datasets/{frag}.nc", frag=FRAGILITY_DATASETS),
-        "results/fragility/pelicun_damage_db.csv",
-        FRAGILITY_FIGURE_FILES,
-        expand("results/datasets/{name}.nc", name=ISOLATION_DATASETS),
-        ISOLATION_FIGURE_FILES,
-        expand("reports/{report}.html", report=REPORTS),
-        "reports/index.html",
+        ALL_TARGETS,
     default_target: True
     threads: 1
     resources:

@@ -29,6 +29,7 @@ import isoslide
 import isoslide.config
 import isoslide.sweep
 from isoslide import datasets, provenance
+from isoslide.studies import imports, registry
 
 ROOT = Path(__file__).resolve().parents[1]
 TEST_CONFIG = ["--configfile", "config/test.yaml"]
@@ -124,8 +125,12 @@ with SnakemakeApi(OutputSettings()) as api:
             "code": code,
             "log": dict(rule.log.items()) | {str(i): str(f) for i, f in enumerate(rule.log)},
         }
+    index = {k: v for k, v in g["INDEX"].items() if k != "config"}
     print("DESCRIPTION " + json.dumps({"rules": rules, "code_modules": g["CODE_MODULES"], "code": g["CODE"],
-                                        "reports": g["REPORTS"]}))
+                                        "reports": g["REPORTS"], "config": g["config"],
+                                        "all": [str(f) for f in wf.get_rule("all").input],
+                                        "index_input": [str(f) for f in wf.get_rule("index_page").input],
+                                        "index": index}))
 """
 
 
@@ -299,6 +304,118 @@ def test_solver_jobs_do_not_depend_on_the_records_modules(described):
     assert solve and not solve & records
     assert described["rules"]["solve_chunk"]["code"] == described["code"]["solve"]
     assert described["rules"]["solve_chunk"]["code"] != described["code"]["records"]
+
+
+# ----------------------------------------------------------------------------------------------
+# the study registry: rule all, reports, index page, SLURM groups and code families derived from it
+# ----------------------------------------------------------------------------------------------
+
+def test_rule_all_reports_and_index_are_the_registry_s(described):
+    config = described["config"]
+    assert described["all"] == registry.all_targets(config)
+    assert described["reports"] == registry.reports(config)
+    lists = registry.index_lists(config)
+    assert described["index"]["datasets"] == lists["datasets"]
+    assert described["index"]["figures"] == lists["figures"] and described["index"]["reports"] == lists["reports"]
+    # every study's datasets, figures (every format) and reports are targets; nothing else but the index page
+    expected = set()
+    for study in registry.STUDIES:
+        expected |= set(study.dataset_files(config).values())
+        expected |= {f"reports/figures/{f}.{ext}" for f in study.figures for ext in config["figures"]["formats"]}
+        expected |= set(study.outputs if not callable(study.outputs) else study.outputs(config))
+        expected |= {f"reports/{r.name}.html" for r in study.reports}
+    assert set(described["all"]) == expected | {"reports/index.html"}
+    assert {"results/datasets/storeys.nc", "reports/figures/storeys.pdf"} <= set(described["all"])
+    # the index page's job reads every dataset, figure and report it lists
+    assert set(lists["datasets"].values()) | set(lists["figures"]) | set(lists["reports"]) <= set(
+        described["index_input"])
+
+
+def test_every_rule_file_is_included_and_every_rule_belongs_to_a_study(described):
+    files = registry.rule_files()
+    assert sorted(files) == sorted(p.name for p in (ROOT / "workflow" / "rules").glob("*.smk") if p.name != "common.smk")
+    assert files[-1] == "reports.smk"
+    sources = _rule_sources()
+    assert set(registry.slurm_groups()) <= set(sources) == set(described["rules"])
+
+
+def test_slurm_profile_groups_are_the_registry_s():
+    profile = yaml.safe_load((ROOT / "profiles" / "slurm" / "config.yaml").read_text())
+    groups = registry.slurm_groups()
+    assert profile["groups"] == groups
+    assert set(groups.values()) == set(profile["group-components"])
+    assert {"storeys_dataset": "merge", "storeys_figure": "figures", "report": "reports"}.items() <= groups.items()
+    proc = subprocess.run([sys.executable, "-m", "isoslide.studies", "--check", "profiles/slurm/config.yaml"],
+                          cwd=ROOT, capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+
+
+def test_slurm_groups_block_is_rewritten_from_the_registry(tmp_path):
+    from isoslide.studies.__main__ import main
+
+    profile = tmp_path / "config.yaml"
+    text = (ROOT / "profiles" / "slurm" / "config.yaml").read_text()
+    profile.write_text(text.replace("  storeys_figure: figures\n", "  storeys_figure: solve\n"))
+    assert main(["--check", str(profile)]) == 1
+    assert main(["--write", str(profile)]) == 0
+    assert profile.read_text() == text
+    assert main(["--check", str(profile)]) == 0
+
+
+def test_code_families_are_the_import_closure_of_their_entry_modules(described):
+    """Each family's modules, as the workflow hashes them, are the files the family's entry modules
+    import (this file's own ast walk, not the registry's): a module missing from a family, or one too
+    many, fails here."""
+    families = registry.code_families()
+    assert set(families) == set(described["code_modules"])
+    for family, entries in families.items():
+        closure = _import_closure("\n".join(f"import isoslide.{e}" for e in entries))
+        assert _files(described["code_modules"][family]) == closure, family
+    assert described["code"]["storeys"] != described["code"]["solve"]
+    assert "studies.storeys" in described["code_modules"]["storeys"]
+    assert "studies.storeys" in described["code_modules"]["isolation_report"]
+
+
+def test_import_statements_are_read_as_a_full_parse_reads_them():
+    """The workflow's quick reading of import statements finds, in every module of the package, the
+    imports a full parse finds."""
+    for path in sorted(PKG.rglob("*.py")):
+        if "__pycache__" in path.parts:
+            continue
+        name = path.relative_to(PKG).with_suffix("").as_posix().replace("/", ".").removesuffix(".__init__")
+        if name == "__init__":
+            continue
+        source = path.read_text()
+        assert imports.imported_modules(source, name) == _isoslide_imports(source, name), name
+
+
+def test_a_study_added_to_the_registry_is_planned_listed_and_grouped(tmp_path):
+    """One more Study (and its rule file) is all it takes: rule all asks for its dataset and figure,
+    the index page lists them, and it has its SLURM group."""
+    d = copy_workflow(tmp_path / "added")
+    (d / "workflow" / "rules" / "extra.smk").write_text(
+        'rule extra_dataset:\n    output:\n        "results/datasets/extra.nc",\n'
+        '        expand("reports/figures/extra.{ext}", ext=FORMATS),\n'
+        '    threads: 1\n    resources:\n        mem_mb=100,\n        runtime=1,\n'
+        '    shell:\n        "touch {output}"\n')
+    script = (
+        "import dataclasses, runpy, sys\n"
+        "from isoslide.studies import registry\n"
+        "registry.STUDIES = registry.STUDIES + (registry.Study(name='extra', sections=(), datasets=('extra',),"
+        " figures=('extra',), rule_files=('extra.smk',), groups={'extra_dataset': 'merge'}),)\n"
+        "print('GROUPS', registry.slurm_groups())\n"
+        "sys.argv = ['snakemake', '-n', '--configfile', 'config/test.yaml']\n"
+        "runpy.run_module('snakemake', run_name='__main__')\n")
+    proc = subprocess.run([sys.executable, "-c", script], cwd=d, capture_output=True, text=True, timeout=300, env=ENV)
+    out = proc.stdout + proc.stderr
+    assert proc.returncode == 0, out[-4000:]
+    assert "'extra_dataset': 'merge'" in out
+    jobs = planned_jobs(out)
+    assert ("extra_dataset", "") in jobs
+    block = [b for b in _job_blocks(out) if re.search(r"^\s*rule all:", b, re.M)][0]
+    assert "results/datasets/extra.nc" in block and "reports/figures/extra.pdf" in block
+    index = [b for b in _job_blocks(out) if re.search(r"^\s*rule index_page:", b, re.M)][0]
+    assert "results/datasets/extra.nc" in index and "reports/figures/extra.png" in index
 
 
 # ----------------------------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 # Helpers shared by the rules: the checked study specifications, the file lists, the code each
-# family of rules runs and the table of reports.  Everything here is computed from the config;
-# nothing runs the solver.
+# family of rules runs and the table of reports.  Everything here is computed from the config and
+# the study registry (isoslide.studies.registry: rule files, `rule all`, reports, index page, code
+# families, SLURM groups); nothing runs the solver.
 
 import os
 import shlex
@@ -9,11 +10,11 @@ import sys
 from snakemake.exceptions import WorkflowError
 
 import isoslide.fragility_study as fragility_study
-import isoslide.isolation_plot as isolation_plot
 import isoslide.isolation_study as isolation_study
 import isoslide.similarity as similarity
 import isoslide.sweep as sweep
 from isoslide.provenance import code_hash
+from isoslide.studies import registry
 
 # Semantic checks beyond the JSON schema (Pi ranges, pulse names, key consistency); a bad value
 # stops the workflow here, before any job runs, with its key path in the message.
@@ -35,59 +36,12 @@ SIMILARITY_SETTINGS = sweep.jsonable(config["similarity"])
 BUCKINGHAM_SETTINGS = {k: SIMILARITY_SETTINGS[k] for k in similarity.BUCKINGHAM_KEYS}
 FIGURE_SETTINGS = sweep.jsonable(config["figures"])
 
-# The isoslide modules behind each family of rules: every module the family's scripts (or report
-# notebooks) import, directly or through other isoslide modules ("peers" and "records" stand for
-# every file of those subpackages).  Their hash is a rule parameter, so editing one of them reruns
-# exactly the jobs that run it (Snakemake's `code` trigger only sees the script itself).  A name
-# that no longer exists stops the workflow; tests/test_workflow.py checks that every list is the
-# import closure of its scripts.
-CODE_MODULES = {
-    # solve_chunk, merge_isolation_study (isoslide.sweep; solve(method=...) reaches the peer solvers)
-    "solve": ["atomic", "budget", "building", "building_kernel", "config", "datasets", "dop853", "groups",
-              "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses",
-              "scene", "solver", "sweep", "validation"],
-    # similarity (isoslide.similarity, SI-unit peer of isoslide.peers)
-    "similarity": ["atomic", "budget", "claims", "datasets", "groups", "history", "jit_cache", "models", "peers",
-                   "provenance", "pulses", "scene", "similarity", "validation"],
-    # the similarity report (the claims and the groups' symbols; it only reads datasets)
-    "similarity_report": ["claims", "groups", "validation"],
-    # fig4_record, record_compare, records_dataset; the records report (isoslide.record_study)
-    "records": ["atomic", "budget", "building", "building_kernel", "datasets", "dop853", "groups", "history",
-                "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance", "pulses",
-                "record_study", "records", "scene", "solver", "validation"],
-    # figure, figure_records (isoslide.figures)
-    "figures": ["atomic", "budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups",
-                "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress", "provenance",
-                "pulses", "record_study", "records", "scene", "solver", "validation"],
-    # accuracy_part, accuracy_dataset; the accuracy report (isoslide.accuracy)
-    "accuracy": ["accuracy", "atomic", "budget", "building", "building_kernel", "config", "datasets", "dop853",
-                 "groups", "history", "jit_cache", "kernel", "models", "peers", "piecewise", "progress",
-                 "provenance", "pulses", "scene", "solver", "sweep", "validation"],
-    # index_page (isoslide.index_page)
-    "index": ["budget", "index_page", "provenance"],
-    # fragility_chunk, fragility_dataset (isoslide.fragility_study)
-    "fragility": ["atomic", "budget", "building", "building_kernel", "datasets", "dop853", "fragility",
-                  "fragility_study", "groups", "history", "history_io", "intensity", "jit_cache", "kernel",
-                  "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study", "records",
-                  "scene", "solver", "validation"],
-    # fragility_figure; the fragility report (isoslide.fragility_plot, datasets.open_dataset)
-    "fragility_plot": ["atomic", "budget", "datasets", "fragility", "fragility_plot", "groups", "models",
-                       "provenance", "validation"],
-    # fragility_pelicun (isoslide.pelicun_export)
-    "pelicun": ["atomic", "budget", "datasets", "groups", "models", "pelicun_export", "provenance", "validation"],
-    # isolation_rigid, isolation_design; the isolation report (isoslide.isolation_study)
-    "isolation": ["atomic", "budget", "building", "building_kernel", "config", "datasets", "design", "dop853",
-                  "groups", "history", "history_io", "intensity", "isolation_study", "jit_cache", "kernel",
-                  "models", "peers", "piecewise", "progress", "provenance", "pulses", "record_study", "records",
-                  "scene", "solver", "sweep", "validation"],
-    # isolation_figure (isoslide.isolation_plot)
-    "isolation_plot": ["atomic", "budget", "building", "building_kernel", "datasets", "dop853", "figures", "groups",
-                       "history", "isolation_plot", "jit_cache", "kernel", "models", "peers", "piecewise",
-                       "progress", "provenance", "pulses", "record_study", "records", "scene", "solver",
-                       "validation"],
-}
-# merge_study: a paper study solved or merged (solve), then its Buckingham check (similarity)
-CODE_MODULES["study"] = sorted(set(CODE_MODULES["solve"]) | set(CODE_MODULES["similarity"]))
+# The isoslide modules behind each family of rules: the import closure of the entry modules each
+# study declares for the family (its scripts' or notebook's imports; isoslide.studies.registry),
+# computed from the sources.  Their hash is a rule parameter, so editing one of them reruns exactly
+# the jobs that run it (Snakemake's `code` trigger only sees the script itself); tests/test_workflow.py
+# checks each family against the imports of the scripts and notebooks that use it.
+CODE_MODULES = registry.code_modules()
 CODE = {family: code_hash(include=modules) for family, modules in CODE_MODULES.items()}
 
 # Real records against their fitted pulses (workflow/rules/records.smk).
@@ -122,7 +76,7 @@ ISOLATION_DATASETS = ISOLATION_STUDIES + ["isolation_rigid", "isolation_design"]
 ISOLATION_RECORD_FILES = [r for r in ISOLATION_SETTINGS["isolation"]["design"]["records"]
                           if os.path.splitext(r)[1].lower() in (".at2", ".csv") and os.path.isfile(r)]
 ISOLATION_FIGURE_INPUT = {name: f"results/datasets/{name}.nc" for name in ISOLATION_DATASETS}
-ISOLATION_FIGURE_FILES = expand("reports/figures/{fig}.{ext}", fig=list(isolation_plot.FIGURES), ext=FORMATS)
+ISOLATION_FIGURE_FILES = expand("reports/figures/{fig}.{ext}", fig=list(registry.ISOLATION_FIGURES), ext=FORMATS)
 
 for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
     if _c["study"] not in SPECS:
@@ -132,64 +86,23 @@ for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
         )
 
 # HTML reports, made by the one `report` rule of workflow/rules/reports.smk from
-# workflow/notebooks/<report>.ipynb (papermill, then nbconvert).  Per report:
+# workflow/notebooks/<report>.ipynb (papermill, then nbconvert), joined from the studies' shares
+# (isoslide.studies.registry.Report).  Per report:
 #   data        input files handed to the notebook, each as the parameter of the same name;
 #   parameters  further notebook parameters (values);
 #   needs       further input files the notebook reads (e.g. the figures of a directory);
 #   code        the CODE_MODULES family of the isoslide modules the notebook imports (if any).
-REPORTS = {
-    "similarity": {
-        "data": {"similarity_path": "results/datasets/similarity.nc"},
-        "parameters": {"dataset_dir": "results/datasets"},
-        "needs": DATASETS,  # the master curves each complete-similarity verdict and conclusion judges
-        "code": "similarity_report",
-    },
-    "figures": {
-        "parameters": {"figure_dir": "reports/figures"},
-        "needs": expand("reports/figures/{fig}.png", fig=FIGURES + ["records"]),
-    },
-    "records": {
-        "data": {"records_path": "results/datasets/records.nc"},
-        "parameters": {"figure_dir": "reports/figures"},
-        "needs": ["reports/figures/records.png", "reports/figures/fig4.png"],
-        "code": "records",
-    },
-    "accuracy": {
-        "data": {"accuracy_path": "results/datasets/accuracy.nc",
-                 "timings_path": "results/timings/accuracy_timings.nc"},
-        "code": "accuracy",
-    },
-    "fragility": {
-        "data": {"fragility_path": "results/datasets/fragility.nc"},
-        # the fixed-base comparison when the config asks for it ("" otherwise)
-        "parameters": {"fixed_base_path": FRAGILITY_FIGURE_INPUT.get("fixed_base", "")},
-        "needs": list(FRAGILITY_FIGURE_INPUT.values()) + ["results/fragility/pelicun_damage_db.csv"],
-        "code": "fragility_plot",
-    },
-    "isolation": {
-        "data": {"fp_path": "results/datasets/iso_fp.nc", "lrb_path": "results/datasets/iso_lrb.nc",
-                 "flex_base_path": "results/datasets/iso_flex_base.nc",
-                 "flex_roof_path": "results/datasets/iso_flex_roof.nc",
-                 "rigid_path": "results/datasets/isolation_rigid.nc",
-                 "design_path": "results/datasets/isolation_design.nc"},
-        "parameters": {"figure_dir": "reports/figures"},
-        "needs": expand("reports/figures/{fig}.png", fig=list(isolation_plot.FIGURES)),
-        "code": "isolation",
-    },
-}
+REPORTS = registry.reports(config)
 
+# What `rule all` asks for: every study's datasets, figures and further files, every report and the
+# index page.
+ALL_TARGETS = registry.all_targets(config)
 
 # reports/index.html, made by index_page in workflow/rules/reports.smk.  It lists the datasets
 # (name to file), shows the figures (PNG; the PDF of the same name is linked), links the reports
-# and shows the complete configuration.
-INDEX = {
-    "datasets": {name: f"results/datasets/{name}.nc"
-                 for name in STUDIES + ["similarity", "fig4_record", "records", "accuracy"] + FRAGILITY_DATASETS
-                 + ISOLATION_DATASETS}
-                | {"accuracy_timings": "results/timings/accuracy_timings.nc"},
-    "figures": expand("reports/figures/{fig}.png",
-                      fig=FIGURES + ["records", "fragility"] + list(isolation_plot.FIGURES)),
-    "reports": expand("reports/{report}.html", report=REPORTS),
+# and shows the complete configuration; `needs` are the figures' other formats.
+INDEX = registry.index_lists(config) | {
+    "needs": registry.figure_files([f for s in registry.STUDIES for f in s.figures], FORMATS),
     "config": sweep.jsonable(config),
 }
 

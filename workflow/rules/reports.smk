@@ -50,7 +50,7 @@ rule index_page:
         datasets=list(INDEX["datasets"].values()),
         figures=INDEX["figures"],
         reports=INDEX["reports"],
-        needs=FIGURE_FILES + RECORD_FIGURE_FILES + FRAGILITY_FIGURE_FILES + ISOLATION_FIGURE_FILES,
+        needs=INDEX["needs"],
     output:
         "reports/index.html",
     params:
