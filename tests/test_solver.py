@@ -326,12 +326,50 @@ def test_a_run_out_of_steps_raises_instead_of_returning_a_truncated_answer(monke
         solve(sc)
 
 
+BUDGET_SCENES = [Scene(pi2=0.5, pi3=0.0), Scene(pi2=0.5, pi3=1e-3, pi4=0.0), Scene(pi2=0.2, pi3=1.0, pi4=0.1),
+                 Scene(pi2=0.5, pi3=100.0, pi4=0.0), Scene(pi2=0.1, pi3=2.0, pi4=0.05, pi9=0.05),
+                 Scene(pi2=0.1, pi3=2.0, pi4=0.05, pi9=0.05, pi10=0.005),
+                 Scene(pi2=0.1, pi3=2.0, pi4=0.05, pi11=0.6, pi12=0.2, pi13=0.02, floor="roof")]
+"""Fixed, stiff, paper, very soft bases and general buildings (sliding and bilinear bearings, a roof)."""
+
+
+@pytest.mark.parametrize("horizon", [0.0, 1.0, 200.0])
+def test_step_budget_is_never_below_the_kernels_minimum(horizon):
+    for sc in BUDGET_SCENES:
+        assert solver.step_budget(sc, horizon) >= kernel.MAX_STEPS, sc
+
+
 def test_step_budget_grows_with_the_isolation_periods_followed():
-    """A stiff base is followed for horizon / Pi3 periods; the budget allows each of them."""
-    stiff, soft = Scene(pi2=0.5, pi3=1e-3, pi4=0.0), Scene(pi2=0.5, pi3=2.0, pi4=0.0)
-    assert solver.step_budget(soft) == kernel.MAX_STEPS
-    periods = (solver.DEFAULT_HORIZON + stiff.pulse.tau_end - stiff.pulse.tau_start) / stiff.pi3
-    assert solver.step_budget(stiff) == int(solver.STEPS_PER_PERIOD * periods) > kernel.MAX_STEPS
+    """A stiffer base (smaller Pi3) or a longer horizon never lowers the budget, and a very stiff
+    base followed to the horizon gets more than the kernel's minimum."""
+    pi3s = np.geomspace(1e-4, 100.0, 40)
+    budgets = [solver.step_budget(Scene(pi2=0.5, pi3=p, pi4=0.0)) for p in pi3s]
+    assert (np.diff(budgets) <= 0).all()
+    assert budgets[0] > kernel.MAX_STEPS
+    for sc in BUDGET_SCENES:
+        by_horizon = [solver.step_budget(sc, h) for h in (0.0, 10.0, 200.0, 1e4)]
+        assert (np.diff(by_horizon) >= 0).all(), sc
+    stiff = Scene(pi2=0.5, pi3=1e-3, pi4=0.0)
+    assert solver.step_budget(stiff, 1e4) > solver.step_budget(stiff, 200.0) > kernel.MAX_STEPS
+
+
+def test_a_general_buildings_step_budget_covers_its_base():
+    """The building integrates the isolated base too: never less budget than the paper model of that base."""
+    for sc in BUDGET_SCENES:
+        base = Scene(pi2=sc.pi2, pi3=sc.pi3, pi4=sc.pi4)
+        assert solver.step_budget(sc) >= solver.step_budget(base), sc
+
+
+@pytest.mark.slow
+def test_step_budget_lets_a_long_stiff_undamped_scene_finish():
+    """An undamped stiff base rung by a rectangular pulse keeps the block slipping to the horizon:
+    over 5 million steps, more than the kernel's minimum budget, and the solve still finishes."""
+    sc = Scene(pi2=0.3, pi3=1.37e-3, pi4=0.0, pi8=0.0, pulse="rectangular")
+    horizon = 120.0
+    s = solve(sc, horizon=horizon)
+    assert not s.settled and s.tau_end == pytest.approx(sc.pulse.tau_end + horizon, rel=1e-12)
+    assert kernel.MAX_STEPS < s.n_steps <= solver.step_budget(sc, horizon)
+    assert s.n_events > 100_000 and math.isfinite(s.pi1) and s.pi1 > 0.0
 
 
 def test_bad_solver_options():
