@@ -189,14 +189,8 @@ def energy_bound(x: float, xdot: float, omega: float, zeta: float, m1: float) ->
 
     Parameters
     ----------
-    x, xdot : float
-        Base displacement (units ``a_p T_p**2``) and velocity (``a_p T_p``).
-    omega : float
-        ``2 pi / Pi3`` (rad per ``T_p``).
-    zeta : float
-        Isolation damping ratio ``Pi4``.
-    m1 : float
-        ``1 + Pi8``.
+    x, xdot, omega, zeta, m1 : float
+        The base's state and constants, as for :func:`stuck_supremum`.
 
     Returns
     -------

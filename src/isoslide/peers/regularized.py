@@ -123,8 +123,7 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
         Pass the analytic (piecewise) Jacobian to the integrator (default);
         False uses scipy's finite differences (about 2x the cost).
     max_work : int or None
-        Most right-hand-side evaluations (raises :class:`~isoslide.peers.result.WorkLimitError`);
-        None: unbounded.
+        Work cap, as for :func:`isoslide.peers.solve_reference`.
 
     Returns
     -------
