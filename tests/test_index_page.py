@@ -97,3 +97,46 @@ def test_human_size_and_flatten():
         human_size(-1)
     assert flatten({"b": {"c": [1, 2], "a": "x"}, "a": 1, "e": {}}) == \
         [("a", "1"), ("b.a", '"x"'), ("b.c", "[1, 2]"), ("e", "{}")]
+
+
+def test_a_study_added_to_the_registry_is_on_the_index_page(run, monkeypatch):
+    """The page's lists come from the study registry: one more Study puts its dataset, figure and
+    report on the page."""
+    import isoslide.config
+    from isoslide.studies import registry
+
+    config = isoslide.config.load()
+    extra = registry.Study(name="extra", sections=(), datasets=("fig5_pi3",), figures=("fig5",),
+                           reports=(registry.Report("similarity"),))
+    before = registry.index_lists(config)
+    assert "fig5_pi3" in before["datasets"]          # a paper study: it is the paper's, not a new one
+    lists = registry.index_lists(config, [extra])
+    assert lists == {"datasets": {"fig5_pi3": "results/datasets/fig5_pi3.nc"},
+                     "figures": ["reports/figures/fig5.png"], "reports": ["reports/similarity.html"]}
+    with pytest.raises(ValueError, match="dataset 'fig5_pi3' of study 'extra'"):
+        registry.index_lists(config, [*registry.STUDIES, extra])
+    monkeypatch.setattr(registry, "STUDIES", registry.STUDIES + (
+        registry.Study(name="more", sections=(), datasets=("more",), figures=("more",)),))
+    lists = registry.index_lists(config)
+    assert lists["datasets"]["more"] == "results/datasets/more.nc" and lists["figures"][-1] == "reports/figures/more.png"
+    assert list(lists["datasets"])[:len(before["datasets"])] == list(before["datasets"])
+    monkeypatch.chdir(run)
+    lists = registry.index_lists(config, [extra])
+    text = html.unescape(page(run, datasets=lists["datasets"], figures=lists["figures"], reports=lists["reports"]))
+    assert 'xr.open_dataset("results/datasets/fig5_pi3.nc")' in text
+    assert '<img src="figures/fig5.png"' in text and '<a href="similarity.html">similarity</a>' in text
+
+
+def test_index_lists_every_study_of_the_registry():
+    import isoslide.config
+    from isoslide.studies import registry
+
+    config = isoslide.config.load()
+    lists = registry.index_lists(config)
+    for study in registry.STUDIES:
+        assert set(study.dataset_files(config).items()) <= set(lists["datasets"].items()), study.name
+        assert {f"reports/figures/{f}.png" for f in study.figures} <= set(lists["figures"]), study.name
+        assert {f"reports/{r.name}.html" for r in study.reports} <= set(lists["reports"]), study.name
+    assert lists["datasets"]["storeys"] == "results/datasets/storeys.nc"
+    assert "reports/figures/storeys.png" in lists["figures"]
+    assert lists["datasets"]["accuracy_timings"] == "results/timings/accuracy_timings.nc"
