@@ -25,6 +25,7 @@ import numpy as np
 from .atomic import atomic_path
 from .datasets import open_dataset
 from .groups import GROUPS
+from .model.friction import stribeck
 from .pulses import get_pulse
 from .record_study import ratio_summary
 
@@ -68,7 +69,7 @@ SYMBOL = {name: g.tex for name, g in GROUPS.items()}
 
 
 def stribeck_mu(v, mu_s, mu_k, beta, gamma=0.0):
-    """Stribeck friction coefficient of paper Eq. 1 (n = 1).
+    """Stribeck friction coefficient of paper Eq. 1 (n = 1), by :func:`isoslide.model.friction.stribeck`.
 
     ``mu(v) = mu_s sech(beta v) + mu_k (1 - sech(beta v)) + gamma |v|``
 
@@ -81,9 +82,7 @@ def stribeck_mu(v, mu_s, mu_k, beta, gamma=0.0):
     beta, gamma : float
         Transition and viscous constants, s/m.
     """
-    v = np.asarray(v, dtype=float)
-    sech = 1.0 / np.cosh(np.clip(beta * v, -700, 700))
-    return mu_s * sech + mu_k * (1.0 - sech) + gamma * np.abs(v)
+    return stribeck(np.asarray(v, dtype=float), mu_s, mu_k, beta, gamma)[0]
 
 
 def _fmt(x: float) -> str:

@@ -50,6 +50,7 @@ import numpy as np
 from . import building
 from . import building_kernel as bk
 from .history import History
+from .model.friction import stribeck
 from .scene import Scene
 
 __all__ = ["BUILDING_COLUMNS", "COLUMNS", "FORMATS", "HistoryTable", "history_format", "history_table", "read_history",
@@ -127,12 +128,10 @@ def history_format(path) -> str:
 
 
 def _friction(v, scene: Scene, model: str) -> np.ndarray:
-    """Friction level phi(|v|), units of a_p, of the friction law that ran."""
-    av = np.abs(v)
-    if "static-kinetic" in model:
-        return scene.pi2 + scene.pi7 * av
-    sech = 1.0 / np.cosh(np.minimum(scene.pi6 * av, 700.0))
-    return scene.static_level * sech + scene.pi2 * (1.0 - sech) + scene.pi7 * av
+    """Friction level phi(|v|), units of a_p, of the friction law that ran (:func:`isoslide.model.friction.stribeck`)."""
+    if "static-kinetic" in model:   # kinetic level at every sliding speed
+        return stribeck(v, scene.pi2, scene.pi2, 0.0, scene.pi7)[0]
+    return stribeck(v, scene.static_level, scene.pi2, scene.pi6, scene.pi7)[0]
 
 
 def _floor_accel(h: History, scene: Scene, model: str, ground: np.ndarray) -> np.ndarray:
