@@ -221,10 +221,8 @@ def write_history(solution, scene: Scene, path) -> Path:
 
     Parameters
     ----------
-    solution : isoslide.Solution
-        Result of ``isoslide.solve(scene, history=True)``.
-    scene : Scene
-        The scene solved.
+    solution, scene
+        As for :func:`history_table`.
     path : str or Path
         ``.csv`` (comment lines ``# key: value`` with the scene, then a header
         ``name [unit]`` and one row per time) or ``.h5`` / ``.hdf5`` (one
