@@ -2,7 +2,8 @@
 
 Pi1 of physical realisations with random (a_p, T_p, M_b) equals isoslide's exact solution of the same
 Pi-groups: Buckingham invariance of Pi9 .. Pi13 and the floor, shown by an integration written in
-newtons, metres and seconds independently of the compiled kernel.
+newtons, metres and seconds independently of the compiled kernel; superstructures of several storeys
+(uniform, or given floor by floor in kg and N/m) agree with the dimensionless reference peer.
 """
 
 import math
@@ -14,7 +15,8 @@ import xarray as xr
 import isoslide
 from isoslide import similarity as S
 from isoslide.peers.si import simulate_si
-from isoslide.peers.si_building import is_general
+from isoslide.peers.reference_building import solve_reference_building
+from isoslide.peers.si_building import chain_matrices, is_general
 
 G = isoslide.G_STANDARD
 PAPER = dict(pi2=0.2, pi3=2.0, pi4=0.05, pi5=0.8, pi6=0.0, pi7=0.0, pi8=0.01)
@@ -204,3 +206,93 @@ def test_a_short_slip_near_the_sliding_threshold_is_not_stepped_over():
     assert r.pi1 == pytest.approx(sol.pi1, rel=1e-5)
     slipping = r.history.tau[r.history.phase != 0]
     assert slipping.min() == pytest.approx(0.215, abs=1e-3)
+
+
+def _two_storeys(**over):
+    """A bilinear bearing under a two-storey superstructure given floor by floor (kg, N/m), contents on
+    floor 1, in SI units."""
+    p = dict(a_p=4.0, T_p=0.9, M_b=2e6, T_b=1.8, xi_b=0.1, m_ec=4e5, mu_s=0.0765, mu_k=0.0612, beta=50.0,
+             gamma=0.0, g=G, Q_d=4.8e5, D_y=0.016, m_st=0.0, T_s=0.0, xi_s=0.05, floor=1,
+             floor_masses=(7e5, 5e5), storey_stiffnesses=(3e8, 1.5e8))
+    p.update(over)
+    return p
+
+
+@pytest.mark.slow
+def test_storeys_given_floor_by_floor_agree_with_the_reference_peer():
+    """Two storeys in kg and N/m, contents on floor 1: Pi1 integrated in SI units equals the
+    dimensionless reference peer's Pi1 of ``Scene.from_physical`` of the same building to 1e-8, for
+    two realisations of one point (masses, accelerations and times scaled)."""
+    p = _two_storeys()
+    sc = isoslide.Scene.from_physical(**p)
+    assert sc.storeys == 2 and sc.floor == 1 and sc.pi12 > 0.0
+    ref = solve_reference_building(sc)
+    assert ref.pi1 > 1e-3
+    for q in (p, _scaled_storeys(p, mass=3.0, accel=0.5, time=2.0)):
+        assert _si(q, ref.tau_end + 1.0) == pytest.approx(ref.pi1, rel=1e-8)
+
+
+def _scaled_storeys(p, mass, accel, time):
+    """:func:`_scaled` for a superstructure given floor by floor (stiffnesses scale as mass/time^2)."""
+    q = _scaled(p, mass, accel, time)
+    q["floor_masses"] = tuple(m * mass for m in p["floor_masses"])
+    q["storey_stiffnesses"] = tuple(k * mass / time ** 2 for k in p["storey_stiffnesses"])
+    return q
+
+
+def test_uniform_storeys_agree_with_the_reference_peer():
+    """Three uniform storeys of total mass ``m_st`` and fundamental period ``T_s``, contents on the roof of
+    a sliding bearing's building: SI Pi1 equals the reference peer's for the same groups to 1e-8."""
+    pis = dict(PAPER, pi3=1.5, pi4=0.1, pi9=0.08, pi11=0.6, pi12=0.3, pi13=0.05)
+    ref = solve_reference_building(isoslide.Scene(**pis, storeys=3, floor="roof"))
+    assert ref.pi1 > 1e-3
+    p = dict(S.physical_parameters(pis, 2.5, 1.1, 7e5, floor="roof"), storeys=3)
+    assert _si(p, ref.tau_end + 1.0) == pytest.approx(ref.pi1, rel=1e-8)
+    one = solve_reference_building(isoslide.Scene(**pis, floor="roof")).pi1
+    assert abs(one / ref.pi1 - 1.0) > 1e-3
+
+
+@pytest.mark.parametrize("xi", [0.0, 0.07])
+def test_chain_matrices_are_the_storeys_with_the_damping_asked_for(xi):
+    """``K`` joins storey ``j`` between floors ``j-1`` and ``j``; each fixed-base mode of ``M^-1 K``
+    has frequency ``omega_i`` and damping ratio ``xi`` under ``C``, the modes uncoupled by ``C``."""
+    m, k = np.array([3e5, 2e5, 1e5]), np.array([4e8, 2e8, 1e8])
+    K, C, omega = chain_matrices(m, k, xi)
+    assert np.allclose(K, [[6e8, -2e8, 0.0], [-2e8, 3e8, -1e8], [0.0, -1e8, 1e8]], rtol=0.0, atol=1e-6)
+    lam, V = np.linalg.eig(np.linalg.solve(np.diag(m), K))
+    order = np.argsort(lam)
+    lam, V = lam[order], V[:, order]
+    V = V / np.sqrt(np.einsum("ji,j,ji->i", V, m, V))
+    assert omega == pytest.approx(np.sqrt(lam), rel=1e-12)
+    modal = V.T @ C @ V
+    assert np.diag(modal) == pytest.approx(2.0 * xi * omega, rel=1e-10, abs=1e-12 * omega[-1])
+    assert np.max(np.abs(modal - np.diag(np.diag(modal)))) <= 1e-10 * max(np.max(np.abs(modal)), 1.0)
+
+
+@pytest.mark.parametrize("over, name", [
+    (dict(storey_stiffnesses=None), "storey_stiffnesses"),
+    (dict(floor=3), "floor"),
+    (dict(T_s=0.1), "T_s"),
+    (dict(m_st=1e5), "m_st"),
+    (dict(floor_masses=(7e5, -5e5)), r"floor_masses\[1\]"),
+    (dict(floor_masses=(7e5, 5e5, 1e5)), "storey_stiffnesses"),
+    (dict(floor_masses=(1.5e6, 5e5)), "floor_masses"),
+], ids=["stiffnesses-missing", "floor-above-the-roof", "T_s-disagrees", "m_st-disagrees", "negative-mass",
+        "lengths-differ", "floors-outweigh-M_b"])
+def test_bad_storey_input_is_named(over, name):
+    """Floors given inconsistently raise a ValueError naming the parameter."""
+    with pytest.raises(ValueError, match=name):
+        simulate_si(_two_storeys(**over), "ricker", t_end=0.1)
+
+
+def test_uniform_storeys_out_of_range_are_named():
+    """``storeys`` outside 1 .. 64 raises a ValueError naming it."""
+    p = dict(_physical(), storeys=0)
+    with pytest.raises(ValueError, match="storeys"):
+        simulate_si(p, "ricker", t_end=0.1)
+
+
+def test_floors_given_one_by_one_make_a_general_building():
+    """A superstructure given by its floors (``T_s = 0``) is a flexible building, not the paper's model."""
+    assert is_general(_two_storeys(T_b=1.8, Q_d=0.0))
+    assert not is_general(_two_storeys(Q_d=0.0, floor_masses=None, storey_stiffnesses=None))

@@ -6,7 +6,7 @@ of Pi-space (metres, seconds, kilograms; see
 response with plain SciPy, independently of :mod:`isoslide.kernel` and of the
 dimensionless peers, so that ``Pi1 = u_max / (a_p T_p^2)`` can be compared
 across realisations with equal Pi-groups.  A general building (hysteretic isolator, flexible
-superstructure, contents on the roof) is integrated by
+superstructure of one or more storeys, contents on any floor) is integrated by
 :func:`isoslide.peers.si_building.simulate_building_si`; the paper's model by the plain
 two-state solver below.
 """
@@ -47,15 +47,18 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
     tangentially and stick and slip would alternate at one instant, the run is integrated by the
     building's equations (which hold the paper's model) instead.  Parameters of a general building
     (``Q_d > 0`` on an isolated base, or ``T_s > 0``) are integrated with the building's
-    equations by :func:`~isoslide.peers.si_building.simulate_building_si`.
+    equations by :func:`~isoslide.peers.si_building.simulate_building_si` (so are floors given one
+    by one, ``floor_masses``).
 
     Parameters
     ----------
     p : dict
         SI parameters ``a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g`` and
         optionally the building's ``Q_d`` (N), ``D_y`` (m), ``m_st`` (kg), ``T_s`` (s), ``xi_s``,
-        ``floor`` (absent: the paper's model; as returned by
-        :func:`isoslide.similarity.physical_parameters`).
+        ``floor``, ``storeys`` and ``floor_masses`` (kg) with ``storey_stiffnesses`` (N/m)
+        (absent: the paper's model; as returned by
+        :func:`isoslide.similarity.physical_parameters`; see
+        :func:`~isoslide.peers.si_building.simulate_building_si`).
     pulse : str or Pulse
         Ground-acceleration shape, ``a_g(t) = a_p p(t / T_p)``.
     t_end : float, optional
