@@ -252,10 +252,8 @@ def read_csv(path, name: str | None = None, units: str = "g", dt_tolerance: floa
 
     Parameters
     ----------
-    path : str or Path
-        The file.
-    name : str, optional
-        Record name; default: the file name without extension.
+    path, name
+        The file and the record's name, as for :func:`read_at2`.
     units : str
         Units of the acceleration column: ``"g"`` (default), ``"m/s2"``,
         ``"cm/s2"`` (also ``"m/s/s"``, ``"gal"``, ...).
