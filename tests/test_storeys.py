@@ -130,3 +130,42 @@ def test_from_physical_builds_a_non_uniform_building_from_floor_masses_and_stiff
     with pytest.raises(ValueError, match="T_s = 0.1 disagrees"):
         Scene.from_physical(a_p=6.0, T_p=1.2, M_b=8e5, T_b=2.4, xi_b=0.1, m_ec=800.0, mu_s=0.25, mu_k=0.2,
                             T_s=0.1, floor_masses=masses, storey_stiffnesses=k)
+
+
+REFERENCE_SCENES = {
+    "2 storeys, linear, roof, Stribeck": dict(storeys=2, floor="roof", pi5=0.7, pi6=300.0, pi7=0.2),
+    "2 storeys, lead-rubber, middle floor": dict(storeys=2, floor=1, pi9=0.08, pi10=0.01),
+    "5 storeys, friction pendulum, floor 2, Stribeck": dict(storeys=5, floor=2, pi9=0.05, pi5=0.7, pi6=300.0,
+                                                            pi7=0.2),
+    "5 storeys, friction pendulum, slab": dict(storeys=5, floor=0, pi9=0.05),
+    "8 storeys, fixed base, floor 4": dict(storeys=8, floor=4, pi3=0.0),
+    "8 storeys, friction pendulum, roof": dict(storeys=8, floor="roof", pi9=0.05),
+}
+SLOW_REFERENCE_SCENES = {
+    "5 storeys, linear, roof": dict(storeys=5, floor="roof"),
+    "8 storeys, lead-rubber, floor 4, Stribeck": dict(storeys=8, floor=4, pi9=0.08, pi10=0.01, pi5=0.7, pi6=300.0,
+                                                      pi7=0.2),
+    "3 storeys, tapered, friction pendulum, floor 1": dict(storeys=3, floor=1, pi9=0.05, floor_masses=(3.0, 2.0, 1.0),
+                                                           storey_stiffnesses=(3.0, 2.0, 1.0)),
+}
+
+
+def _against_reference(kw):
+    sc = Scene(**{**BASE, **kw})
+    exact, ref = solve(sc), solve(sc, method="reference")
+    assert exact.settled and ref.settled
+    assert exact.pi1 > 0.0
+    assert exact.pi1 == pytest.approx(ref.pi1, rel=1e-6)
+
+
+@pytest.mark.parametrize("kw", REFERENCE_SCENES.values(), ids=REFERENCE_SCENES)
+def test_n_storey_buildings_agree_with_the_independent_reference_solver(kw):
+    """The compiled N-storey building against the SciPy event-driven peer (rtol 1e-12): Pi1 to 1e-6."""
+    _against_reference(kw)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kw", SLOW_REFERENCE_SCENES.values(), ids=SLOW_REFERENCE_SCENES)
+def test_n_storey_buildings_agree_with_the_reference_solver_where_it_is_slow(kw):
+    """As above on scenes where the SciPy peer takes 5-15 s (linear and lead-rubber isolators, tapered)."""
+    _against_reference(kw)
