@@ -102,7 +102,7 @@ def test_findings_state_the_dataset_s_numbers(settings):
     assert "linear isolator: the contents slide most 0 on the slab, 4 on the roof, 0 on a floor between of 4" in x1
     assert "friction pendulum: the contents slide most 0 on the slab, 2 on the roof, 2 on a floor between" in x1
     ratio = float(ds["upper_ratio"].sel(isolator="linear", pi12=1.0, pi2=0.2, storeys=3))
-    assert f"largest ratio {ratio:.2f}× at N = 3" in x2 and "from N = 1" in x2
+    assert f"largest ratio {ratio:.2f}× at N = 3" in x2 and "at 2 of 2 N, the smallest N = 1" in x2
 
 
 def test_dataset_is_cf_labelled_and_byte_identical(settings, tmp_path):

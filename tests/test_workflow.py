@@ -460,6 +460,7 @@ def test_dry_run_plans_the_whole_dag(wf):
     ({"fragility": {"limit_states": [0.3, 0.2]}}, "fragility.limit_states"),
     ({"isolation": {"flexible": {"pi12": [0.1, 0.5]}}}, "isolation.flexible.pi12"),
     ({"isolation": {"friction_pendulum": {"pi9": [0.1, -0.1]}}}, "['friction_pendulum']['pi9']"),
+    ({"storeys": {"storeys": [2, 1]}}, "storeys.storeys = [2, 1] is not strictly increasing"),
 ])
 def test_invalid_config_fails_before_any_job_naming_the_key(tmp_path, overlay, key):
     d = copy_workflow(tmp_path / "bad")

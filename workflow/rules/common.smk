@@ -94,8 +94,8 @@ for _name, _c in SIMILARITY_SETTINGS.get("complete", {}).items():
 #   code        the CODE_MODULES family of the isoslide modules the notebook imports (if any).
 REPORTS = registry.reports(config)
 
-# What `rule all` asks for: every study's datasets, figures and further files, every report and the
-# index page.
+# The targets of the default rule `all` (every study's datasets, figures and further files, every
+# report and the index page).
 ALL_TARGETS = registry.all_targets(config)
 
 # reports/index.html, made by index_page in workflow/rules/reports.smk.  It lists the datasets

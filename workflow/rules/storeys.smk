@@ -23,8 +23,8 @@ rule storeys_dataset:
         "results/benchmarks/storeys_dataset/storeys.tsv"
     threads: 1
     resources:
-        mem_mb=600,  # measured: max_rss 280 MB
-        runtime=3,  # minutes; measured: 9.3 s (default config, 528 scenes)
+        mem_mb=600,  # measured: max_rss 257 MB
+        runtime=2,  # minutes; measured: 5.3 s (default config, 528 scenes: 3.0 s solving), 8.6 s (test config, loaded)
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -45,8 +45,8 @@ rule storeys_figure:
         "results/benchmarks/storeys_figure/storeys.tsv"
     threads: 1
     resources:
-        mem_mb=600,  # measured: max_rss 250 MB
-        runtime=2,  # minutes; measured: 5.0 s (default config)
+        mem_mb=600,  # measured: max_rss 269 MB
+        runtime=2,  # minutes; measured: 6.6 s (default config), 16.9 s (test config, 2 cores under load)
     conda:
         "../envs/isoslide.yaml"
     script:

@@ -298,8 +298,10 @@ def findings(ds: xr.Dataset) -> list:
     for row in floor_summary(ds):
         iso, pi12, pi2, *_counts, first, ratio, at = row
         label = f"{ISOLATOR_LABELS[iso]}, Π₁₂ = {pi12:g}, Π₂ = {pi2:g}"
+        n_beats = int(ds["upper_beats_slab"].sel(isolator=iso, pi12=pi12, pi2=pi2).sum())
         if first:
-            lines.append(f"{label}: from N = {first} (largest ratio {ratio:.2f}× at N = {at})")
+            lines.append(f"{label}: at {n_beats} of {len(storeys)} N, the smallest N = {first} (largest ratio "
+                         f"{ratio:.2f}× at N = {at})")
         elif np.isfinite(ratio):
             lines.append(f"{label}: at no N (the upper floors reach at most {ratio:.2f}× the slab, at N = {at})")
         else:
