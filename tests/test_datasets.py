@@ -11,6 +11,7 @@ import xarray as xr
 
 import isoslide.config
 from isoslide import datasets, sweep
+from isoslide.models import FACETS, MODEL_LABELS, Facets
 
 CONFIG = {"chunk_size": 7, "reference": {"a_p_T_p": 9.80665}, "defaults": {"pi4": 0.1},
           "pi2": {"start": 0.05, "stop": 1.2, "num": 6},
@@ -74,10 +75,11 @@ def test_every_variable_and_coordinate_explains_itself(merged):
     assert json.loads(a["isoslide_config"])["study"] == "demo"
     assert not re.search(r"\d{4}-\d{2}-\d{2}|\d{2}:\d{2}:\d{2}", a["history"])   # no date or time
     assert "no timestamps" in a["history"]
-    for field in ("pi1", "pi1_residual", "tau_peak", "settled", "model", "tau_end", "n_steps", "n_events"):
+    for field in ("pi1", "pi1_residual", "tau_peak", "settled", "tau_end", "n_steps", "n_events",
+                  *datasets.FACET_VARIABLES.values()):
         assert field in merged
-    names = datasets.decode_models(merged["model"])
-    assert set(np.unique(names.values)) <= set(datasets.model_names())
+    names = datasets.model_labels(merged)
+    assert set(np.unique(names.values)) <= set(MODEL_LABELS)
 
 
 def test_written_file_is_compressed_deterministic_and_round_trips(tmp_path, merged):
@@ -106,15 +108,24 @@ def test_atomic_write_leaves_nothing_on_failure(tmp_path, merged, monkeypatch):
     assert os.listdir(tmp_path) == ["x.nc"]
 
 
-def test_model_codes_are_stable():
-    """The flag code of a model label never changes: files written earlier decode the same."""
-    codes, attrs = datasets.encode_models(np.array(["coulomb", "no-slide", "fixed-base+coulomb",
-                                                    "static-kinetic+one-way"]))
-    assert codes.dtype == np.int8
-    assert codes.tolist() == [2, 0, 6, 11]
-    assert attrs["flag_values"].tolist() == list(range(len(attrs["flag_meanings"].split())))
-    with pytest.raises(ValueError, match="unknown solver model"):
-        datasets.encode_models(np.array(["warp-drive"]))
+def test_facet_variables_are_small_cf_flags_and_round_trip():
+    """Each facet is an int8 flag variable of at most 16 meanings; decoding gives the facets back."""
+    facets = [Facets(), Facets(isolator="sliding-bearing", superstructure="flexible", floor="intermediate",
+                             friction="stribeck", coupling="one-way"),
+              Facets(isolator="fixed-base", reduction="bearing-stuck", propagation="piecewise")]
+    ds = xr.Dataset(datasets.encode_facets(facets, ("scene",)))
+    ds["pi1"] = ("scene", np.array([0.0, 0.1, 0.2]))
+    for name, var in datasets.FACET_VARIABLES.items():
+        attrs = ds[var].attrs
+        assert ds[var].dtype == np.int8 and len(attrs["flag_meanings"].split()) <= 16
+        assert attrs["flag_meanings"].split() == list(FACETS[name])
+        assert attrs["flag_values"].tolist() == list(range(len(FACETS[name])))
+    assert datasets.decode_facets(ds).tolist() == facets
+    assert datasets.model_labels(ds).values.tolist() == [
+        "no-slide", "sliding-bearing+flexible+intermediate+stribeck+one-way",
+        "bearing-stuck+fixed-base+coulomb+piecewise"]
+    with pytest.raises(ValueError, match="is not an isoslide.models.Facets"):
+        datasets.encode_facets(["coulomb"], ("scene",))
 
 
 def test_assert_same_data_ignores_provenance_only(merged):

@@ -186,7 +186,8 @@ def test_a_curve_that_nothing_exceeds_is_nan_with_its_reason(dataset):
 
 
 def test_dataset_layout_units_and_provenance(dataset):
-    for v in ("record", "stripe", "friction_sample", "mu_k", "pga", "pgv", "pfa", "pfv", "u_max", "model"):
+    for v in ("record", "stripe", "friction_sample", "mu_k", "pga", "pgv", "pfa", "pfv", "u_max",
+              *datasets.FACET_VARIABLES.values()):
         assert dataset[v].dims == ("analysis",), v
     for v in ("theta", "beta", "theta_low", "theta_high", "beta_low", "beta_high"):
         assert dataset[v].dims == ("limit_state", "im"), v
@@ -247,7 +248,7 @@ def test_a_friction_pendulum_building_runs_through_the_building_solver():
                     stripes={"im": "pga", "levels": [3.0, 6.0]}, friction_samples=1)
     st = fs.check_settings(cfg)
     out = fs.solve_analyses(st, [0, 1], "isolated")
-    models = set(datasets.decode_models(out["model"]).values.tolist()) if "model" in out else set()
+    models = set(datasets.model_labels(out, result="u_max").values.tolist())
     assert models and all(m.startswith("sliding-bearing+flexible+roof") for m in models), models
     sc = fs._scene(st, sample("Northridge_1994_PAC-175").as_pulse(), 3.0, 0.2, "isolated")
     assert (sc.isolator, sc.flexible, sc.floor) == ("sliding", True, "roof")

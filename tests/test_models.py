@@ -1,4 +1,8 @@
-"""Model labels: every label a solve produces has a flag code, and every listed label is produced."""
+"""The model that ran: its facets (pinned flag codes) and the display label derived from them.
+
+Every label a solve produces is listed, every listed label is produced, and every facet value a
+solve produces has a committed flag code.
+"""
 
 import json
 from pathlib import Path
@@ -9,11 +13,11 @@ import xarray as xr
 
 import isoslide
 from isoslide import datasets
-from isoslide.models import BUILDING_LABELS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, label
+from isoslide.models import BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, Facets, label
 from isoslide.pulses import sampled
 
-CODES_FILE = Path(__file__).parent / "data" / "model_codes.json"
-"""Committed flag codes of the model labels; codes are append-only."""
+CODES_FILE = Path(__file__).parent / "data" / "facet_codes.json"
+"""Committed flag codes of the facets' values; codes are append-only."""
 
 RECORD = sampled(np.sin(np.linspace(0.0, 2.0 * np.pi, 201)), 0.005)
 """A short sampled record: one sine cycle of unit amplitude over one T_p."""
@@ -66,6 +70,8 @@ def building_scene(name: str) -> isoslide.Scene:
         kw.update(pi11=0.5, pi12=0.2, pi13=0.05)
     if "roof" in parts:
         kw["floor"] = "roof"
+    if "intermediate" in parts:
+        kw.update(storeys=2, floor=1)
     return isoslide.Scene(**kw)
 
 
@@ -79,75 +85,79 @@ def test_building_labels_name_their_scenes():
 
 
 @pytest.fixture(scope="module")
-def produced():
-    return [isoslide.solve(sc, **kw).model for sc, kw in PATHS]
+def solutions():
+    return [isoslide.solve(sc, **kw) for sc, kw in PATHS]
+
+
+@pytest.fixture(scope="module")
+def produced(solutions):
+    return [s.model for s in solutions]
 
 
 def pinned_codes() -> dict:
-    """The committed flag code of every label (``tests/data/model_codes.json``), never regenerated here."""
-    return json.loads(CODES_FILE.read_text())["codes"]
+    """The committed values of every facet (``tests/data/facet_codes.json``), never regenerated here."""
+    return json.loads(CODES_FILE.read_text())["facets"]
 
 
 def test_every_listed_label_is_produced_by_some_solve(produced):
     assert sorted(produced) == sorted(MODEL_LABELS)
 
 
-def test_every_produced_label_has_a_flag_code(produced):
-    """encode_models accepts every label a solve produced and maps it to its position in MODEL_LABELS."""
-    codes, attrs = datasets.encode_models(np.array(produced))
-    assert codes.tolist() == [MODEL_LABELS.index(name) for name in produced]
-    assert attrs["flag_meanings"].split() == list(MODEL_LABELS)
+def test_the_label_is_derived_from_the_facets_and_whether_the_contents_slid(solutions):
+    for s in solutions:
+        assert s.model == s.facets.label(slid=s.pi1 > 0.0)
 
 
-def test_pinned_flag_codes_are_contiguous_from_zero():
-    """The committed codes are 0, 1, ..., n - 1 with no gap or repeat (so the file itself is sound)."""
+def test_facet_codes_are_append_only():
+    """No committed value disappears or moves; new values come after the committed ones, in the file too."""
     pinned = pinned_codes()
-    assert sorted(pinned.values()) == list(range(len(pinned)))
+    assert list(pinned) == list(FACETS), "facets added, removed or reordered"
+    for name, values in pinned.items():
+        assert list(FACETS[name][:len(values)]) == values, f"facet {name!r}: committed codes changed"
+        assert len(FACETS[name]) == len(values), f"facet {name!r}: values without a committed code"
 
 
-def test_flag_codes_are_append_only():
-    """No committed label disappears or changes its code; new labels come after the committed ones."""
-    pinned = pinned_codes()
-    missing = sorted(set(pinned) - set(MODEL_LABELS))
-    assert not missing, f"labels removed from MODEL_LABELS: {missing}"
-    moved = {n: (c, MODEL_LABELS.index(n)) for n, c in pinned.items() if MODEL_LABELS.index(n) != c}
-    assert not moved, f"labels whose flag code changed (committed, now): {moved}"
-    codes, _ = datasets.encode_models(np.array(list(pinned)))
-    assert codes.tolist() == list(pinned.values())
+def test_every_facet_fits_a_small_flag_variable():
+    assert all(1 <= len(values) <= 16 for values in FACETS.values())
 
 
-def test_every_label_has_a_pinned_flag_code():
-    """Each label in MODEL_LABELS is in the committed code file (append a new label there on purpose)."""
-    unpinned = [n for n in MODEL_LABELS if n not in pinned_codes()]
-    assert not unpinned, f"labels without a committed flag code in {CODES_FILE.name}: {unpinned}"
+def test_every_produced_facet_value_has_a_code_and_each_facet_varies(solutions):
+    """The paths cover more than one value of each facet but ``reduction`` (set by solve_many and buildings)."""
+    for name in FACETS:
+        seen = {getattr(s.facets, name) for s in solutions}
+        assert seen <= set(FACETS[name])
+        if name != "reduction":
+            assert len(seen) > 1, f"the paths exercise one value of {name!r} only"
 
 
-def test_flag_codes_fit_the_int8_flag_variable():
-    assert len(MODEL_LABELS) - 1 <= np.iinfo(np.int8).max
-    codes, attrs = datasets.encode_models(np.array(MODEL_LABELS))
-    assert codes.dtype == np.int8 and codes.tolist() == list(range(len(MODEL_LABELS)))
-    assert attrs["flag_values"].tolist() == codes.tolist()
+def test_facets_refuse_an_unknown_value_naming_the_facet():
+    with pytest.raises(ValueError, match="isolator = 'magnetic' is invalid"):
+        Facets(isolator="magnetic")
 
 
-def test_labels_round_trip_through_a_dataset_flag_variable(produced, tmp_path):
-    codes, attrs = datasets.encode_models(np.array(produced))
-    ds = xr.Dataset({"model": (("scene",), codes, attrs)})
+def test_facets_round_trip_through_a_dataset(solutions, tmp_path):
+    facets = np.empty(len(solutions), dtype=object)
+    facets[:] = [s.facets for s in solutions]
+    ds = xr.Dataset(datasets.encode_facets(facets, ("scene",)))
+    ds["pi1"] = ("scene", np.array([s.pi1 for s in solutions]))
     path = tmp_path / "m.nc"
     datasets.write_netcdf(ds, path)
-    back = datasets.decode_models(datasets.open_dataset(path)["model"])
-    assert back.values.tolist() == produced
+    back = datasets.open_dataset(path)
+    assert datasets.decode_facets(back).tolist() == facets.tolist()
+    assert datasets.model_labels(back).values.tolist() == [s.model for s in solutions]
 
 
 def test_solve_many_labels_match_the_single_solves(produced):
-    """solve_many labels each scene as solve does, and every label it gives has a flag code.
+    """solve_many labels each scene as solve does, and every label it gives is listed.
 
     Scenes solve_many answers ``no-slide`` from the shared stuck demand alone may lack the
     ``+piecewise`` part the single solve adds, so that part is left out of the comparison.
     """
     plain = [i for i, (sc, kw) in enumerate(PATHS) if not kw]
-    batch = isoslide.solve_many([PATHS[i][0] for i in plain]).model.tolist()
-    datasets.encode_models(np.array(batch))
+    result = isoslide.solve_many([PATHS[i][0] for i in plain])
+    batch = result.model.tolist()
     assert not sorted(set(batch) - set(MODEL_LABELS))
+    assert batch == [f.label(slid=p > 0.0) for f, p in zip(result.facets, result.pi1, strict=True)]
 
     def paper_part(name):
         return name.removesuffix("+piecewise") if "no-slide" in name else name

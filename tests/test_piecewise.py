@@ -34,12 +34,12 @@ def _agree(sc, a, b, tol=PROMISE):
     assert a.settled == b.settled, sc
 
 
-def _check_all_records(pulses, **groups):
+def _check_all_records(pulses, full_rtol=1e-9, **groups):
     for name in NAMES:
         sc = isoslide.Scene(pulse=pulses[name], **groups)
         fast = isoslide.solve(sc)
         assert fast.model.endswith("+piecewise"), fast.model
-        full = isoslide.solve(sc, model="full", rtol=1e-9)
+        full = isoslide.solve(sc, model="full", rtol=full_rtol)
         assert not full.model.endswith("+piecewise")
         _agree(sc, fast, full)
 
@@ -49,7 +49,10 @@ def test_piecewise_matches_integrator_on_all_records_damped_base_with_back_react
 
 
 def test_piecewise_matches_integrator_on_all_records_fixed_base(pulses):
-    _check_all_records(pulses, pi2=0.1, pi3=0.0)
+    """Against the integrator at rtol 1e-12: Northridge PAC-175 has a grazing slip (a demand excess of the
+    order of the local error, two transitions, 1.4e-6 of the residual) that the integrator resolves from
+    rtol 1e-11 on; the exact propagation and the SciPy reference peer both have it."""
+    _check_all_records(pulses, full_rtol=1e-12, pi2=0.1, pi3=0.0)
 
 
 @pytest.mark.slow

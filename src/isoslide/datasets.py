@@ -28,7 +28,7 @@ import xarray as xr
 
 from .atomic import atomic_path
 from .groups import RESULT, group
-from .models import MODEL_LABELS
+from .models import FACETS, Facets
 from .provenance import code_hash, git_commit, source_text  # noqa: F401 - re-exported
 
 CONVENTIONS = "CF-1.10"
@@ -49,46 +49,76 @@ VAR_META = {
                              "(Ricker: tau = 0 at the centre of the main lobe)"),
     "settled": dict(long_name="response settled: no further sliding possible at tau_end", units="1",
                     flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="not_settled settled"),
-    "model": dict(long_name="mechanical model the solver ran for this scene", units="1"),
     "tau_end": dict(long_name="dimensionless time t_end / T_p up to which the response was followed",
                     units="1"),
     "n_steps": dict(long_name="number of integration steps (solver diagnostic)", units="1"),
     "n_events": dict(long_name="number of stick/slip transitions located (solver diagnostic)", units="1"),
 }
 
-SOLUTION_FIELDS = ("pi1", "pi1_residual", "tau_peak", "settled", "model", "tau_end", "n_steps", "n_events")
+SOLUTION_FIELDS = ("pi1", "pi1_residual", "tau_peak", "settled", "tau_end", "n_steps", "n_events")
 
-def model_names() -> tuple:
-    """Model labels in the stable order of the ``model`` flag variable (:data:`MODEL_LABELS`)."""
-    return MODEL_LABELS
+FACET_VARIABLES = {name: f"model_{name}" for name in FACETS}
+"""Dataset variable of each facet of the model that ran (:data:`isoslide.models.FACETS`)."""
 
 
-def encode_models(models) -> tuple[np.ndarray, dict]:
-    """Model names -> int8 codes and CF flag attributes.
+def encode_facets(facets, dims, shape=None) -> dict:
+    """Facets of the models that ran -> one int8 CF flag variable per facet.
 
-    Raises
-    ------
-    ValueError
-        If a name is not one of :func:`model_names` (codes must be stable).
+    Parameters
+    ----------
+    facets : sequence of Facets
+        One :class:`isoslide.models.Facets` per scene.
+    dims : tuple of str
+        Dimensions of the variables.
+    shape : tuple of int, optional
+        Shape to give the codes (default: that of ``facets``).
+
+    Returns
+    -------
+    dict
+        ``{variable: (dims, codes, attrs)}`` for :data:`FACET_VARIABLES`; a facet's code is its
+        value's position in :data:`isoslide.models.FACETS` (append-only).
     """
-    names = model_names()
-    lookup = {n: i for i, n in enumerate(names)}
-    arr = np.asarray(models).astype(str)
-    bad = sorted(set(arr.ravel()) - set(lookup))
+    arr = np.asarray(facets, dtype=object)
+    bad = [f for f in arr.ravel() if not isinstance(f, Facets)]
     if bad:
-        raise ValueError(f"unknown solver model name(s) {bad}; known: {list(names)}")
-    codes = np.vectorize(lookup.__getitem__, otypes=[np.int8])(arr) if arr.size else arr.astype(np.int8)
-    attrs = dict(VAR_META["model"])
-    attrs["flag_values"] = np.arange(len(names), dtype=np.int8)
-    attrs["flag_meanings"] = " ".join(n.replace(" ", "_") for n in names)
-    return codes, attrs
+        raise ValueError(f"facets = {bad[0]!r} is not an isoslide.models.Facets")
+    out = {}
+    for name, meanings in FACETS.items():
+        codes = np.array([meanings.index(getattr(f, name)) for f in arr.ravel()], dtype=np.int8)
+        attrs = {"long_name": f"model the solver ran: {name}", "units": "1",
+                 "flag_values": np.arange(len(meanings), dtype=np.int8), "flag_meanings": " ".join(meanings)}
+        out[FACET_VARIABLES[name]] = (dims, codes.reshape(arr.shape if shape is None else shape), attrs)
+    return out
 
 
-def decode_models(da: xr.DataArray) -> xr.DataArray:
-    """Model flag codes -> model names (a string DataArray of the same shape)."""
-    meanings = np.array(da.attrs["flag_meanings"].split())
-    return xr.DataArray(meanings[np.asarray(da.values, dtype=int)], dims=da.dims, coords=da.coords,
-                        attrs={"long_name": da.attrs.get("long_name", "model")})
+def decode_facets(ds: xr.Dataset) -> np.ndarray:
+    """The facet variables of ``ds`` -> an object array of :class:`isoslide.models.Facets` (shape of the variables)."""
+    names = list(FACETS)
+    values = []
+    for name in names:
+        da = ds[FACET_VARIABLES[name]]
+        meanings = np.array(da.attrs["flag_meanings"].split(), dtype=object)
+        values.append(meanings[np.asarray(da.values, dtype=int)])
+    shape = values[0].shape
+    out = np.empty(shape, dtype=object)
+    for idx in np.ndindex(shape):
+        out[idx] = Facets(**{n: v[idx] for n, v in zip(names, values, strict=True)})
+    return out
+
+
+def model_labels(ds: xr.Dataset, result: str = "pi1") -> xr.DataArray:
+    """Display labels of the models that ran (:meth:`isoslide.models.Facets.label`).
+
+    From the facet variables and whether the contents slid: ``ds[result] > 0`` (``pi1``, or
+    ``u_max`` in metres).
+    """
+    facets = decode_facets(ds)
+    da = ds[FACET_VARIABLES["solver"]]
+    slid = np.asarray(ds[result].values) > 0.0
+    labels = np.vectorize(lambda f, s: f.label(bool(s)), otypes=[object])(facets, slid)
+    return xr.DataArray(labels.astype(str), dims=da.dims, coords=da.coords,
+                        attrs={"long_name": "model the solver ran (label)"})
 
 
 # ----------------------------------------------------------------------------------------------
@@ -127,15 +157,13 @@ def _solution_vars(batch, dims, shape=None) -> dict:
         val = np.asarray(getattr(batch, f))
         if shape is not None:
             val = val.reshape(shape)
-        if f == "model":
-            codes, attrs = encode_models(val)
-            out[f] = (dims, codes, attrs)
-        elif f == "settled":
+        if f == "settled":
             out[f] = (dims, val.astype(np.int8), dict(VAR_META[f]))
         elif f in ("n_steps", "n_events"):
             out[f] = (dims, val.astype(np.int32), dict(VAR_META[f]))
         else:
             out[f] = (dims, val.astype(np.float64), dict(VAR_META[f]))
+    out.update(encode_facets(batch.facets, dims, shape))
     return out
 
 

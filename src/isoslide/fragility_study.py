@@ -40,7 +40,7 @@ import numpy as np
 import xarray as xr
 
 from . import fragility as _fit
-from .datasets import encode_models, global_attrs
+from .datasets import encode_facets, global_attrs
 from .intensity import IM_NAMES, IM_UNITS, floor_peaks, ground_peaks
 from .pulses import sampled
 from .record_study import resolve_record
@@ -306,7 +306,7 @@ def solve_analyses(study: Study, indices, base: str, floor: bool = True) -> xr.D
     xarray.Dataset
         Dimension ``analysis`` (global indices): ``record`` (name), ``stripe``,
         ``friction_sample``, ``mu_k``, ``pga`` [m/s^2], ``pgv`` [m/s], ``pfa`` [m/s^2],
-        ``pfv`` [m/s], ``u_max`` [m], ``model`` (flag).
+        ``pfv`` [m/s], ``u_max`` [m], and the facets of the model that ran (``model_<facet>`` flags).
     """
     dataset_name(base)
     idx = np.asarray(indices, dtype=np.int64)
@@ -326,7 +326,7 @@ def solve_analyses(study: Study, indices, base: str, floor: bool = True) -> xr.D
         if floor:
             out["pfa"][k], out["pfv"][k] = floor_peaks(sol, scene)
         out["pga"][k], out["pgv"][k], out["u_max"][k] = pga, pgv, sol.u_max
-        models[k] = sol.model
+        models[k] = sol.facets
     return _analysis_dataset(study, idx, tab, out, models)
 
 
@@ -355,8 +355,8 @@ def _analysis_dataset(study, idx, tab, out, models) -> xr.Dataset:
         ds[k] = ("analysis", out[k])
     for k, (ln, u) in _ANALYSIS_META.items():
         ds[k].attrs.update(long_name=ln, units=u)
-    codes, attrs = encode_models(models.astype(str))
-    ds["model"] = ("analysis", codes, attrs)
+    for name, var in encode_facets(models, ("analysis",)).items():
+        ds[name] = var
     return ds
 
 

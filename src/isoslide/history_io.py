@@ -24,9 +24,9 @@ phase          0 stuck, +1 / -1 sliding in the +/- direction       1         --
 ============== =================================================== ========= ===========
 
 The floor acceleration follows from the equations of motion of
-:mod:`isoslide.kernel` with the model that ran (``Solution.model``): stuck,
+:mod:`isoslide.kernel` with the model that ran (``Solution.facets``): stuck,
 ``-(2 Pi4 w x' + w^2 x) / (1 + Pi8)``; sliding, ``-(2 Pi4 w x' + w^2 x) +
-Pi8 s phi(|u'|)`` (``Pi8 = 0`` for the ``one-way`` model); the ground's for a
+Pi8 s phi(|u'|)`` (``Pi8 = 0`` for ``one-way`` coupling); the ground's for a
 fixed base.
 
 A general building (:mod:`isoslide.building`) has its contents' floor (the slab,
@@ -51,6 +51,7 @@ from . import building
 from . import building_kernel as bk
 from .history import History
 from .model.friction import stribeck
+from .models import Facets
 from .scene import Scene
 
 __all__ = ["BUILDING_COLUMNS", "COLUMNS", "FORMATS", "HistoryTable", "history_format", "history_table", "read_history",
@@ -127,27 +128,28 @@ def history_format(path) -> str:
     return FORMATS[ext]
 
 
-def _friction(v, scene: Scene, model: str) -> np.ndarray:
+def _friction(v, scene: Scene, facets: Facets) -> np.ndarray:
     """Friction level phi(|v|), units of a_p, of the friction law that ran (:func:`isoslide.model.friction.stribeck`)."""
-    if "static-kinetic" in model:   # kinetic level at every sliding speed
+    if facets.friction == "static-kinetic":   # kinetic level at every sliding speed
         return stribeck(v, scene.pi2, scene.pi2, 0.0, scene.pi7)[0]
     return stribeck(v, scene.static_level, scene.pi2, scene.pi6, scene.pi7)[0]
 
 
-def _floor_accel(h: History, scene: Scene, model: str, ground: np.ndarray) -> np.ndarray:
+def _floor_accel(h: History, scene: Scene, facets: Facets, ground: np.ndarray) -> np.ndarray:
     """Absolute floor acceleration, units of a_p (see the module docstring)."""
     if scene.fixed_base:
         return ground.copy()
     w = 2.0 * math.pi / scene.pi3
     F = 2.0 * scene.pi4 * w * h.xd + w * w * h.x
-    p8 = 0.0 if "one-way" in model else scene.pi8
+    p8 = 0.0 if facets.coupling == "one-way" else scene.pi8
     s = h.phase.astype(float)
-    return np.where(h.phase == 0, -F / (1.0 + p8), -F + p8 * s * _friction(h.ud, scene, model))
+    return np.where(h.phase == 0, -F / (1.0 + p8), -F + p8 * s * _friction(h.ud, scene, facets))
 
 
-def _building_floor(h: History, scene: Scene, model: str, ground: np.ndarray) -> tuple:
+def _building_floor(h: History, scene: Scene, facets: Facets, ground: np.ndarray) -> tuple:
     """Floor acceleration (units of a_p), displacement and velocity of a general building's contents."""
-    P = building.parameters(scene, pi8=0.0 if "one-way" in model else None, coulomb="coulomb" in model)
+    P = building.parameters(scene, pi8=0.0 if facets.coupling == "one-way" else None,
+                            coulomb=facets.friction == "coulomb")
     n = h.tau.size
     nfl = int(P[bk.P_N])
     y = np.zeros(bk.state_size(nfl))
@@ -187,9 +189,9 @@ def history_table(solution, scene: Scene) -> HistoryTable:
     ground = np.asarray(scene.pulse.accel(h.tau), dtype=float)
     general = h.xs is not None or h.fh is not None
     if general:
-        floor, fdisp, fvel = _building_floor(h, scene, solution.model, ground)
+        floor, fdisp, fvel = _building_floor(h, scene, solution.facets, ground)
     else:
-        floor, fdisp, fvel = _floor_accel(h, scene, solution.model, ground), h.x, h.xd
+        floor, fdisp, fvel = _floor_accel(h, scene, solution.facets, ground), h.x, h.xd
     sc = scene.scale
     T, A = (sc.T_p, sc.a_p) if sc is not None else (1.0, 1.0)
     L, V = A * T * T, A * T

@@ -31,7 +31,7 @@ The general building (:mod:`isoslide.building`) adds, in front of the friction p
     The isolator integrated (``fixed-base`` for ``Pi3 = 0``).
 ``flexible``
     The superstructure is flexible (``Pi12 > 0``) and integrated; ``roof``: the contents
-    sit on it.
+    sit on its top floor, ``intermediate``: on a floor between the slab and the roof.
 ``bearing-stuck``, ``bearing-elastic``
     A reduction proved the sliding bearing never slips (the scene ran as the paper's fixed
     base) or the bilinear bearing never yields (the paper's linear isolator of its initial
@@ -41,17 +41,47 @@ A general building runs Coulomb or Stribeck friction (``static-kinetic`` is the 
 limit only); a fixed base (``Pi3 = 0``) is a general building only with the contents on a
 flexible superstructure's roof.
 
-The position of a label in :data:`MODEL_LABELS` is its code in the ``model``
-flag variable of every dataset; codes never change, new labels are appended.
+The label is derived from the model's :class:`Facets` (one value per independent property,
+:data:`FACETS`) and whether the contents slid (``Pi1 > 0``); datasets store the facets, one small
+flag variable each (``model_isolator``, ..., see :data:`isoslide.datasets.FACET_VARIABLES`), and
+:func:`isoslide.datasets.model_labels` derives the labels back.  :data:`MODEL_LABELS` lists every
+label a solve can produce (new labels are appended).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 FRICTION_MODELS = ("coulomb", "stribeck", "static-kinetic")
 """Friction laws the exact solver integrates."""
 
 PEER_LABELS = ("regularized", "reference")
 """Labels of the peer solvers ``solve(..., method=...)`` can run."""
+
+FACETS = {
+    "isolator": ("linear", "fixed-base", "bilinear", "sliding-bearing"),
+    "superstructure": ("rigid", "flexible"),
+    "floor": ("base", "roof", "intermediate"),
+    "friction": FRICTION_MODELS,
+    "coupling": ("two-way", "one-way"),
+    "reduction": ("none", "bearing-stuck", "bearing-elastic", "demand-bound"),
+    "propagation": ("integrated", "piecewise", "none"),
+    "solver": ("exact",) + PEER_LABELS,
+}
+"""The independent properties of the model that ran, and the values each can take.
+
+``isolator``: the isolator integrated (``fixed-base`` for a base held to the ground: ``Pi3 = 0``,
+or a sliding bearing proven never to slip); ``superstructure``: rigid, or flexible and
+integrated; ``floor``: the contents' floor (the slab, the roof, or a floor between); ``friction``:
+the contact law integrated (``coulomb`` when friction does not depend on speed);
+``coupling``: the contents' friction acts back on the building (``two-way``) or is dropped
+(``one-way``: ``Pi8 = 0``, proven below the accuracy target, or a base that does not move);
+``reduction``: a proof that replaced the scene by a smaller model (a sliding bearing that never
+slips, a bilinear bearing that never yields, or a floor demand below the stick limit:
+``demand-bound``, answered ``Pi1 = 0`` without integrating); ``propagation``: integrated, the
+exact piecewise propagation of a sampled record, or none; ``solver``: the exact solver or a peer.
+The position of a value is its code in the dataset flag variable ``model_<facet>``; values are
+only ever appended."""
 
 
 def label(fixed: bool, noslide: bool, friction: str, oneway: bool, piecewise: bool = False) -> str:
@@ -122,7 +152,7 @@ BEARING_REDUCTIONS = ("bearing-stuck", "bearing-elastic")
 """Reductions of a bearing to the paper's model (see :mod:`isoslide.building`)."""
 
 
-def building_label(isolator: str, flexible: bool, roof: bool, noslide: bool, friction: str,
+def building_label(isolator: str, flexible: bool, floor, noslide: bool, friction: str,
                    oneway: bool) -> str:
     """The model label of a general building integrated by :mod:`isoslide.building_kernel`.
 
@@ -132,8 +162,9 @@ def building_label(isolator: str, flexible: bool, roof: bool, noslide: bool, fri
         The isolator integrated.
     flexible : bool
         A flexible superstructure was integrated.
-    roof : bool
-        The contents sit on the superstructure (ignored unless ``flexible``).
+    floor : {"base", "roof", "intermediate"} or bool
+        The contents' floor (:data:`FACETS` ``["floor"]``; ignored unless ``flexible``); ``True``
+        stands for ``"roof"``, ``False`` for ``"base"``.
     noslide, friction, oneway
         As for :func:`label`.
     """
@@ -141,11 +172,14 @@ def building_label(isolator: str, flexible: bool, roof: bool, noslide: bool, fri
         raise ValueError(f"isolator = {isolator!r} is invalid; allowed: {ISOLATOR_PARTS}")
     if friction not in FRICTION_MODELS:
         raise ValueError(f"friction = {friction!r} is invalid; allowed: {FRICTION_MODELS}")
+    floor = {True: "roof", False: "base"}.get(floor, floor)
+    if floor not in FACETS["floor"]:
+        raise ValueError(f"floor = {floor!r} is invalid; allowed: {FACETS['floor']}")
     parts = [isolator]
     if flexible:
         parts.append("flexible")
-        if roof:
-            parts.append("roof")
+        if floor != "base":
+            parts.append(floor)
     if noslide:
         parts.append("no-slide")
     else:
@@ -155,19 +189,21 @@ def building_label(isolator: str, flexible: bool, roof: bool, noslide: bool, fri
     return "+".join(parts)
 
 
-def _building_labels() -> tuple:
+def _building_labels(floors=("base", "roof")) -> tuple:
     out = []
-    supers = ((False, False), (True, False), (True, True))
+    supers = ((False, "base"),) + tuple((True, f) for f in floors)
     for iso in ISOLATOR_PARTS:
-        for flexible, roof in supers:
-            if (iso == "linear" and not flexible) or (iso == "fixed-base" and not roof):
+        for flexible, floor in supers:
+            if (iso == "linear" and not flexible) or (iso == "fixed-base" and floor == "base"):
                 continue   # the paper's model
             for noslide in (True, False):
                 for friction in FRICTION_MODELS[:2]:
                     for oneway in (False, True):
-                        name = building_label(iso, flexible, roof, noslide, friction, oneway)
+                        name = building_label(iso, flexible, floor, noslide, friction, oneway)
                         if name not in out:
                             out.append(name)
+    if floors != ("base", "roof"):
+        return tuple(out)
     paper = [n for n in _exact_labels() + PIECEWISE_LABELS if "static-kinetic" not in n]
     for red in BEARING_REDUCTIONS:
         fixed = red == "bearing-stuck"
@@ -176,9 +212,59 @@ def _building_labels() -> tuple:
 
 
 BUILDING_LABELS = _building_labels()
-"""Labels of the general building (appended after every other; codes never change)."""
+BUILDING_LABELS = BUILDING_LABELS + _building_labels(("intermediate",))
+"""Labels of the general building; contents on a floor between the slab and the roof of a building
+of several storeys come last."""
 
 MODEL_LABELS = (_STABLE + tuple(n for n in _exact_labels() + PEER_LABELS if n not in _STABLE)
                 + PIECEWISE_LABELS)
 MODEL_LABELS = MODEL_LABELS + tuple(n for n in BUILDING_LABELS if n not in MODEL_LABELS)
-"""Every label :func:`isoslide.solve` can produce, in flag-code order (codes never change)."""
+"""Every label :func:`isoslide.solve` can produce."""
+
+
+@dataclass(frozen=True)
+class Facets:
+    """The model that ran for a scene, one value per independent property (:data:`FACETS`).
+
+    :meth:`label` derives the display label (:attr:`isoslide.Solution.model`) from them; whether
+    the contents slid is ``Pi1 > 0``, not part of the model.
+    """
+
+    isolator: str = "linear"
+    superstructure: str = "rigid"
+    floor: str = "base"
+    friction: str = "coulomb"
+    coupling: str = "two-way"
+    reduction: str = "none"
+    propagation: str = "integrated"
+    solver: str = "exact"
+
+    def __post_init__(self):
+        for name, allowed in FACETS.items():
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"{name} = {getattr(self, name)!r} is invalid; allowed: {allowed}")
+
+    def label(self, slid: bool = True) -> str:
+        """The display label, e.g. ``"sliding-bearing+flexible+roof+coulomb"`` (see the module docstring).
+
+        Parameters
+        ----------
+        slid : bool
+            Whether the contents slid (``Pi1 > 0``); ``False`` puts ``no-slide`` in place of the
+            friction law.
+        """
+        if self.solver != "exact":
+            return self.solver
+        oneway = self.coupling == "one-way"
+        fixed = self.isolator == "fixed-base"
+        piecewise = self.propagation == "piecewise"
+        if self.reduction in BEARING_REDUCTIONS:
+            return f"{self.reduction}+{label(fixed, not slid, self.friction, oneway, piecewise)}"
+        if self.isolator in ("bilinear", "sliding-bearing") or self.superstructure == "flexible":
+            return building_label(self.isolator, self.superstructure == "flexible", self.floor, not slid,
+                                  self.friction, oneway)
+        return label(fixed, not slid, self.friction, oneway, piecewise)
+
+    def codes(self) -> dict:
+        """``{facet: code}``: each value's position in :data:`FACETS`."""
+        return {name: FACETS[name].index(getattr(self, name)) for name in FACETS}

@@ -61,8 +61,7 @@ import numpy as np
 
 from . import building, building_kernel, kernel, piecewise
 from .history import History
-from .models import building_label
-from .models import label as model_label
+from .models import BEARING_REDUCTIONS, Facets
 from .peers import SCENE_SOLVERS, PeerResult
 from .pulses import SAMPLED, sampled
 from .progress import Progress
@@ -108,13 +107,15 @@ class Solution:
     settled : bool
         True when no further sliding is possible (see :mod:`isoslide.kernel`).
     model : str
-        Which reduced model ran (see module docstring).
+        Which reduced model ran, as a display label derived from ``facets`` (see module docstring).
     tau_end : float
         Time at which the integration stopped (units of T_p).
     n_steps, n_events : int
         Integrator steps (incl. rejected and event-location steps) and stick/slip transitions.
     history : History or None
         Time history when requested.
+    facets : Facets
+        The model that ran, one value per independent property (:data:`isoslide.models.FACETS`).
     """
 
     pi1: float
@@ -129,6 +130,7 @@ class Solution:
     n_steps: int
     n_events: int
     history: History | None = field(default=None, repr=False)
+    facets: Facets | None = None
 
 
 @dataclass(frozen=True)
@@ -143,6 +145,7 @@ class Batch:
     tau_end: np.ndarray
     n_steps: np.ndarray
     n_events: np.ndarray
+    facets: np.ndarray | None = None
 
     def __len__(self):
         return self.pi1.shape[0]
@@ -392,8 +395,8 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     oneway = pi8 == 0.0
     if model == "auto" and piecewise_path and math.isinf(max_step) and piecewise_applies(scene):
         ints, floats, hist = _run_piecewise(scene, pi8, hist_cap, horizon, settle=settle)
-        label = model_label(fixed, ints[kernel.R_SLIPPED] == 0, "coulomb", oneway, piecewise=True)
-        return _solution(scene, ints, floats, label, _history(hist) if history else None)
+        facets = scene_facets(scene, friction="coulomb", oneway=oneway, propagation="piecewise")
+        return _solution(scene, ints, floats, facets, _history(hist) if history else None)
     def run(p8, irtol=None, many=False):
         res = _run(scene, p8, friction, rtol, hist_cap, horizon, max_step=max_step, settle=settle,
                    irtol=irtol, many_transitions=many)
@@ -448,10 +451,9 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
                 if abs(b - a) <= 0.1 * rtol * abs(b) and same_events:
                     break
     ints, floats, hist = out
-    noslide = ints[kernel.R_SLIPPED] == 0
     law = "static-kinetic" if model == "static-kinetic" else ("coulomb" if coulomb else "stribeck")
-    label = model_label(fixed, noslide, law, oneway)
-    return _solution(scene, ints, floats, label, _history(hist) if history else None)
+    facets = scene_facets(scene, friction=law, oneway=oneway)
+    return _solution(scene, ints, floats, facets, _history(hist) if history else None)
 
 
 def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
@@ -469,8 +471,10 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     if paper is not None:
         sol = solve(paper, rtol=rtol, history=history, horizon=horizon, model=model, max_step=max_step,
                     settle=settle, piecewise_path=piecewise_path)
-        label = sol.model if name in ("paper", "fixed-base") else f"{name}+{sol.model}"
-        return dataclasses.replace(sol, model=label)
+        if name not in BEARING_REDUCTIONS:
+            return sol
+        facets = dataclasses.replace(sol.facets, reduction=name)
+        return dataclasses.replace(sol, facets=facets, model=facets.label(sol.pi1 > 0.0))
     coulomb = (scene.rate_independent and model == "auto") or model == "static-kinetic"
     if model == "static-kinetic":
         raise ValueError("model = 'static-kinetic' is available for the paper's model only "
@@ -520,12 +524,8 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
                 if abs(b - a) <= 0.1 * rtol * abs(b) and same:
                     break
     ints, floats, hist = out
-    isolator = "fixed-base" if scene.pi3 == 0.0 else {"sliding": "sliding-bearing"}.get(scene.isolator,
-                                                                                           scene.isolator)
-    law = "coulomb" if coulomb else "stribeck"
-    label = building_label(isolator, scene.flexible, scene.floor_index > 0,
-                           ints[building_kernel.R_SLIPPED] == 0, law, pi8 == 0.0)
-    sol = _solution(scene, ints, floats, label)
+    facets = scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0)
+    sol = _solution(scene, ints, floats, facets)
     if history:
         sol = dataclasses.replace(sol, history=_building_history(hist, scene))
     return sol
@@ -547,16 +547,33 @@ def _building_history(h: np.ndarray, scene: Scene) -> History:
                    iso_phase=h[:, c["iso_phase"]].astype(np.int8) if scene.pi9 > 0.0 else None)
 
 
-def _solution(scene, ints, floats, label, hist=None) -> Solution:
+def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "integrated",
+                 solver: str = "exact") -> Facets:
+    """The facets of a solve of ``scene`` (:class:`isoslide.models.Facets`) that integrated its model.
+
+    The isolator, superstructure and floor come from the scene (a base with ``Pi3 = 0`` is
+    ``fixed-base``, a rigid superstructure carries the contents on the slab); ``friction``,
+    ``oneway``, ``propagation`` and ``solver`` say how it was solved.
+    """
+    isolator = "fixed-base" if scene.pi3 == 0.0 else {"sliding": "sliding-bearing"}.get(scene.isolator,
+                                                                                           scene.isolator)
+    k = scene.floor_index if scene.flexible else 0
+    floor = "base" if k == 0 else ("roof" if k == scene.storeys else "intermediate")
+    return Facets(isolator=isolator, superstructure="flexible" if scene.flexible else "rigid", floor=floor,
+                  friction=friction, coupling="one-way" if oneway else "two-way", propagation=propagation,
+                  solver=solver)
+
+
+def _solution(scene, ints, floats, facets: Facets, hist=None) -> Solution:
     pi1 = float(floats[kernel.F_UMAX])
     res = float(floats[kernel.F_URES])
     tpk = float(floats[kernel.F_TPEAK])
     L = scene.scale.length if scene.scale is not None else 1.0
     Tp = scene.scale.T_p if scene.scale is not None else 1.0
     return Solution(pi1=pi1, u_max=pi1 * L, pi1_residual=res, u_residual=res * L, tau_peak=tpk,
-                    t_peak=tpk * Tp, settled=bool(ints[kernel.R_SETTLED]), model=label,
+                    t_peak=tpk * Tp, settled=bool(ints[kernel.R_SETTLED]), model=facets.label(pi1 > 0.0),
                     tau_end=float(floats[kernel.F_TEND]), n_steps=int(ints[kernel.R_STEPS]),
-                    n_events=int(ints[kernel.R_EVENTS]), history=hist)
+                    n_events=int(ints[kernel.R_EVENTS]), history=hist, facets=facets)
 
 
 def _from_peer(scene: Scene, res: PeerResult) -> Solution:
@@ -571,7 +588,9 @@ def _from_peer(scene: Scene, res: PeerResult) -> Solution:
                     u_residual=res.pi1_residual * L, tau_peak=res.tau_peak, t_peak=res.tau_peak * Tp,
                     settled=res.settled, model=res.method, tau_end=res.tau_end,
                     n_steps=res.n_steps if res.n_steps >= 0 else res.nfev, n_events=res.n_events,
-                    history=res.history)
+                    history=res.history,
+                    facets=scene_facets(scene, "coulomb" if scene.rate_independent else "stribeck",
+                                        oneway=scene.pi3 == 0.0 and not scene.flexible, solver=res.method))
 
 
 def peak_stuck_demand(scene: Scene, rtol: float | None = None, horizon: float = DEFAULT_HORIZON) -> float:
@@ -612,6 +631,7 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
     tpk = np.zeros(n)
     settled = np.zeros(n, dtype=bool)
     models = np.empty(n, dtype=object)
+    facets = np.empty(n, dtype=object)
     tend = np.zeros(n)
     nsteps = np.zeros(n, dtype=np.int64)
     nev = np.zeros(n, dtype=np.int64)
@@ -626,7 +646,10 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
             if key not in demand:
                 demand[key] = peak_stuck_demand(sc, rtol, horizon)
             if sc.static_level > demand[key] * (1.0 + 1e-9):
-                models[i] = model_label(sc.pi3 == 0.0, True, "coulomb", False)
+                facets[i] = dataclasses.replace(
+                    scene_facets(sc, friction="coulomb", oneway=sc.pi3 == 0.0 or sc.pi8 == 0.0),
+                    reduction="demand-bound", propagation="none")
+                models[i] = facets[i].label(slid=False)
                 settled[i] = True
                 tpk[i] = sc.pulse.tau_start
                 tend[i] = sc.pulse.tau_start
@@ -634,9 +657,10 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
         s = solve(sc, rtol=rtol, horizon=horizon, model=model)
         pi1[i], res[i], tpk[i], settled[i] = s.pi1, s.pi1_residual, s.tau_peak, s.settled
         models[i], tend[i], nsteps[i], nev[i] = s.model, s.tau_end, s.n_steps, s.n_events
+        facets[i] = s.facets
     progress.finish(n)
     return Batch(pi1=pi1, pi1_residual=res, tau_peak=tpk, settled=settled, model=models.astype(str),
-                 tau_end=tend, n_steps=nsteps, n_events=nev)
+                 tau_end=tend, n_steps=nsteps, n_events=nev, facets=facets)
 
 
 def warm_up(records: bool = False, building: bool = False) -> None:

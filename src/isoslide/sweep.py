@@ -435,9 +435,10 @@ def solve_points(grid: Grid, indices, rtol=None, method="exact"):
         progress.update(i)
         sols.append(solver.solve(s, rtol=rtol, method=method))
     progress.finish()
-    return solver.Batch(**{f: np.array([getattr(s, f) for s in sols])
-                           for f in ("pi1", "pi1_residual", "tau_peak", "settled", "model",
-                                     "tau_end", "n_steps", "n_events")})
+    fields = ("pi1", "pi1_residual", "tau_peak", "settled", "model", "tau_end", "n_steps", "n_events")
+    facets = np.empty(len(sols), dtype=object)
+    facets[:] = [s.facets for s in sols]
+    return solver.Batch(**{f: np.array([getattr(s, f) for s in sols]) for f in fields}, facets=facets)
 
 
 def solve_chunk(spec: dict, chunk: int):

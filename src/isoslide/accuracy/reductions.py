@@ -58,7 +58,7 @@ def measure_reductions(entries, settings: dict) -> xr.Dataset:
 
     Both variants of a scene are timed side by side (interleaved, ``reduction_repeats``
     times, median).  A reduction applies to a scene when the solver actually takes it
-    (by its model label: ``fixed-base``, ``coulomb``, ``one-way``; ``no-slide`` when
+    (by the facets of the model that ran: ``fixed-base``, ``coulomb``, ``one-way``; ``no-slide`` when
     :func:`isoslide.solve_many` answers without integrating; settlement on every scene
     that settles).
     """
@@ -77,18 +77,20 @@ def measure_reductions(entries, settings: dict) -> xr.Dataset:
     for i, e in enumerate(entries):
         sc = e.scene
         auto = solve(sc, rtol=rtol, horizon=H)
-        label = auto.model
+        fa = auto.facets
+        slid = auto.pi1 > 0.0
         applies = {
-            "fixed-base": "fixed-base" in label and sc.paper_model,
-            "coulomb": "coulomb" in label,
+            "fixed-base": fa.isolator == "fixed-base" and sc.paper_model,
+            "coulomb": fa.friction == "coulomb" and slid,
             "one-way": sc.pi3 > 0 and sc.pi8 > 0 and sc.paper_model,
             "settlement": auto.settled,
-            "bearing-stuck": label.startswith("bearing-stuck+"),
-            "bearing-elastic": label.startswith("bearing-elastic+"),
+            "bearing-stuck": fa.reduction == "bearing-stuck",
+            "bearing-elastic": fa.reduction == "bearing-elastic",
         }
         batch = solve_many([sc], rtol=rtol, horizon=H)
-        applies["no-slide"] = "no-slide" in str(batch.model[0]) and batch.n_steps[0] == 0
-        taken[REDUCTIONS.index("one-way"), i] = "one-way" in label and sc.pi8 > 0
+        applies["no-slide"] = batch.facets[0].reduction == "demand-bound" and batch.n_steps[0] == 0
+        taken[REDUCTIONS.index("one-way"), i] = (fa.coupling == "one-way" and fa.isolator != "fixed-base" and slid
+                                                 and sc.pi8 > 0)
         taken[REDUCTIONS.index("fixed-base"), i] = applies["fixed-base"]
         taken[REDUCTIONS.index("coulomb"), i] = applies["coulomb"]
         taken[REDUCTIONS.index("no-slide"), i] = applies["no-slide"]
