@@ -20,9 +20,9 @@ Adding a study is then: its module, its rule file (``workflow/rules/<name>.smk``
 notebook (or a section of an existing one) and its configuration section (``config/schema.yaml``
 with defaults), plus one :class:`Study` here.
 
-Plain Python: nothing here imports Snakemake or the solver.  Lists that depend on the configuration
-(the paper's studies, the fragility study's bases) are callables of the complete configuration that
-import what they need when called.
+Plain Python, no Snakemake.  Lists that depend on the configuration (the paper's studies, the
+fragility study's bases) are callables of the complete configuration, answered by the study's own
+module (the workflow imports those modules anyway to check their settings).
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
+from .. import fragility_study, isolation_study
 from .imports import closure, module_names
 
 DATASET_DIR = "results/datasets"
@@ -153,8 +154,6 @@ def _paper_datasets(config: Mapping) -> list[str]:
 
 
 def _fragility_datasets(config: Mapping) -> list[str]:
-    from .. import fragility_study
-
     return fragility_study.dataset_names(fragility_study.fragility_settings(config))
 
 
@@ -169,8 +168,6 @@ def _fragility_needs(config: Mapping) -> list[str]:
 
 
 def _isolation_datasets(config: Mapping) -> list[str]:
-    from .. import isolation_study
-
     return isolation_study.study_names() + ["isolation_rigid", "isolation_design"]
 
 

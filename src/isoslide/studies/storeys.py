@@ -26,8 +26,10 @@ import numpy as np
 import xarray as xr
 
 from ..datasets import global_attrs, pi_attrs
+from ..scene import MAX_STOREYS, Scene
+from ..solver import solve_many as _solve_many
 
-__all__ = ["ISOLATORS", "check_settings", "findings", "floor_summary", "scenes", "storeys_dataset",
+__all__ = ["ISOLATORS", "MAX_STOREYS", "check_settings", "findings", "floor_summary", "scenes", "storeys_dataset",
            "storeys_settings", "storeys_study"]
 
 ISOLATORS = ("linear", "friction_pendulum")
@@ -35,9 +37,6 @@ ISOLATORS = ("linear", "friction_pendulum")
 
 ISOLATOR_LABELS = {"linear": "linear isolator", "friction_pendulum": "friction pendulum"}
 """Names of the isolators in text."""
-
-MAX_STOREYS = 64
-"""Most storeys of a building (:data:`isoslide.scene.MAX_STOREYS`)."""
 
 
 def storeys_settings(config: Mapping) -> dict:
@@ -116,8 +115,6 @@ def scenes(settings: Mapping) -> tuple[list, list]:
         The :class:`isoslide.Scene` objects and, for each, its position in the dataset's
         ``pi1`` array (floors ``0 .. N`` of each building ``N``).
     """
-    from ..scene import Scene
-
     section = check_settings(settings)
     defaults = settings["defaults"]
     contents = {k: float(defaults[k]) for k in ("pi5", "pi6", "pi7", "pi8")}
@@ -156,7 +153,7 @@ def storeys_study(settings: Mapping, solve_many=None) -> xr.Dataset:
         (``upper_ratio > 1 + tolerance``); per isolator its ``pi4``, ``pi9``, ``pi10``.
     """
     if solve_many is None:
-        from ..solver import solve_many
+        solve_many = _solve_many
     section = check_settings(settings)
     rtol = settings["solver"]["rtol"]
     tol = section["tolerance"]
