@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 
 from .pulses import Pulse, get_pulse
 from .groups import INPUT_NAMES, INPUTS
+from .model.shear_building import fundamental_period
 from .groups import defaults as _group_defaults
 from .validation import check_range
 
@@ -340,8 +341,6 @@ def _canonical_floor(floor, storeys: int):
 
 def _derived_superstructure(m_st, T_s, masses: tuple, stiffnesses: tuple) -> tuple:
     """``(m_st, T_s)`` of a superstructure given floor by floor; given values must agree to 1e-9."""
-    from .model.shear_building import fundamental_period
-
     derived = {"m_st": math.fsum(masses), "T_s": float(fundamental_period(masses, stiffnesses))}
     for name, given in (("m_st", m_st), ("T_s", T_s)):
         given = check_range(name, given, 0.0, math.inf, True, False)
