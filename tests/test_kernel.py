@@ -211,3 +211,36 @@ def test_stuck_step_screen_lets_through_exactly_the_steps_with_something_to_loca
             assert not found and amax == 0.5
         seen[possible] += 1
     assert min(seen.values()) > 50
+
+
+@pytest.mark.parametrize("module", ["kernel", "building_kernel", "piecewise"])
+def test_every_kernel_declares_its_result_layout_and_the_indices_follow_it(module):
+    """``R_<NAME>`` / ``F_<NAME>`` index ``INT_RESULTS`` / ``FLOAT_RESULTS`` at ``<name>``, and a run's
+    arrays have exactly the declared lengths (the solver reads results by these names only)."""
+    import importlib
+
+    from isoslide import Scene, building, solver
+
+    mod = importlib.import_module(f"isoslide.{module}")
+    for prefix, names in (("R_", mod.INT_RESULTS), ("F_", mod.FLOAT_RESULTS)):
+        consts = {k: v for k, v in vars(mod).items() if k.startswith(prefix) and isinstance(v, int)}
+        assert consts, f"{module} declares no {prefix}* indices"
+        for k, v in consts.items():
+            assert names[v] == k[len(prefix):].lower(), (module, k, v)
+    sc = Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi9=0.05 if module == "building_kernel" else 0.0)
+    if module == "building_kernel":
+        P = building.parameters(sc)
+        pu = sc.pulse
+        res = mod.run(P, pu.code, pu.param_array, pu.breakpoint_array, pu.tau_start, pu.tau_end, 20.0, 0.05, 0.05,
+                      1e-8, 1e-10, 0, 1e-3, True, 10**6, *building.modal_data(sc, P))
+    elif module == "kernel":
+        res = solver._run(sc, sc.pi8, 1.0, 1e-6)
+    else:
+        from isoslide.pulses import sampled
+        sc = Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse=sampled(np.sin(np.linspace(0, 6.3, 101)), 0.01))
+        res = None
+        run = solver._run_piecewise(sc, sc.pi8)
+    if res is not None:
+        assert len(res[0]) == len(mod.INT_RESULTS) and len(res[1]) == len(mod.FLOAT_RESULTS)
+        run = solver.Run.of(mod, res)
+    assert run.pi1 > 0.0 and run.ints["settled"] == 1 and run.ints["steps"] > 0

@@ -101,12 +101,14 @@ def history_width(n: int) -> int:
 KIND_LINEAR, KIND_BILINEAR, KIND_SLIDING, KIND_FIXED = range(4)
 """Isolator kinds (``P[P_KIND]``): linear, bilinear bearing, sliding bearing, fixed base."""
 
-# integer results
+INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "iso_events", "iso_moved", "rejected")
+"""The integer results of :func:`run`, in order (their indices are ``R_*``)."""
 (R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_ISO_EVENTS, R_ISO_MOVED, R_REJECTED) = range(8)
-N_R = 8
-# float results
+N_R = len(INT_RESULTS)
+FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "xmax", "vmax")
+"""The float results of :func:`run`, in order (their indices are ``F_*``)."""
 F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX = range(6)
-N_F = 6
+N_F = len(FLOAT_RESULTS)
 # history columns: [tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im] (see history_columns)
 H_TAU, H_X, H_XD, H_XS = range(4)
 

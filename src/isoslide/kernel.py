@@ -63,13 +63,15 @@ M_W2, M_CW, M_P8, M_THR, M_PI2, M_PI6, M_PI7, M_FIXED, M_COULOMB = range(9)
 N_M = 9
 """Length of the model-parameter array."""
 
-# indices into the integer results of :func:`run`
+INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "loc_stick", "loc_slip", "loc_peak", "rejected")
+"""The integer results of :func:`run`, in order (their indices are ``R_*``)."""
 R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_LOC_STICK, R_LOC_SLIP, R_LOC_PEAK, R_REJECTED = range(9)
-N_R = 9
+N_R = len(INT_RESULTS)
 """Length of the integer results."""
-# indices into the float results of :func:`run`
+FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "amax", "vmax")
+"""The float results of :func:`run`, in order (their indices are ``F_*``)."""
 F_UMAX, F_TPEAK, F_URES, F_TEND, F_AMAX, F_VMAX = range(6)
-N_F = 6
+N_F = len(FLOAT_RESULTS)
 """Length of the float results."""
 # columns of the history returned by :func:`run`
 H_TAU, H_X, H_XD, H_U, H_UD, H_PHASE = range(6)

@@ -46,10 +46,15 @@ import math
 import numpy as np
 from numba import njit
 
-from . import jit_cache
-from .kernel import (F_TEND, F_TPEAK, F_UMAX, F_URES, F_VMAX, F_AMAX, M_CW, M_FIXED, M_P8, M_THR, M_W2,
-                     N_F, N_H, N_R, R_EVENTS, R_HIST, R_LOC_PEAK, R_LOC_SLIP, R_LOC_STICK, R_REJECTED,
-                     R_SETTLED, R_SLIPPED, R_STEPS, _break_away, _demand_bound, _hermite_max, _record)
+from . import jit_cache, kernel
+from .kernel import (F_AMAX, F_TEND, F_TPEAK, F_UMAX, F_URES, F_VMAX, M_CW, M_FIXED, M_P8, M_THR, M_W2, N_F, N_H,
+                     N_R, R_EVENTS, R_HIST, R_LOC_PEAK, R_LOC_SLIP, R_LOC_STICK, R_REJECTED, R_SETTLED, R_SLIPPED,
+                     R_STEPS, _break_away, _demand_bound, _hermite_max, _record)
+
+INT_RESULTS = kernel.INT_RESULTS
+"""The integer results of :func:`run`: the layout of :func:`isoslide.kernel.run`."""
+FLOAT_RESULTS = kernel.FLOAT_RESULTS
+"""The float results of :func:`run`: the layout of :func:`isoslide.kernel.run`."""
 
 N_TAYLOR = 22
 """Taylor terms of the exact solution over one substep."""

@@ -230,6 +230,96 @@ def base_atol(scene: Scene, irtol: float, many_transitions: bool = False) -> flo
     return irtol * ATOL_SCALE
 
 
+@dataclass(frozen=True)
+class Run:
+    """One run of a compiled kernel, read through the kernel module's declared result layout.
+
+    Every kernel module declares the names of its integer and float results, in order
+    (``INT_RESULTS``, ``FLOAT_RESULTS``); :meth:`of` reads a run's arrays by those names, so no
+    module indexes another's results.
+    """
+
+    ints: dict
+    floats: dict
+    hist: np.ndarray
+
+    @classmethod
+    def of(cls, module, res) -> "Run":
+        """The run ``res = (ints, floats, hist)`` of ``module.run`` (or of a function with its layout)."""
+        ints, floats, hist = res
+        return cls(dict(zip(module.INT_RESULTS, ints.tolist(), strict=True)),
+                   dict(zip(module.FLOAT_RESULTS, floats.tolist(), strict=True)), hist)
+
+    @property
+    def pi1(self) -> float:
+        """Peak sliding displacement ``u_max / (a_p T_p^2)``."""
+        return self.floats["umax"]
+
+    @property
+    def transitions(self) -> int:
+        """Stick-slip transitions of every interface (the contents' and an isolator's)."""
+        return self.ints["events"] + self.ints.get("iso_events", 0)
+
+    def same_transitions(self, other: "Run") -> bool:
+        """Whether ``other`` has as many transitions of each interface."""
+        return all(self.ints.get(k, 0) == other.ints.get(k, 0) for k in ("events", "iso_events"))
+
+
+def _checked(run: Run, scene: Scene, horizon: float, budget: int, what: str, rtol: float | None = None) -> Run:
+    """``run``, or :class:`StepBudgetError` when it stopped on its step budget before the horizon.
+
+    ``what`` names the steps counted; ``rtol``, where the run's cost depends on it, is quoted with
+    its allowed range.
+    """
+    if run.floats["tend"] < _horizon(scene, horizon) and not run.ints["settled"] and run.ints["steps"] > budget:
+        shorten = f"the horizon (horizon = {horizon:g}) for {scene}"
+        advice = (f"Shorten {shorten}" if rtol is None else
+                  f"Loosen rtol (allowed range: 1e-13 <= rtol <= 0.1) or shorten {shorten}")
+        at = f"tau = {run.floats['tend']:.6g}" + ("" if rtol is None else f" with rtol = {rtol:g}")
+        raise StepBudgetError(f"the step budget ({budget} {what}) ran out at {at}; the answer would be "
+                              f"truncated. {advice}")
+    return run
+
+
+def _refined(out: Run, run, scene: Scene, rtol: float, horizon: float, demand_integrated: bool) -> Run:
+    """The tolerance loop of every integrated solve.
+
+    ``out`` is the run at the integrator tolerance :func:`integrator_rtol`; ``run(irtol, many)``
+    integrates again at the local tolerance ``irtol`` (``many``: the base's absolute tolerance
+    scaled for many transitions, :func:`base_atol`).  Where Pi1 is ill-conditioned the scene is
+    run once more at a tighter tolerance: near the no-slide threshold (where the floor demand is
+    integrated, ``demand_integrated``: :func:`near_threshold_rtol`), and where errors add up over
+    more than ``MANY_EVENTS`` transitions.  With very many transitions, some of them marginal, a
+    breakaway decided by a demand excess below the local error can be missed: the tolerance is
+    tightened until two answers agree to ``rtol / 10`` with the same transitions (at most
+    ``CONVERGENCE_PASSES`` times).
+    """
+    pi1 = out.pi1
+    if not 0.0 < pi1:
+        return out
+    used = integrator_rtol(scene, rtol, horizon)
+    many = out.transitions > MANY_EVENTS
+    need = used * min(1.0, MANY_EVENTS / max(out.transitions, 1))
+    if demand_integrated:
+        need = min(need, near_threshold_rtol(scene, rtol, pi1))
+    if need < used or (many and scene.pi3 < 1.0):
+        need = max(need, MIN_INTEGRATOR_RTOL)
+        out = run(need, many)
+    if out.transitions > MANY_EVENTS:
+        need = min(need, used)
+        for _ in range(CONVERGENCE_PASSES):
+            if need <= MIN_INTEGRATOR_RTOL:
+                break
+            need = max(need / 10.0, MIN_INTEGRATOR_RTOL)
+            finer = run(need, True)
+            a, b = out.pi1, finer.pi1
+            same = out.same_transitions(finer)
+            out = finer
+            if abs(b - a) <= 0.1 * rtol * abs(b) and same:
+                break
+    return out
+
+
 def _run(scene: Scene, pi8: float, coulomb: float, rtol: float, hist_cap: int = 0,
          horizon: float = DEFAULT_HORIZON, track_max: bool = False, max_step: float = math.inf,
          settle: bool = True, irtol: float | None = None, many_transitions: bool = False):
@@ -256,18 +346,13 @@ def piecewise_applies(scene: Scene) -> bool:
 
 def _run_piecewise(scene: Scene, pi8: float, hist_cap: int = 0, horizon: float = DEFAULT_HORIZON,
                    track_max: bool = False, settle: bool = True):
-    """:func:`isoslide.piecewise.run` for a scene (same results layout as :func:`_run`)."""
+    """:func:`isoslide.piecewise.run` for a scene, as a :class:`Run`."""
     pulse = scene.pulse
     m = _model_array(scene, pi8, 1.0, thr=math.inf if track_max else None)
     budget = step_budget(scene, horizon)
     res = piecewise.run(m, pulse.param_array, pulse.tau_start, pulse.tau_end, _horizon(scene, horizon),
                         track_max, hist_cap, settle, budget)
-    if res[1][kernel.F_TEND] < _horizon(scene, horizon) and not res[0][kernel.R_SETTLED] \
-            and res[0][kernel.R_STEPS] > budget:
-        raise StepBudgetError(
-            f"the step budget ({budget} substeps) ran out at tau = {res[1][kernel.F_TEND]:.6g}; the "
-            f"answer would be truncated. Shorten the horizon (horizon = {horizon:g}) for {scene}")
-    return res
+    return _checked(Run.of(piecewise, res), scene, horizon, budget, "substeps")
 
 
 def step_budget(scene: Scene, horizon: float = DEFAULT_HORIZON) -> int:
@@ -394,20 +479,15 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     pi8 = 0.0 if fixed else scene.pi8
     oneway = pi8 == 0.0
     if model == "auto" and piecewise_path and math.isinf(max_step) and piecewise_applies(scene):
-        ints, floats, hist = _run_piecewise(scene, pi8, hist_cap, horizon, settle=settle)
+        out = _run_piecewise(scene, pi8, hist_cap, horizon, settle=settle)
         facets = scene_facets(scene, friction="coulomb", oneway=oneway, propagation="piecewise")
-        return _solution(scene, ints, floats, facets, _history(hist) if history else None)
+        return _solution(scene, out, facets, _history(out.hist) if history else None)
+
     def run(p8, irtol=None, many=False):
         res = _run(scene, p8, friction, rtol, hist_cap, horizon, max_step=max_step, settle=settle,
                    irtol=irtol, many_transitions=many)
-        if res[1][kernel.F_TEND] < _horizon(scene, horizon) and not res[0][kernel.R_SETTLED] \
-                and res[0][kernel.R_STEPS] > step_budget(scene, horizon):
-            raise StepBudgetError(
-                f"the step budget ({step_budget(scene, horizon)} Runge-Kutta steps) ran out at tau = "
-                f"{res[1][kernel.F_TEND]:.6g} with rtol = {rtol:g}; the answer would be truncated. "
-                f"Loosen rtol (allowed range: 1e-13 <= rtol <= 0.1) or shorten the horizon "
-                f"(horizon = {horizon:g}) for {scene}")
-        return res
+        return _checked(Run.of(kernel, res), scene, horizon, step_budget(scene, horizon), "Runge-Kutta steps",
+                        rtol)
 
     out = None
     p8_used = pi8
@@ -416,44 +496,17 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
         span = scene.pulse.tau_end - scene.pulse.tau_start
         if 2.0 * 2.0 * span * pi8 * scene.static_level * l1 <= 0.1 * rtol:
             trial = run(0.0)
-            ints, floats, _ = trial
-            T = 2.0 * (floats[kernel.F_TEND] - scene.pulse.tau_start)
+            T = 2.0 * (trial.floats["tend"] - scene.pulse.tau_start)
             bound = 2.0 * T * pi8 * scene.static_level * l1
-            if bound <= 0.1 * rtol * floats[kernel.F_UMAX]:
+            if bound <= 0.1 * rtol * trial.pi1:
                 out, oneway, p8_used = trial, True, 0.0
     if out is None:
         out = run(pi8)
-    # refine once where Pi1 is ill-conditioned: near the no-slide threshold,
-    # and where errors add up over very many transitions
-    pi1 = out[1][kernel.F_UMAX]
-    if 0.0 < pi1:
-        used = integrator_rtol(scene, rtol, horizon)
-        many = out[0][kernel.R_EVENTS] > MANY_EVENTS
-        need = used * min(1.0, MANY_EVENTS / max(out[0][kernel.R_EVENTS], 1))
-        if not fixed:
-            need = min(need, near_threshold_rtol(scene, rtol, pi1))
-        if need < used or (many and scene.pi3 < 1.0):
-            need = max(need, MIN_INTEGRATOR_RTOL)
-            out = run(p8_used, irtol=need, many=many)
-        # very many transitions, some of them marginal: a breakaway decided by a demand excess
-        # below the local error can be missed; tighten until two answers agree to rtol / 10 with
-        # the same number of transitions
-        if out[0][kernel.R_EVENTS] > MANY_EVENTS:
-            need = min(need, used)
-            for _ in range(CONVERGENCE_PASSES):
-                if need <= MIN_INTEGRATOR_RTOL:
-                    break
-                need = max(need / 10.0, MIN_INTEGRATOR_RTOL)
-                finer = run(p8_used, irtol=need, many=True)
-                a, b = out[1][kernel.F_UMAX], finer[1][kernel.F_UMAX]
-                same_events = out[0][kernel.R_EVENTS] == finer[0][kernel.R_EVENTS]
-                out = finer
-                if abs(b - a) <= 0.1 * rtol * abs(b) and same_events:
-                    break
-    ints, floats, hist = out
+    out = _refined(out, lambda irtol, many: run(p8_used, irtol, many), scene, rtol, horizon,
+                   demand_integrated=not fixed)
     law = "static-kinetic" if model == "static-kinetic" else ("coulomb" if coulomb else "stribeck")
     facets = scene_facets(scene, friction=law, oneway=oneway)
-    return _solution(scene, ints, floats, facets, _history(hist) if history else None)
+    return _solution(scene, out, facets, _history(out.hist) if history else None)
 
 
 def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
@@ -488,46 +541,18 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     budget = step_budget(scene, horizon)
     h_free = min(building.free_step(scene), max_step)
 
-    def run(irtol):
+    def run(irtol, many=False):
         res = building_kernel.run(P, pulse.code, pulse.param_array, pulse.breakpoint_array, pulse.tau_start,
                                   pulse.tau_end, stop, min(H_MAX_PULSE, max_step), h_free, irtol,
-                                  base_atol(scene, irtol), hist_cap, min(H_RESTART, max_step), settle, budget,
+                                  base_atol(scene, irtol, many), hist_cap, min(H_RESTART, max_step), settle, budget,
                                   *modal)
-        if res[1][building_kernel.F_TEND] < stop and not res[0][building_kernel.R_SETTLED] \
-                and res[0][building_kernel.R_STEPS] > budget:
-            raise StepBudgetError(
-                f"the step budget ({budget} Runge-Kutta steps) ran out at tau = "
-                f"{res[1][building_kernel.F_TEND]:.6g} with rtol = {rtol:g}; the answer would be truncated. "
-                f"Loosen rtol (allowed range: 1e-13 <= rtol <= 0.1) or shorten the horizon "
-                f"(horizon = {horizon:g}) for {scene}")
-        return res
+        return _checked(Run.of(building_kernel, res), scene, horizon, budget, "Runge-Kutta steps", rtol)
 
-    used = integrator_rtol(scene, rtol, horizon)
-    out = run(used)
-    pi1 = out[1][building_kernel.F_UMAX]
-    nev = out[0][building_kernel.R_EVENTS] + out[0][building_kernel.R_ISO_EVENTS]
-    if pi1 > 0.0:
-        need = min(used * min(1.0, MANY_EVENTS / max(nev, 1)), near_threshold_rtol(scene, rtol, pi1))
-        if need < used:
-            out = run(max(need, MIN_INTEGRATOR_RTOL))
-        if nev > MANY_EVENTS:
-            need = min(need, used)
-            for _ in range(CONVERGENCE_PASSES):
-                if need <= MIN_INTEGRATOR_RTOL:
-                    break
-                need = max(need / 10.0, MIN_INTEGRATOR_RTOL)
-                finer = run(need)
-                a, b = out[1][building_kernel.F_UMAX], finer[1][building_kernel.F_UMAX]
-                same = (out[0][building_kernel.R_EVENTS] == finer[0][building_kernel.R_EVENTS]
-                        and out[0][building_kernel.R_ISO_EVENTS] == finer[0][building_kernel.R_ISO_EVENTS])
-                out = finer
-                if abs(b - a) <= 0.1 * rtol * abs(b) and same:
-                    break
-    ints, floats, hist = out
+    out = _refined(run(integrator_rtol(scene, rtol, horizon)), run, scene, rtol, horizon, demand_integrated=True)
     facets = scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0)
-    sol = _solution(scene, ints, floats, facets)
+    sol = _solution(scene, out, facets)
     if history:
-        sol = dataclasses.replace(sol, history=_building_history(hist, scene))
+        sol = dataclasses.replace(sol, history=_building_history(out.hist, scene))
     return sol
 
 
@@ -564,16 +589,16 @@ def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "
                   solver=solver)
 
 
-def _solution(scene, ints, floats, facets: Facets, hist=None) -> Solution:
-    pi1 = float(floats[kernel.F_UMAX])
-    res = float(floats[kernel.F_URES])
-    tpk = float(floats[kernel.F_TPEAK])
+def _solution(scene, run: Run, facets: Facets, hist=None) -> Solution:
+    pi1 = run.pi1
+    res = run.floats["ures"]
+    tpk = run.floats["tpeak"]
     L = scene.scale.length if scene.scale is not None else 1.0
     Tp = scene.scale.T_p if scene.scale is not None else 1.0
     return Solution(pi1=pi1, u_max=pi1 * L, pi1_residual=res, u_residual=res * L, tau_peak=tpk,
-                    t_peak=tpk * Tp, settled=bool(ints[kernel.R_SETTLED]), model=facets.label(pi1 > 0.0),
-                    tau_end=float(floats[kernel.F_TEND]), n_steps=int(ints[kernel.R_STEPS]),
-                    n_events=int(ints[kernel.R_EVENTS]), history=hist, facets=facets)
+                    t_peak=tpk * Tp, settled=bool(run.ints["settled"]), model=facets.label(pi1 > 0.0),
+                    tau_end=run.floats["tend"], n_steps=run.ints["steps"], n_events=run.ints["events"],
+                    history=hist, facets=facets)
 
 
 def _from_peer(scene: Scene, res: PeerResult) -> Solution:
@@ -602,10 +627,8 @@ def peak_stuck_demand(scene: Scene, rtol: float | None = None, horizon: float = 
     rtol = _check_rtol(rtol)
     pi8 = 0.0 if scene.pi3 == 0.0 else scene.pi8
     if scene.pulse.code == SAMPLED:  # linear between samples: exact peaks (isoslide.piecewise)
-        ints, floats, _ = _run_piecewise(scene, pi8, 0, horizon, track_max=True)
-    else:
-        ints, floats, _ = _run(scene, pi8, 1.0, rtol, 0, horizon, track_max=True)
-    return float(floats[kernel.F_AMAX])
+        return _run_piecewise(scene, pi8, 0, horizon, track_max=True).floats["amax"]
+    return Run.of(kernel, _run(scene, pi8, 1.0, rtol, 0, horizon, track_max=True)).floats["amax"]
 
 
 def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZON,
