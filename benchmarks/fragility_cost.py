@@ -14,7 +14,7 @@ import time
 import numpy as np
 
 import isoslide.config
-from isoslide import fragility_study as fs
+from isoslide.studies import fragility_study as fs
 from isoslide import solver
 
 

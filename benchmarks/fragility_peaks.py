@@ -4,16 +4,16 @@ Run: ``python benchmarks/fragility_peaks.py`` (about 10 s).  Three bundled recor
 PGA = 6 m/s^2 drive 2e4 kg contents (mu = 0.1 and 0.03) on a slab of 1e6 kg isolated at
 T_b = 2.5 s, xi_b = 0.15.  For each, the exact piecewise path's history (one row per record sample
 and transition) is compared with the integrator's history about every 0.15 ms (150,000 rows):
-the relative error of the largest row alone, and of :func:`isoslide.intensity.floor_peaks`
+the relative error of the largest row alone, and of :func:`isoslide.studies.intensity.floor_peaks`
 (cubic Hermite between rows with the floor jerk), against the dense history's peak.
 """
 
 import numpy as np
 
-from isoslide import fragility_study as fs
+from isoslide.studies import fragility_study as fs
 from isoslide import solver
-from isoslide.history_io import history_table
-from isoslide.intensity import floor_peaks
+from isoslide.store.history_io import history_table
+from isoslide.studies.intensity import floor_peaks
 from isoslide.records import sample
 from isoslide.scene import Scene
 

@@ -15,7 +15,7 @@ import numpy as np
 
 import isoslide
 from isoslide import solver
-from isoslide.progress import Progress
+from isoslide.store.progress import Progress
 
 SCENES = [isoslide.Scene(pi2=p2, pi3=p3, pi4=0.1, pi5=0.8, pi6=300.0)
           for p2 in np.linspace(0.05, 0.6, 40) for p3 in np.linspace(0.5, 3.0, 50)]

@@ -16,7 +16,7 @@ import pytest
 import xarray as xr
 
 from isoslide import Scene, accuracy, bench, groups, solve
-from isoslide.building import reduction
+from isoslide.engine.building import reduction
 from isoslide.datasets import open_dataset, write_netcdf
 from isoslide.peers import solve_reference
 from isoslide.solver import peak_stuck_demand

@@ -86,8 +86,8 @@ def test_package_modules_import_each_other_at_module_level():
 
 def test_the_datasets_module_is_a_leaf():
     deps = {t for t, _ in _package_imports()["isoslide.datasets"]}
-    assert deps <= {"isoslide.atomic", "isoslide.groups", "isoslide.models", "isoslide.provenance",
-                    "isoslide.validation"}
+    assert deps <= {"isoslide.atomic", "isoslide.groups", "isoslide.models", "isoslide.store.provenance",
+                    "isoslide.model.validation"}
 
 
 def test_the_atomic_write_module_imports_nothing_of_the_package():
@@ -210,3 +210,65 @@ def test_library_holds_no_hidden_configuration_defaults():
                     and not (isinstance(node.args[1], ast.Constant) and node.args[1].value is None)):
                 offenders.append(f"{path.relative_to(PKG)}:{node.lineno} .get({node.args[0].value!r}, ...)")
     assert not offenders, offenders
+
+
+# ----------------------------------------------------------------------------------------------
+# the layout: a few top-level modules, subpackages by what they hold, imports in one direction
+# ----------------------------------------------------------------------------------------------
+
+LAYERS = (
+    ("base", ("isoslide.atomic", "isoslide.budget", "isoslide.config", "isoslide.groups", "isoslide.jit_cache",
+              "isoslide.model", "isoslide.models")),
+    ("excitation", ("isoslide.pulses",)),
+    ("scene", ("isoslide.scene", "isoslide.records")),
+    ("engine", ("isoslide.engine",)),
+    ("store", ("isoslide.store",)),
+    ("peers", ("isoslide.peers",)),
+    ("solver", ("isoslide.solver",)),
+    ("datasets", ("isoslide.datasets",)),
+    ("studies", ("isoslide.studies", "isoslide.accuracy")),
+    ("reports", ("isoslide.reports",)),
+    ("interface", ("isoslide.cli", "isoslide.bench")),
+)
+"""The package's layers, lowest first: a module imports from its own layer and those below only."""
+
+
+def _layer(module: str) -> int | None:
+    for i, (_, prefixes) in enumerate(LAYERS):
+        if any(module == p or module.startswith(p + ".") for p in prefixes):
+            return i
+    return None
+
+
+def test_every_module_belongs_to_one_layer():
+    unplaced = [m for m in _package_imports() if m != "isoslide" and _layer(m) is None]
+    assert not unplaced, f"modules in no layer of LAYERS: {unplaced}"
+
+
+def test_imports_go_down_the_layers_only():
+    """model -> excitation -> scene -> engine -> store -> peers -> solver -> datasets -> studies -> reports -> cli."""
+    upward = [(m, t) for m, deps in _package_imports().items() if m != "isoslide"
+              for t, _ in deps if _layer(t) is not None and _layer(t) > _layer(m)]
+    assert not upward, "imports of a higher layer: " + "; ".join(f"{m} -> {t}" for m, t in upward)
+
+
+def test_the_package_has_at_most_twelve_top_level_modules():
+    top = sorted(p.stem for p in PKG.glob("*.py") if p.stem not in ("__init__", "__main__"))
+    assert len(top) <= 12, top
+
+
+def test_modules_of_the_flat_layout_still_import_from_their_old_names():
+    """``isoslide.<old>`` is the module at its new place, with a DeprecationWarning naming it."""
+    import importlib
+    import warnings
+
+    for old, new in isoslide.MOVED.items():
+        assert (PKG / Path(*new.split("."))).with_suffix(".py").is_file(), new
+        assert not (PKG / Path(*old.split("."))).with_suffix(".py").exists(), old
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sys.modules.pop("isoslide.sweep", None)
+        old = importlib.import_module("isoslide.sweep")
+    assert old is importlib.import_module("isoslide.studies.sweep")
+    assert any(issubclass(w.category, DeprecationWarning) and "isoslide.studies.sweep" in str(w.message)
+               for w in caught)

@@ -5,7 +5,7 @@ import time
 import pytest
 
 from isoslide import budget
-from isoslide.provenance import log_to
+from isoslide.store.provenance import log_to
 
 
 def _bench(path, seconds):

@@ -1,4 +1,4 @@
-"""The general building (isoslide.building, isoslide.building_kernel) against the paper's model,
+"""The general building (isoslide.engine.building, isoslide.engine.building_kernel) against the paper's model,
 its limits, a closed form, the energy balance, symmetry and similarity."""
 
 from __future__ import annotations
@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 import isoslide
-from isoslide import Scene, building, solve
-from isoslide import building_kernel as bk
+from isoslide import Scene, solve
+from isoslide.engine import building
+from isoslide.engine import building_kernel as bk
 from isoslide.pulses import sampled
 from isoslide.scene import G_STANDARD
 from isoslide.solver import _horizon, base_atol, integrator_rtol

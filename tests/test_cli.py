@@ -11,7 +11,7 @@ import pytest
 
 import isoslide
 from isoslide.cli import main
-from isoslide.history_io import read_history
+from isoslide.store.history_io import read_history
 
 
 def test_cli_pi_groups_json_matches_python(capsys):

@@ -10,7 +10,8 @@ import pytest
 import xarray as xr
 
 import isoslide.config
-from isoslide import datasets, sweep
+from isoslide import datasets
+from isoslide.studies import sweep
 from isoslide.models import FACETS, MODEL_LABELS, Facets
 
 CONFIG = {"chunk_size": 7, "reference": {"a_p_T_p": 9.80665}, "defaults": {"pi4": 0.1},

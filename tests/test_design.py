@@ -1,10 +1,10 @@
-"""Code linearisation of isolators (isoslide.design) against hand calculations."""
+"""Code linearisation of isolators (isoslide.studies.design) against hand calculations."""
 
 import math
 
 import pytest
 
-from isoslide import design
+from isoslide.studies import design
 
 G = 9.80665
 

@@ -10,7 +10,9 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 import isoslide.config  # noqa: E402
-from isoslide import datasets, figures, sweep  # noqa: E402
+from isoslide import datasets
+from isoslide.reports import figures
+from isoslide.studies import sweep  # noqa: E402
 
 CONFIG = {
     "chunk_size": 1000, "reference": {"a_p_T_p": 9.80665}, "defaults": {"pi4": 0.1},
@@ -86,7 +88,7 @@ def test_stribeck_law_limits():
 
 @pytest.fixture(scope="module")
 def record_sets():
-    from isoslide import record_study
+    from isoslide.studies import record_study
 
     settings = record_study.records_settings(isoslide.config.load(None, {
         "records": {"names": ["Northridge_1994_PAC-175"], "pi2": {"start": 0.2, "stop": 0.8, "num": 2},
@@ -110,7 +112,7 @@ def test_fig4_draws_the_stand_in_record(tmp_path, record_sets):
 
 
 def test_records_figure_states_the_numbers(tmp_path, record_sets):
-    from isoslide.record_study import ratio_summary
+    from isoslide.studies.record_study import ratio_summary
 
     ds = record_sets["records"]
     outs = [tmp_path / "records.png", tmp_path / "records.pdf"]

@@ -1,4 +1,4 @@
-"""isoslide.fragility: maximum-likelihood lognormal fragility curves and the bootstrap over records."""
+"""isoslide.studies.fragility: maximum-likelihood lognormal fragility curves and the bootstrap over records."""
 
 import math
 from pathlib import Path
@@ -8,7 +8,7 @@ import pytest
 from scipy.optimize import minimize
 from scipy.stats import binom, norm
 
-from isoslide.fragility import BootstrapInterval, LognormalFit, bootstrap, fit_lognormal, probability
+from isoslide.studies.fragility import BootstrapInterval, LognormalFit, bootstrap, fit_lognormal, probability
 
 THETA, BETA = 0.4, 0.5
 LEVELS = np.array([0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.1])

@@ -1,4 +1,4 @@
-"""The fragility study (isoslide.fragility_study, isoslide.intensity): analyses, IMs, fits, datasets."""
+"""The fragility study (isoslide.studies.fragility_study, isoslide.studies.intensity): analyses, IMs, fits, datasets."""
 
 import copy
 
@@ -7,13 +7,13 @@ import pytest
 import xarray as xr
 
 import isoslide.config
-from isoslide import fragility_study as fs
+from isoslide.studies import fragility_study as fs
 from isoslide import solver
 from isoslide import datasets
 from isoslide.datasets import write_netcdf
-from isoslide.fragility import fit_lognormal
-from isoslide.history_io import history_table
-from isoslide.intensity import floor_peaks, peak_of_integral
+from isoslide.studies.fragility import fit_lognormal
+from isoslide.store.history_io import history_table
+from isoslide.studies.intensity import floor_peaks, peak_of_integral
 from isoslide.records import G, sample
 from isoslide.scene import Scene
 

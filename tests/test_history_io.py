@@ -6,7 +6,7 @@ import pytest
 
 import isoslide
 from isoslide import Scene
-from isoslide.history_io import COLUMNS, history_table, read_history, write_history
+from isoslide.store.history_io import COLUMNS, history_table, read_history, write_history
 
 
 def _physical_scene(**kw):
@@ -103,7 +103,7 @@ def test_unknown_extension_and_missing_history_are_refused(tmp_path):
 @pytest.mark.parametrize("floor", ["base", "roof"])
 def test_building_history_floor_acceleration_is_the_rate_of_the_floor_velocity(floor, tmp_path):
     """General building: floor_accel = ground_accel + d(floor_vel)/dt, and the extra columns round-trip."""
-    from isoslide.history_io import BUILDING_COLUMNS
+    from isoslide.store.history_io import BUILDING_COLUMNS
     sc = Scene(pi2=0.1, pi3=3.0, pi4=0.05, pi8=0.1, pi9=0.05, pi11=0.6, pi12=0.3, pi13=0.02, floor=floor)
     sol = isoslide.solve(sc, history=True, max_step=1e-3)
     t = history_table(sol, sc)

@@ -1,4 +1,4 @@
-"""isoslide.index_page without Snakemake: the page of a small fake run, its tables and links."""
+"""isoslide.reports.index_page without Snakemake: the page of a small fake run, its tables and links."""
 
 import html
 import re
@@ -9,7 +9,7 @@ import xarray as xr
 from PIL import Image, PngImagePlugin
 
 from isoslide import __version__
-from isoslide.index_page import flatten, human_size, index_html, job_times
+from isoslide.reports.index_page import flatten, human_size, index_html, job_times
 
 
 @pytest.fixture

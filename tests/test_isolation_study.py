@@ -1,4 +1,4 @@
-"""The isolation studies (isoslide.isolation_study) and their figures (isoslide.isolation_plot)."""
+"""The isolation studies (isoslide.studies.isolation_study) and their figures (isoslide.reports.isolation_plot)."""
 
 import copy
 
@@ -8,7 +8,8 @@ import xarray as xr
 
 import isoslide
 import isoslide.config
-from isoslide import design, isolation_plot, isolation_study, sweep
+from isoslide.studies import design, isolation_study, sweep
+from isoslide.reports import isolation_plot
 from isoslide.config import ConfigError
 
 G = 9.80665
@@ -39,7 +40,7 @@ def solved():
 
 
 # ----------------------------------------------------------------------------------------------
-# the studies are ordinary studies of isoslide.sweep
+# the studies are ordinary studies of isoslide.studies.sweep
 # ----------------------------------------------------------------------------------------------
 
 def test_default_studies_sweep_the_bearing_and_superstructure_groups():
@@ -216,7 +217,7 @@ def test_sliding_end_is_the_last_sliding_pi2():
 
 
 def test_every_isolation_figure_is_drawn_with_its_caption(solved, tmp_path):
-    from isoslide.figures import read_caption
+    from isoslide.reports.figures import read_caption
 
     _, data = solved
     outputs = [tmp_path / f"{name}.png" for name in isolation_plot.FIGURES]

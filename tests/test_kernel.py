@@ -1,4 +1,4 @@
-"""Tests of isoslide.kernel and its DOP853 tableau (isoslide.dop853): coefficients, results layout."""
+"""Tests of isoslide.engine.kernel and its DOP853 tableau (isoslide.engine.dop853): coefficients, results layout."""
 
 import ast
 import math
@@ -10,7 +10,7 @@ import pytest
 from scipy.integrate._ivp import dop853_coefficients as scipy_dop853
 
 import isoslide
-from isoslide import dop853, kernel
+from isoslide.engine import dop853, kernel
 from isoslide.pulses import get_pulse
 
 PKG = Path(isoslide.__file__).resolve().parent
@@ -47,7 +47,7 @@ def test_dop853_tableau_satisfies_its_order_conditions():
 
 
 def test_package_imports_no_private_scipy_module():
-    """The package uses SciPy's public API only (the tableau lives in isoslide.dop853)."""
+    """The package uses SciPy's public API only (the tableau lives in isoslide.engine.dop853)."""
     offenders = []
     for path in PKG.rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text())):
@@ -219,7 +219,8 @@ def test_every_kernel_declares_its_result_layout_and_the_indices_follow_it(modul
     arrays have exactly the declared lengths (the solver reads results by these names only)."""
     import importlib
 
-    from isoslide import Scene, building, solver
+    from isoslide import Scene, solver
+    from isoslide.engine import building
 
     mod = importlib.import_module(f"isoslide.{module}")
     for prefix, names in (("R_", mod.INT_RESULTS), ("F_", mod.FLOAT_RESULTS)):

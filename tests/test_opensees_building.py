@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import isoslide
-from isoslide import opensees_convergence as oc
+from isoslide.studies import opensees_convergence as oc
 from isoslide.peers import opensees_available, solve_opensees
 from isoslide.peers.opensees import opensees_model
 

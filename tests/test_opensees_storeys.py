@@ -18,7 +18,7 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 
 import isoslide
-from isoslide import opensees_convergence as oc
+from isoslide.studies import opensees_convergence as oc
 from isoslide.peers import opensees as peer
 from isoslide.peers import opensees_available, solve_opensees
 from isoslide.peers.opensees import opensees_model

@@ -7,9 +7,9 @@ import pytest
 
 import isoslide
 from isoslide import peers, solver
-from isoslide.history import History
+from isoslide.store.history import History
 from isoslide.peers import PeerResult
-from isoslide.similarity import physical_parameters
+from isoslide.studies.similarity import physical_parameters
 
 SCENE = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1)   # resonance, Coulomb: every peer can run it
 HORIZON = 10.0                                       # T_p after the pulse

@@ -1,4 +1,4 @@
-"""isoslide.pelicun_export: fitted curves as a pelicun damage model, read back by the real pelicun."""
+"""isoslide.studies.pelicun_export: fitted curves as a pelicun damage model, read back by the real pelicun."""
 
 import json
 import math
@@ -12,8 +12,8 @@ import xarray as xr
 import pelicun
 from pelicun import assessment, file_io
 
-from isoslide.fragility import probability
-from isoslide.pelicun_export import COMPONENT_IDS, G_PELICUN, damage_db, write_damage_db
+from isoslide.studies.fragility import probability
+from isoslide.studies.pelicun_export import COMPONENT_IDS, G_PELICUN, damage_db, write_damage_db
 
 G = 9.80665
 LIMITS = [0.1, 0.2, 0.3]

@@ -9,7 +9,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import isoslide
-from isoslide import bench, kernel, piecewise, records, solver
+from isoslide import bench, records, solver
+from isoslide.engine import kernel, piecewise
 from isoslide.pulses import sampled
 
 NAMES = records.samples()

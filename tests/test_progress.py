@@ -6,8 +6,9 @@ import logging
 import pytest
 
 import isoslide
-from isoslide import solver, sweep
-from isoslide.progress import Progress
+from isoslide import solver
+from isoslide.studies import sweep
+from isoslide.store.progress import Progress
 
 
 class _Clock:
@@ -70,7 +71,7 @@ def test_solve_many_reports_progress_to_the_solver_log(caplog, monkeypatch):
 def test_study_chunk_logs_its_size_time_and_rate(caplog):
     config = isoslide.config.load(None, "config/test.yaml")
     spec = sweep.check_config(config)["fig3_newmark"]
-    caplog.set_level(logging.INFO, logger="isoslide.sweep")
+    caplog.set_level(logging.INFO, logger="isoslide.studies.sweep")
     sweep.solve_chunk(spec, 0)
     done = [m for m in caplog.messages if "solved in" in m]
     assert len(done) == 1 and done[0].startswith(f"study {spec['study']}, chunk 0: ")

@@ -1,4 +1,4 @@
-"""isoslide.provenance: code hashes by module name, the source text and job logs.
+"""isoslide.store.provenance: code hashes by module name, the source text and job logs.
 
 Edits happen in a temporary copy of the package sources, never in the package itself.
 """
@@ -10,7 +10,8 @@ import warnings
 
 import pytest
 
-from isoslide import datasets, provenance
+from isoslide import datasets
+from isoslide.store import provenance
 
 
 @pytest.fixture
@@ -78,7 +79,7 @@ def test_a_single_string_is_not_taken_for_a_list_of_names(pkg):
 
 
 def test_the_hash_follows_exactly_the_listed_files(pkg):
-    solver = ["solver", "kernel", "pulses", "scene"]
+    solver = ["solver", "engine.kernel", "pulses", "scene"]
     records = ["records"]
     before = {name: provenance.code_hash(mods, package_dir=pkg)
               for name, mods in (("solver", solver), ("records", records), ("peer", ["peers.reference"]),
@@ -93,7 +94,7 @@ def test_the_hash_follows_exactly_the_listed_files(pkg):
     assert after["peers"] == before["peers"]
     assert after["records"] != before["records"] and after["all"] != before["all"]
 
-    _edit(pkg / "kernel.py")
+    _edit(pkg / "engine" / "kernel.py")
     assert provenance.code_hash(solver, package_dir=pkg) != before["solver"]
     assert provenance.code_hash(records, package_dir=pkg) == after["records"]
 
@@ -112,7 +113,7 @@ def test_a_new_file_in_a_subpackage_changes_its_hash(pkg):
 def test_the_hash_does_not_depend_on_where_the_package_lives_or_the_order_of_names(pkg, tmp_path):
     other = tmp_path / "elsewhere" / "isoslide"
     shutil.copytree(pkg, other)
-    names = ["solver", "peers", "records", "kernel"]
+    names = ["solver", "peers", "records", "engine.kernel"]
     assert provenance.code_hash(names, package_dir=pkg) == provenance.code_hash(names[::-1], package_dir=other)
     assert provenance.code_hash(names + ["solver"], package_dir=pkg) == provenance.code_hash(names, package_dir=pkg)
 
@@ -138,8 +139,8 @@ def test_log_to_writes_records_and_the_traceback_then_lets_go(tmp_path):
     with pytest.raises(ZeroDivisionError):
         with provenance.log_to(log) as job:
             job.info("solving %d scenes", 12)
-            logging.getLogger("isoslide.sweep").info("from the library")
-            logging.getLogger("isoslide.sweep").debug("too detailed")
+            logging.getLogger("isoslide.studies.sweep").info("from the library")
+            logging.getLogger("isoslide.studies.sweep").debug("too detailed")
             warnings.warn("a warning from the job", UserWarning, stacklevel=1)
             1 / 0  # noqa: B018
     text = log.read_text()
@@ -149,7 +150,7 @@ def test_log_to_writes_records_and_the_traceback_then_lets_go(tmp_path):
     assert "Traceback" in text and "ZeroDivisionError" in text
     assert not text.rstrip().endswith("done")
 
-    logging.getLogger("isoslide.sweep").warning("after the job")      # the handler is gone
+    logging.getLogger("isoslide.studies.sweep").warning("after the job")      # the handler is gone
     assert "after the job" not in log.read_text()
 
 

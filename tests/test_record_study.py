@@ -1,4 +1,4 @@
-"""isoslide.record_study: Fig. 4 data and the record-versus-pulse grid."""
+"""isoslide.studies.record_study: Fig. 4 data and the record-versus-pulse grid."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import xarray as xr
 
 import isoslide.config
 
-from isoslide import record_study as S
+from isoslide.studies import record_study as S
 from isoslide import records as R
 from isoslide.pulses import SAMPLED
 

@@ -12,7 +12,7 @@ import isoslide
 from isoslide import Scene
 from isoslide import pulses
 from isoslide import records as R
-from isoslide.history_io import history_table
+from isoslide.store.history_io import history_table
 from isoslide.pulses import get_pulse
 from isoslide.records import fitting, reading
 

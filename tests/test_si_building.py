@@ -13,7 +13,7 @@ import pytest
 import xarray as xr
 
 import isoslide
-from isoslide import similarity as S
+from isoslide.studies import similarity as S
 from isoslide.peers.si import simulate_si
 from isoslide.peers.reference_building import solve_reference_building
 from isoslide.peers.si_building import chain_matrices, is_general

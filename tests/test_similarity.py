@@ -6,8 +6,8 @@ import pytest
 import xarray as xr
 
 import isoslide
-from isoslide import claims
-from isoslide import similarity as S
+from isoslide.studies import claims
+from isoslide.studies import similarity as S
 from isoslide.peers.si import simulate_si
 
 G = isoslide.G_STANDARD

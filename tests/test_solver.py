@@ -12,7 +12,8 @@ import pytest
 
 import isoslide
 from isoslide import Scene, paper_groups, pulses, solve, solve_many
-from isoslide import kernel, solver
+from isoslide.engine import kernel
+from isoslide import solver
 from isoslide.solver import peak_stuck_demand
 
 from public_cases import PHYSICAL_CASES as PUBLIC_PHYSICAL_CASES  # noqa: E402

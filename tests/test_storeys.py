@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from isoslide import Scene, building, solve
+from isoslide import Scene, solve
+from isoslide.engine import building
 from isoslide.model import shear_building
 from isoslide.pulses import sampled
 

@@ -12,9 +12,9 @@ import yaml
 import isoslide
 import isoslide.config
 from isoslide.datasets import write_netcdf
-from isoslide.figures import read_caption
+from isoslide.reports.figures import read_caption
 from isoslide.studies import registry, storeys
-from isoslide.studies.storeys_plot import draw
+from isoslide.reports.storeys_plot import draw
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -1,4 +1,4 @@
-"""Study grids, chunking and configuration checks (isoslide.sweep)."""
+"""Study grids, chunking and configuration checks (isoslide.studies.sweep)."""
 
 from pathlib import Path
 
@@ -8,7 +8,7 @@ import yaml
 
 import isoslide
 import isoslide.config
-from isoslide import sweep
+from isoslide.studies import sweep
 from isoslide.datasets import write_netcdf
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -24,7 +24,7 @@ BASE = {"chunk_size": 5, "reference": {"a_p_T_p": 9.80665}, "defaults": {"pi4": 
 
 def cfg(**study):
     """A configuration with the schema defaults under BASE and one study (not schema-validated,
-    so that the checks of isoslide.sweep itself are exercised)."""
+    so that the checks of isoslide.studies.sweep itself are exercised)."""
     c = isoslide.config.update(isoslide.config.defaults(), BASE)
     c["studies"] = {"s": {"figure": 5, **study}}
     return c

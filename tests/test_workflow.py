@@ -27,8 +27,9 @@ import yaml
 
 import isoslide
 import isoslide.config
-import isoslide.sweep
-from isoslide import datasets, provenance
+import isoslide.studies.sweep
+from isoslide import datasets
+from isoslide.store import provenance
 from isoslide.studies import imports, registry
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -300,7 +301,7 @@ def test_code_hash_of_every_rule_is_that_of_the_modules_its_script_imports(descr
 
 def test_solver_jobs_do_not_depend_on_the_records_modules(described):
     solve = _files(described["code_modules"]["solve"])
-    records = _files(["records", "record_study"])
+    records = _files(["records", "studies.record_study"])
     assert solve and not solve & records
     assert described["rules"]["solve_chunk"]["code"] == described["code"]["solve"]
     assert described["rules"]["solve_chunk"]["code"] != described["code"]["records"]
@@ -433,9 +434,9 @@ def test_dry_run_plans_the_whole_dag(wf):
     chunk_wildcards = [w for r, w in jobs if r == "solve_chunk"]
     assert all(re.fullmatch(r"study=\w+, chunk=\d+", w) for w in chunk_wildcards)
     # a study of one chunk (e.g. fig3_newmark: 6 scenes, chunk_size 15) is solved by its merge job
-    specs = isoslide.sweep.check_config(isoslide.config.load(
+    specs = isoslide.studies.sweep.check_config(isoslide.config.load(
         ROOT / "config" / "config.yaml", yaml.safe_load((ROOT / "config" / "test.yaml").read_text())))
-    several = {f"study={name}" for name, spec in specs.items() if len(isoslide.sweep.spec_chunks(spec)) > 1}
+    several = {f"study={name}" for name, spec in specs.items() if len(isoslide.studies.sweep.spec_chunks(spec)) > 1}
     assert "study=fig3_newmark" not in several and len(several) >= 2
     assert {w.split(",")[0] for w in chunk_wildcards} == several
     assert {w for r, w in jobs if r == "merge_study"} == {f"study={s}" for s in STUDIES}
@@ -575,8 +576,8 @@ def test_time_budget_by_phase_of_the_run(full_run):
 
 @pytest.mark.slow
 def test_records_outputs(full_run):
-    from isoslide.figures import read_caption
-    from isoslide.record_study import FIG4_RECORD, ratio_summary
+    from isoslide.reports.figures import read_caption
+    from isoslide.studies.record_study import FIG4_RECORD, ratio_summary
 
     wf, _ = full_run
     cfg = yaml.safe_load((wf / "config" / "test.yaml").read_text())["records"]

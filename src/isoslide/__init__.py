@@ -11,6 +11,10 @@ The names below are loaded on first use, so ``import isoslide`` stays light and 
 pipeline job imports only the modules it needs.
 """
 
+import importlib.abc
+import importlib.util
+import sys
+import warnings
 from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
 
@@ -29,6 +33,64 @@ _EXPORTS = {
 _SUBMODULES = ("records", "peers", "groups", "config", "models")
 
 __all__ = sorted(_EXPORTS) + ["__version__"]
+
+MOVED = {
+    "kernel": "engine.kernel",
+    "building_kernel": "engine.building_kernel",
+    "piecewise": "engine.piecewise",
+    "dop853": "engine.dop853",
+    "building": "engine.building",
+    "validation": "model.validation",
+    "history": "store.history",
+    "history_io": "store.history_io",
+    "progress": "store.progress",
+    "provenance": "store.provenance",
+    "figures": "reports.figures",
+    "fragility_plot": "reports.fragility_plot",
+    "isolation_plot": "reports.isolation_plot",
+    "quicklook": "reports.quicklook",
+    "index_page": "reports.index_page",
+    "studies.storeys_plot": "reports.storeys_plot",
+    "sweep": "studies.sweep",
+    "similarity": "studies.similarity",
+    "claims": "studies.claims",
+    "isolation_study": "studies.isolation_study",
+    "record_study": "studies.record_study",
+    "fragility_study": "studies.fragility_study",
+    "fragility": "studies.fragility",
+    "design": "studies.design",
+    "intensity": "studies.intensity",
+    "pelicun_export": "studies.pelicun_export",
+    "opensees_convergence": "studies.opensees_convergence",
+}
+"""Modules that moved into subpackages: ``isoslide.<old>`` still imports ``isoslide.<new>``.
+
+The package's layout is model, engine, store, studies, reports (see the documentation's
+architecture page); code written against the earlier flat layout keeps working, with a
+:class:`DeprecationWarning` naming the new place.
+"""
+
+
+class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+    """Imports ``isoslide.<old>`` of :data:`MOVED` as the module at its new place."""
+
+    def find_spec(self, fullname, path=None, target=None):
+        name = fullname.removeprefix(f"{__name__}.")
+        if fullname.startswith(f"{__name__}.") and name in MOVED:
+            return importlib.util.spec_from_loader(fullname, self)
+        return None
+
+    def create_module(self, spec):
+        new = f"{__name__}.{MOVED[spec.name.removeprefix(f'{__name__}.')]}"
+        warnings.warn(f"{spec.name} moved to {new}; import it from there", DeprecationWarning, stacklevel=2)
+        return import_module(new)
+
+    def exec_module(self, module):
+        pass
+
+
+if not any(isinstance(f, _MovedModules) for f in sys.meta_path):
+    sys.meta_path.append(_MovedModules())
 
 
 def __getattr__(name):

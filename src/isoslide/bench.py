@@ -15,7 +15,7 @@ off).
 
 A second section times the bundled records (:func:`isoslide.records.samples`) at one Pi point,
 record after record and interleaved, through both exact paths: the exact piecewise propagation
-that ``solve`` takes for a record with Coulomb contents (:mod:`isoslide.piecewise`) and the
+that ``solve`` takes for a record with Coulomb contents (:mod:`isoslide.engine.piecewise`) and the
 integrator, both as ``solve(..., piecewise_path=False)`` runs it (Coulomb and one-way reductions,
 the solve before the piecewise path) and as ``solve(..., model="full")`` runs it.  It prints the cost per record sample (median and
 largest over the records), the total time for all records and each path's error against the

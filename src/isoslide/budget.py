@@ -1,6 +1,6 @@
 """Where the time of a pipeline run goes, by phase: start-up, compilation, solving, writing, reporting.
 
-Every pipeline job logs the seconds of its phases (:func:`phase`, and :func:`isoslide.provenance.log_to`
+Every pipeline job logs the seconds of its phases (:func:`phase`, and :func:`isoslide.store.provenance.log_to`
 logs the start-up: interpreter and imports, from the process start to the job's first line); the
 ``benchmark:`` file of each job holds its total.  :func:`budget` adds them up::
 

@@ -30,9 +30,9 @@ import sys
 
 from . import __version__
 from .groups import INPUTS
-from .history_io import FORMATS, history_format, history_table, write_history
+from .store.history_io import FORMATS, history_format, history_table, write_history
 from .pulses import PULSE_NAMES
-from .quicklook import check_plot_path, plot_fit, plot_history
+from .reports.quicklook import check_plot_path, plot_fit, plot_history
 from .records import load_record, sample, samples
 from .records import PULSE_LIKE_SAMPLES as _PULSE_LIKE
 from .scene import FLOORS, G_STANDARD, Scene, friction_pendulum

@@ -29,7 +29,7 @@ import xarray as xr
 from .atomic import atomic_path
 from .groups import RESULT, group
 from .models import FACETS, Facets
-from .provenance import code_hash, git_commit, source_text  # noqa: F401 - re-exported
+from .store.provenance import code_hash, git_commit, source_text  # noqa: F401 - re-exported
 
 CONVENTIONS = "CF-1.10"
 
@@ -172,7 +172,7 @@ def chunk_dataset(grid, indices, batch) -> xr.Dataset:
 
     Parameters
     ----------
-    grid : isoslide.sweep.Grid
+    grid : isoslide.studies.sweep.Grid
     indices : array_like of int
         Flat indices of the chunk's scenes.
     batch : isoslide.Batch
@@ -188,8 +188,8 @@ def chunk_dataset(grid, indices, batch) -> xr.Dataset:
     ds = xr.Dataset(_solution_vars(batch, ("scene",)), coords=coords)
     ds.attrs = global_attrs(
         title=f"isoslide chunk of study {grid.name}",
-        history=f"isoslide.sweep.solve_chunk: {idx.size} scenes (flat indices {idx[0]}..{idx[-1]}) "
-                f"of study {grid.name}" if idx.size else "isoslide.sweep.solve_chunk: empty chunk",
+        history=f"isoslide.studies.sweep.solve_chunk: {idx.size} scenes (flat indices {idx[0]}..{idx[-1]}) "
+                f"of study {grid.name}" if idx.size else "isoslide.studies.sweep.solve_chunk: empty chunk",
         config=grid.spec, study=grid.name)
     return ds
 
@@ -207,7 +207,7 @@ def merge_chunks(chunks, grid) -> xr.Dataset:
     ----------
     chunks : sequence of xarray.Dataset
         As written by :func:`chunk_dataset`, any order.
-    grid : isoslide.sweep.Grid
+    grid : isoslide.studies.sweep.Grid
     """
     chunks = [c.copy() for c in chunks]
     for c in chunks:
@@ -252,7 +252,7 @@ def merge_chunks(chunks, grid) -> xr.Dataset:
     spec = grid.spec
     ds.attrs = global_attrs(
         title=f"isoslide master curves: {spec.get('title', grid.name)}",
-        history=(f"isoslide.sweep: {grid.size} scenes of study {grid.name} "
+        history=(f"isoslide.studies.sweep: {grid.size} scenes of study {grid.name} "
                  f"({' x '.join(f'{d}[{n}]' for d, n in zip(dims, shape, strict=True))}), solved in "
                  f"{len(chunks)} chunk(s) of at most {spec.get('chunk_size')} scenes and merged by "
                  f"isoslide.datasets.merge_chunks (exact coordinate join); no timestamps are stored "

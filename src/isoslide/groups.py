@@ -4,7 +4,7 @@ Buckingham's theorem with the repeating variables ``a_p`` (pulse acceleration
 amplitude, m/s^2), ``T_p`` (pulse period, s) and ``M_b`` (isolated mass, kg)
 turns the eleven physical parameters of the paper's model into one result
 group and seven input groups, and the five parameters of the general building
-(hysteretic isolator, flexible superstructure; see :mod:`isoslide.building`)
+(hysteretic isolator, flexible superstructure; see :mod:`isoslide.engine.building`)
 into five more:
 
 =====  ===================  ==========================================  ================
@@ -41,7 +41,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .validation import check_range, range_text
+from .model.validation import check_range, range_text
 
 
 @dataclass(frozen=True)

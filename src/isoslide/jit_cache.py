@@ -1,7 +1,7 @@
 """The compiled kernels that ship with isoslide: numba's cache, seeded so a fresh install starts warm.
 
-Compiling the kernels (:mod:`isoslide.kernel`, :mod:`isoslide.building_kernel`,
-:mod:`isoslide.piecewise`, :mod:`isoslide.pulses`) takes about a minute of CPU; loading them from
+Compiling the kernels (:mod:`isoslide.engine.kernel`, :mod:`isoslide.engine.building_kernel`,
+:mod:`isoslide.engine.piecewise`, :mod:`isoslide.pulses`) takes about a minute of CPU; loading them from
 numba's on-disk cache takes about one second. numba keeps that cache per source file, in the
 ``__pycache__`` beside it or under ``NUMBA_CACHE_DIR``, as one index per function
 (``<module>.<function>-<line>.py<XY>.nbi``) and one object file per compiled signature
@@ -38,8 +38,8 @@ from .atomic import atomic_path
 SHIPPED_DIR = Path(__file__).resolve().parent / "data" / "kernel_cache"
 ENV_SWITCH = "ISOSLIDE_SHIPPED_KERNELS"
 # the source files whose numba functions are cached (cache=True), by numba's file stem, in compile order
-KERNEL_SOURCES = {"pulses": "pulses.py", "kernel": "kernel.py", "piecewise": "piecewise.py",
-                  "friction": "model/friction.py", "building_kernel": "building_kernel.py"}
+KERNEL_SOURCES = {"pulses": "pulses.py", "kernel": "engine/kernel.py", "piecewise": "engine/piecewise.py",
+                  "friction": "model/friction.py", "building_kernel": "engine/building_kernel.py"}
 KERNEL_MODULES = tuple(KERNEL_SOURCES)
 
 

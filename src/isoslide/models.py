@@ -19,13 +19,13 @@ scene, as parts joined by ``+``:
     below the accuracy target).
 ``piecewise``
     Appended to the label when the exact piecewise propagation of
-    :mod:`isoslide.piecewise` ran instead of the integrator (a sampled record
+    :mod:`isoslide.engine.piecewise` ran instead of the integrator (a sampled record
     with Coulomb contents on a linear or fixed base, ``model="auto"``), e.g.
     ``coulomb+piecewise``, ``fixed-base+no-slide+piecewise``.
 ``regularized``, ``reference``
     A peer solver ran instead (``solve(..., method=...)``).
 
-The general building (:mod:`isoslide.building`) adds, in front of the friction part:
+The general building (:mod:`isoslide.engine.building`) adds, in front of the friction part:
 
 ``bilinear``, ``sliding-bearing``, ``linear``
     The isolator integrated (``fixed-base`` for ``Pi3 = 0``).
@@ -149,12 +149,12 @@ ISOLATOR_PARTS = ("linear", "bilinear", "sliding-bearing", "fixed-base")
 """Isolator parts of a general building's label (the last for ``Pi3 = 0``)."""
 
 BEARING_REDUCTIONS = ("bearing-stuck", "bearing-elastic")
-"""Reductions of a bearing to the paper's model (see :mod:`isoslide.building`)."""
+"""Reductions of a bearing to the paper's model (see :mod:`isoslide.engine.building`)."""
 
 
 def building_label(isolator: str, flexible: bool, floor, noslide: bool, friction: str,
                    oneway: bool) -> str:
-    """The model label of a general building integrated by :mod:`isoslide.building_kernel`.
+    """The model label of a general building integrated by :mod:`isoslide.engine.building_kernel`.
 
     Parameters
     ----------

@@ -58,7 +58,7 @@ import numpy as np
 from numba import njit
 
 from . import jit_cache
-from .validation import check_range
+from .model.validation import check_range
 from scipy.optimize import brentq
 
 RICKER = 0

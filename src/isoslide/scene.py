@@ -32,7 +32,7 @@ from .pulses import Pulse, get_pulse
 from .groups import INPUT_NAMES, INPUTS
 from .model.shear_building import fundamental_period
 from .groups import defaults as _group_defaults
-from .validation import check_range
+from .model.validation import check_range
 
 _DEFAULTS = _group_defaults()
 
@@ -137,7 +137,7 @@ class Scene:
         Set by :meth:`from_physical`, so results can be given in metres.
 
     The model of the general building (``pi9 .. pi13``, ``floor``) is in
-    :mod:`isoslide.building`; with their defaults the scene is the paper's model.
+    :mod:`isoslide.engine.building`; with their defaults the scene is the paper's model.
     """
 
     pi2: float

@@ -2,7 +2,7 @@
 
 :func:`solve` runs the smallest model that is exact for the scene
 (:func:`plan` says which) through the compiled kernel of
-:mod:`isoslide.kernel`; :func:`solve_many` does the same for many scenes and
+:mod:`isoslide.engine.kernel`; :func:`solve_many` does the same for many scenes and
 skips the block entirely where the floor can never reach the static threshold.
 
 Accuracy knob
@@ -46,7 +46,7 @@ Models (``Solution.model``, joined by ``+``)
 ``+piecewise``
     A sampled record with Coulomb contents on a linear or fixed base
     (:func:`piecewise_applies`): every phase is propagated exactly between
-    samples by :mod:`isoslide.piecewise` (no integrator, no refinement pass;
+    samples by :mod:`isoslide.engine.piecewise` (no integrator, no refinement pass;
     the answer is exact to round-off, whatever ``rtol``).
 """
 
@@ -59,12 +59,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import building, building_kernel, kernel, piecewise
-from .history import History
+from .engine import building, building_kernel, kernel, piecewise
+from .store.history import History
 from .models import BEARING_REDUCTIONS, Facets
 from .peers import SCENE_SOLVERS, PeerResult
 from .pulses import SAMPLED, sampled
-from .progress import Progress
+from .store.progress import Progress
 from .scene import Scene
 
 DEFAULT_RTOL = 1e-6
@@ -105,7 +105,7 @@ class Solution:
     tau_peak, t_peak : float
         Time of the peak, in units of T_p and in seconds (pulse time origin).
     settled : bool
-        True when no further sliding is possible (see :mod:`isoslide.kernel`).
+        True when no further sliding is possible (see :mod:`isoslide.engine.kernel`).
     model : str
         Which reduced model ran, as a display label derived from ``facets`` (see module docstring).
     tau_end : float
@@ -335,7 +335,7 @@ def _run(scene: Scene, pi8: float, coulomb: float, rtol: float, hist_cap: int = 
 
 
 def piecewise_applies(scene: Scene) -> bool:
-    """True when ``model="auto"`` propagates the scene exactly (:mod:`isoslide.piecewise`).
+    """True when ``model="auto"`` propagates the scene exactly (:mod:`isoslide.engine.piecewise`).
 
     The pulse is a sampled record (linear between samples) and the friction is
     speed-independent (:attr:`Scene.rate_independent`); the base is linear
@@ -346,7 +346,7 @@ def piecewise_applies(scene: Scene) -> bool:
 
 def _run_piecewise(scene: Scene, pi8: float, hist_cap: int = 0, horizon: float = DEFAULT_HORIZON,
                    track_max: bool = False, settle: bool = True):
-    """:func:`isoslide.piecewise.run` for a scene, as a :class:`Run`."""
+    """:func:`isoslide.engine.piecewise.run` for a scene, as a :class:`Run`."""
     pulse = scene.pulse
     m = _model_array(scene, pi8, 1.0, thr=math.inf if track_max else None)
     budget = step_budget(scene, horizon)
@@ -360,8 +360,8 @@ def step_budget(scene: Scene, horizon: float = DEFAULT_HORIZON) -> int:
 
     ``STEPS_PER_PERIOD`` per isolation period followed (a stiff undamped base is followed for up to
     ``horizon / Pi3`` periods, each with its own breakaways; for a general building the shortest
-    period it integrates counts, see :func:`isoslide.building.free_step`), and never fewer than
-    :data:`isoslide.kernel.MAX_STEPS`.  A run that needs more raises :class:`StepBudgetError`.
+    period it integrates counts, see :func:`isoslide.engine.building.free_step`), and never fewer than
+    :data:`isoslide.engine.kernel.MAX_STEPS`.  A run that needs more raises :class:`StepBudgetError`.
     """
     span = _horizon(scene, horizon) - scene.pulse.tau_start
     periods = span / scene.pi3 if scene.pi3 > 0.0 else span
@@ -511,10 +511,10 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
 
 def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
                     settle: bool, piecewise_path: bool) -> Solution:
-    """:func:`solve` for a general building (:mod:`isoslide.building`): its smallest exact model.
+    """:func:`solve` for a general building (:mod:`isoslide.engine.building`): its smallest exact model.
 
     With ``model="auto"`` a reduction to the paper's model runs that model (the label gets the
-    reduction's name in front); otherwise :func:`isoslide.building_kernel.run` integrates it,
+    reduction's name in front); otherwise :func:`isoslide.engine.building_kernel.run` integrates it,
     with the Stribeck terms only where the friction depends on speed and the back-reaction
     dropped for ``Pi8 = 0``.  The tolerance rules are the paper model's (see the module
     docstring), with the refinement passes over many transitions counting those of both
@@ -626,7 +626,7 @@ def peak_stuck_demand(scene: Scene, rtol: float | None = None, horizon: float = 
     """
     rtol = _check_rtol(rtol)
     pi8 = 0.0 if scene.pi3 == 0.0 else scene.pi8
-    if scene.pulse.code == SAMPLED:  # linear between samples: exact peaks (isoslide.piecewise)
+    if scene.pulse.code == SAMPLED:  # linear between samples: exact peaks (isoslide.engine.piecewise)
         return _run_piecewise(scene, pi8, 0, horizon, track_max=True).floats["amax"]
     return Run.of(kernel, _run(scene, pi8, 1.0, rtol, 0, horizon, track_max=True)).floats["amax"]
 
@@ -640,7 +640,7 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
     threshold ``Pi2/Pi5`` exceeds it is answered ``Pi1 = 0`` (model
     ``no-slide``) without integrating anything.  Progress (scenes done, rate,
     time left) goes to the ``isoslide.solver`` log at most every 5 s
-    (:class:`isoslide.progress.Progress`).
+    (:class:`isoslide.store.progress.Progress`).
 
     Returns
     -------
@@ -692,7 +692,7 @@ def warm_up(records: bool = False, building: bool = False) -> None:
     Solves three tiny scenes (isolated Coulomb, fixed-base Stribeck, viscous contact) and their
     stuck demand, so that the first timed or logged solve measures solving, not compilation.
     ``records=True`` also readies the piecewise-exact path of record-driven scenes, ``building=True``
-    the general building's kernel (:mod:`isoslide.building_kernel`).
+    the general building's kernel (:mod:`isoslide.engine.building_kernel`).
     """
     scenes = [Scene(pi2=0.2, pi3=1.0, pi4=0.1), Scene(pi2=0.2, pi3=0.0, pi5=0.5, pi6=10.0),
               Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi7=1.0)]

@@ -9,11 +9,11 @@ import sys
 
 from snakemake.exceptions import WorkflowError
 
-import isoslide.fragility_study as fragility_study
-import isoslide.isolation_study as isolation_study
-import isoslide.similarity as similarity
-import isoslide.sweep as sweep
-from isoslide.provenance import code_hash
+import isoslide.studies.fragility_study as fragility_study
+import isoslide.studies.isolation_study as isolation_study
+import isoslide.studies.similarity as similarity
+import isoslide.studies.sweep as sweep
+from isoslide.store.provenance import code_hash
 from isoslide.studies import registry
 
 # Semantic checks beyond the JSON schema (Pi ranges, pulse names, key consistency); a bad value

@@ -1,4 +1,4 @@
-# Every figure of the paper, from the datasets only (isoslide.figures).
+# Every figure of the paper, from the datasets only (isoslide.reports.figures).
 
 
 rule figure:

@@ -1,4 +1,4 @@
-# The fragility study (isoslide.fragility_study, `fragility:` in the config): records x stripes x
+# The fragility study (isoslide.studies.fragility_study, `fragility:` in the config): records x stripes x
 # friction draws cut into chunks of `fragility.chunk_size` analyses, solved one job per chunk,
 # merged and fitted into results/datasets/fragility.nc (isolated slab) and, with
 # `building.fixed_base`, results/datasets/fragility_fixed_base.nc (the same contents on a fixed

@@ -1,4 +1,4 @@
-# Buildings as engineers isolate them (isoslide.isolation_study, `isolation:` in the config).  The
+# Buildings as engineers isolate them (isoslide.studies.isolation_study, `isolation:` in the config).  The
 # master curves of real bearings and of a flexible superstructure (studies iso_fp, iso_lrb,
 # iso_flex_base, iso_flex_roof) are ordinary studies: solved and merged by the rules of sweep.smk.
 # Here: where the rigid-superstructure reduction holds, the comparison of isolation systems of equal

@@ -1,4 +1,4 @@
-# Real records against their fitted pulses (isoslide.record_study): Fig. 4 from a real record, and
+# Real records against their fitted pulses (isoslide.studies.record_study): Fig. 4 from a real record, and
 # peak sliding under each record and under its fitted pulse over a Pi2 x Pi3 grid (one job per
 # record, then one dataset) and its figure; reports/records.html is the `report` rule's.
 

@@ -42,7 +42,7 @@ rule report:
 
 
 # reports/index.html: the run at a glance (datasets with the line that opens each, figure
-# thumbnails, links to every report, provenance and run time), built by isoslide.index_page from
+# thumbnails, links to every report, provenance and run time), built by isoslide.reports.index_page from
 # the files listed in INDEX (common.smk).  It comes last, so the benchmark files of every other
 # job of the run are there to be summed.
 rule index_page:

@@ -1,4 +1,4 @@
-# Similarity checks behind reports/similarity.html (isoslide.similarity): each paper study's merge
+# Similarity checks behind reports/similarity.html (isoslide.studies.similarity): each paper study's merge
 # job writes its Buckingham realisations (workflow/rules/sweep.smk), then one job makes the
 # tables, spreads and conclusions.
 

@@ -6,7 +6,7 @@ from pathlib import Path
 from isoslide.accuracy import combine, split_timings, trade_table
 from isoslide.budget import phase
 from isoslide.datasets import open_dataset, write_netcdf
-from isoslide.provenance import log_to
+from isoslide.store.provenance import log_to
 
 with log_to(snakemake.log[0]) as log:
     parts = {Path(path).stem: open_dataset(path) for path in snakemake.input}

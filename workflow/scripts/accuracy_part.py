@@ -3,7 +3,7 @@
 from isoslide.accuracy import measure_part
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.provenance import log_to
+from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
 
 with log_to(snakemake.log[0]) as log:

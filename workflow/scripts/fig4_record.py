@@ -1,10 +1,10 @@
-"""Rule fig4_record: the real record of Fig. 4 with its fitted pulses (isoslide.record_study)."""
+"""Rule fig4_record: the real record of Fig. 4 with its fitted pulses (isoslide.studies.record_study)."""
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.provenance import log_to
+from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
-from isoslide.record_study import fig4_dataset
+from isoslide.studies.record_study import fig4_dataset
 
 with log_to(snakemake.log[0]) as log:
     with phase("compilation", log):

@@ -1,9 +1,9 @@
-"""Rule fragility_chunk: analyses of chunk {chunk} of {frag} (isoslide.fragility_study.solve_chunk)."""
+"""Rule fragility_chunk: analyses of chunk {chunk} of {frag} (isoslide.studies.fragility_study.solve_chunk)."""
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.fragility_study import base_of, check_settings, solve_chunk
-from isoslide.provenance import log_to
+from isoslide.studies.fragility_study import base_of, check_settings, solve_chunk
+from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
 
 with log_to(snakemake.log[0]) as log:

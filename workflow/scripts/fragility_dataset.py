@@ -1,10 +1,11 @@
 """Rule fragility_dataset: chunks -> results/datasets/{frag}.nc with the fitted curves
-(isoslide.fragility_study); a study of one chunk is solved here."""
+(isoslide.studies.fragility_study); a study of one chunk is solved here."""
 
 from isoslide.budget import phase
 from isoslide.datasets import open_dataset, write_netcdf
-from isoslide.fragility_study import base_of, check_settings, fragility_dataset, merge_chunks, solve_all
-from isoslide.provenance import log_to
+from isoslide.studies.fragility_study import (base_of, check_settings, fragility_dataset, merge_chunks,
+                                              solve_all)
+from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
 
 with log_to(snakemake.log[0]) as log:

@@ -1,10 +1,10 @@
-"""Rule index_page: reports/index.html, the run at a glance (isoslide.index_page)."""
+"""Rule index_page: reports/index.html, the run at a glance (isoslide.reports.index_page)."""
 
 from pathlib import Path
 
 from isoslide.budget import phase
-from isoslide.index_page import index_html
-from isoslide.provenance import log_to
+from isoslide.reports.index_page import index_html
+from isoslide.store.provenance import log_to
 
 with log_to(snakemake.log[0]) as log:
     with phase("reporting", log):

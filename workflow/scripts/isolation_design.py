@@ -1,10 +1,10 @@
 """Rule isolation_design: linear, bilinear and friction-pendulum isolation of equal effective period
-and damping, compared on pulses and records (isoslide.isolation_study.design_dataset)."""
+and damping, compared on pulses and records (isoslide.studies.isolation_study.design_dataset)."""
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.isolation_study import design_dataset
-from isoslide.provenance import log_to
+from isoslide.studies.isolation_study import design_dataset
+from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
 
 with log_to(snakemake.log[0]) as log:

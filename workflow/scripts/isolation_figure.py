@@ -1,12 +1,12 @@
-"""Rule isolation_figure: the figures of the isolation studies (isoslide.isolation_plot.draw_all)."""
+"""Rule isolation_figure: the figures of the isolation studies (isoslide.reports.isolation_plot.draw_all)."""
 
 import matplotlib
 
 matplotlib.use("Agg")
 
 from isoslide.budget import phase  # noqa: E402
-from isoslide.isolation_plot import draw_all  # noqa: E402
-from isoslide.provenance import log_to  # noqa: E402
+from isoslide.reports.isolation_plot import draw_all  # noqa: E402
+from isoslide.store.provenance import log_to  # noqa: E402
 
 with log_to(snakemake.log[0]) as log, phase("reporting", log):
     draw_all(dict(snakemake.input.items()), snakemake.output, snakemake.params.settings)

@@ -1,9 +1,9 @@
-"""Rule isolation_rigid: where the rigid-superstructure reduction holds (isoslide.isolation_study)."""
+"""Rule isolation_rigid: where the rigid-superstructure reduction holds (isoslide.studies.isolation_study)."""
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.isolation_study import rigid_dataset
-from isoslide.provenance import log_to
+from isoslide.studies.isolation_study import rigid_dataset
+from isoslide.store.provenance import log_to
 
 with log_to(snakemake.log[0]) as log:
     with phase("reporting", log):

@@ -1,12 +1,12 @@
-"""Rule merge_study: chunks -> results/datasets/{study}.nc (isoslide.sweep.merge_chunk_files; a study
-of one chunk is solved here, isoslide.sweep.solve_study), then its Buckingham check ->
-results/similarity/{study}.nc (isoslide.similarity.buckingham_study)."""
+"""Rule merge_study: chunks -> results/datasets/{study}.nc (isoslide.studies.sweep.merge_chunk_files; a study
+of one chunk is solved here, isoslide.studies.sweep.solve_study), then its Buckingham check ->
+results/similarity/{study}.nc (isoslide.studies.similarity.buckingham_study)."""
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.provenance import log_to
-from isoslide.similarity import buckingham_study
-from isoslide.sweep import study_dataset
+from isoslide.store.provenance import log_to
+from isoslide.studies.similarity import buckingham_study
+from isoslide.studies.sweep import study_dataset
 
 with log_to(snakemake.log[0]) as log:
     ds = study_dataset(snakemake.input, snakemake.params.spec, log)

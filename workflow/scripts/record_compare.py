@@ -1,10 +1,10 @@
-"""Rule record_compare: one record against its fitted pulse on the Pi2 x Pi3 grid (isoslide.record_study)."""
+"""Rule record_compare: one record against its fitted pulse on the Pi2 x Pi3 grid (isoslide.studies.record_study)."""
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.provenance import log_to
+from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
-from isoslide.record_study import record_dataset
+from isoslide.studies.record_study import record_dataset
 
 with log_to(snakemake.log[0]) as log:
     with phase("compilation", log):

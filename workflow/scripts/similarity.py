@@ -1,9 +1,9 @@
-"""Rule similarity: tables, complete-similarity spreads and conclusions (isoslide.similarity)."""
+"""Rule similarity: tables, complete-similarity spreads and conclusions (isoslide.studies.similarity)."""
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.provenance import log_to
-from isoslide.similarity import similarity_dataset
+from isoslide.store.provenance import log_to
+from isoslide.studies.similarity import similarity_dataset
 
 with log_to(snakemake.log[0]) as log:
     with phase("solving", log):

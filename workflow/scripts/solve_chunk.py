@@ -1,10 +1,10 @@
-"""Rule solve_chunk: solve chunk {chunk} of study {study} (isoslide.sweep.solve_chunk)."""
+"""Rule solve_chunk: solve chunk {chunk} of study {study} (isoslide.studies.sweep.solve_chunk)."""
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.provenance import log_to
+from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
-from isoslide.sweep import solve_chunk
+from isoslide.studies.sweep import solve_chunk
 
 with log_to(snakemake.log[0]) as log:
     chunk = int(snakemake.wildcards.chunk)

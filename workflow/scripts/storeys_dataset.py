@@ -3,7 +3,7 @@
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.provenance import log_to
+from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
 from isoslide.studies.storeys import storeys_dataset
 

@@ -9,7 +9,7 @@ import numpy as np
 from ..groups import INPUT_NAMES, group
 from ..scene import Scene
 from ..solver import peak_stuck_demand
-from ..sweep import build_grid, check_config
+from ..studies.sweep import build_grid, check_config
 from .settings import PAPER_CONFIG, settings_from
 
 

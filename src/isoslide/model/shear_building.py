@@ -6,7 +6,7 @@ Floor ``j`` (1-based, bottom to top) has the mass ``m_j``; storey ``j`` joins fl
 ``xi`` in every fixed-base mode is ``Cs = Ms Phi diag(2 xi omega_i) Phi^T Ms`` with the
 mass-normalised modes ``Phi`` (``Phi^T Ms Phi = I``).  Any consistent units; the functions are
 used in SI units by :meth:`isoslide.Scene.from_physical` and in the model's units by
-:func:`isoslide.building.superstructure`.
+:func:`isoslide.engine.building.superstructure`.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Independent peer solvers of the same physics, for cross-checks and the speed-accuracy study.
 
 Each module is one solver, written independently of the compiled kernel, and each
-returns a :class:`PeerResult` whose history is an :class:`isoslide.history.History`:
+returns a :class:`PeerResult` whose history is an :class:`isoslide.store.history.History`:
 
 :func:`solve_reference` (:mod:`.reference`)
     Plain SciPy event-driven solver (DOP853 with events); ``solve(scene, method="reference")``.

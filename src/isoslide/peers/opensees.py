@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..history import History, phase_of
+from ..store.history import History, phase_of
 from ..scene import Scene
 from .result import PeerResult
 
@@ -390,7 +390,7 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
         period of :meth:`OpenSeesModel.periods` (block's stick spring, isolator's initial
         stiffness, slab with superstructure: its highest mode).
     history : bool
-        Also return the step-by-step :class:`~isoslide.history.History` (``phase``: the block's
+        Also return the step-by-step :class:`~isoslide.store.history.History` (``phase``: the block's
         spring at its yield force in the direction of ``u'``; for a bilinear or sliding bearing
         ``fh`` = its ``ElasticPP`` force and ``iso_phase`` likewise; ``xs, xsd`` for a flexible
         superstructure: relative to the slab, of its mass for one storey, else of every floor,

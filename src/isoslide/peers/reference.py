@@ -74,7 +74,7 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..history import History
+from ..store.history import History
 from ..pulses import accel_at
 from ..scene import Scene
 from .reference_building import solve_reference_building
@@ -231,7 +231,7 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
     rtol : float
         Relative tolerance passed to ``solve_ivp`` (DOP853).
     history : bool
-        Also return the step-by-step :class:`~isoslide.history.History`.
+        Also return the step-by-step :class:`~isoslide.store.history.History`.
     atol : float
         Absolute tolerance (lengths in ``a_p T_p**2``, velocities in ``a_p T_p``).
     tau_max : float or None

@@ -91,7 +91,7 @@ import numpy as np
 import scipy.linalg
 from scipy.integrate import solve_ivp
 
-from ..history import History
+from ..store.history import History
 from ..pulses import accel_at
 from ..scene import Scene
 from .result import PeerResult, counted
@@ -675,7 +675,7 @@ def solve_reference_building(scene: Scene, rtol: float = 1e-12, history: bool = 
     rtol, atol : float
         Tolerances passed to ``solve_ivp`` (DOP853); ``atol`` in the state's units.
     history : bool
-        Also return the :class:`~isoslide.history.History` (with ``xs, xsd`` for a flexible
+        Also return the :class:`~isoslide.store.history.History` (with ``xs, xsd`` for a flexible
         superstructure, the roof's when it has several floors; ``fh, iso_phase`` for a bilinear
         or sliding bearing).
     tau_max : float or None

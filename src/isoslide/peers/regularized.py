@@ -80,7 +80,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import minimize_scalar
 
-from ..history import History, phase_of
+from ..store.history import History, phase_of
 from ..pulses import accel_at
 from ..scene import Scene
 from .reference import _default_horizon, _sech
@@ -106,7 +106,7 @@ def solve_regularized(scene: Scene, stiffness: float = 1e6, rtol: float = 1e-6,
         (~1e-3 at ``K = 1e6``) dominates: ``rtol`` 1e-6 and 1e-8 give the same
         ``Pi1`` to ~1e-8 relative, the former at about half the cost.
     history : bool
-        Also return the step-point :class:`~isoslide.history.History`
+        Also return the step-point :class:`~isoslide.store.history.History`
         (``phase``: plastic flow, in the direction of ``u'``).
     method : {"Radau", "BDF"}
         scipy ``solve_ivp`` method (both given the analytic Jacobian).  Radau

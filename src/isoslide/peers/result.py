@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..history import History
+from ..store.history import History
 from ..scene import Scene, to_metres
 
 __all__ = ["PeerResult", "WorkLimitError", "counted"]

@@ -2,8 +2,8 @@
 
 :func:`simulate_si` takes the physical parameters of one realisation of a point
 of Pi-space (metres, seconds, kilograms; see
-:func:`isoslide.similarity.physical_parameters`) and integrates the stick-slip
-response with plain SciPy, independently of :mod:`isoslide.kernel` and of the
+:func:`isoslide.studies.similarity.physical_parameters`) and integrates the stick-slip
+response with plain SciPy, independently of :mod:`isoslide.engine.kernel` and of the
 dimensionless peers, so that ``Pi1 = u_max / (a_p T_p^2)`` can be compared
 across realisations with equal Pi-groups.  A general building (hysteretic isolator, flexible
 superstructure of one or more storeys, contents on any floor) is integrated by
@@ -18,7 +18,7 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..history import History
+from ..store.history import History
 from ..pulses import accel_at, get_pulse
 from .result import PeerResult
 from .si_building import is_general, simulate_building_si
@@ -32,7 +32,7 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
 
     A deliberately plain implementation (SciPy ``solve_ivp``, DOP853, with
     event location) of the physical equations, independent of
-    :mod:`isoslide.kernel`, used to test the similarity groups:
+    :mod:`isoslide.engine.kernel`, used to test the similarity groups:
 
     * base (relative to the ground), block stuck:
       ``(M_b + m) (x'' + a_g) = -c x' - k x``;
@@ -57,7 +57,7 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
         optionally the building's ``Q_d`` (N), ``D_y`` (m), ``m_st`` (kg), ``T_s`` (s), ``xi_s``,
         ``floor``, ``storeys`` and ``floor_masses`` (kg) with ``storey_stiffnesses`` (N/m)
         (absent: the paper's model; as returned by
-        :func:`isoslide.similarity.physical_parameters`; see
+        :func:`isoslide.studies.similarity.physical_parameters`; see
         :func:`~isoslide.peers.si_building.simulate_building_si`).
     pulse : str or Pulse
         Ground-acceleration shape, ``a_g(t) = a_p p(t / T_p)``.
@@ -66,7 +66,7 @@ def simulate_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float
     rtol : float
         Relative tolerance of the integrator.
     history : bool
-        Also return the step-by-step :class:`~isoslide.history.History`
+        Also return the step-by-step :class:`~isoslide.store.history.History`
         (made dimensionless with ``a_p`` and ``T_p``).
 
     Returns

@@ -53,7 +53,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..history import History
+from ..store.history import History
 from ..pulses import accel_at, get_pulse
 from ..scene import FLOORS
 from .result import PeerResult
@@ -383,7 +383,7 @@ def simulate_building_si(p: dict, pulse="ricker", t_end: float | None = None, rt
     Parameters
     ----------
     p : dict
-        SI parameters of :func:`isoslide.similarity.physical_parameters`: ``a_p`` (m/s^2), ``T_p``
+        SI parameters of :func:`isoslide.studies.similarity.physical_parameters`: ``a_p`` (m/s^2), ``T_p``
         (s), ``M_b`` (kg, slab and superstructure), ``T_b`` (s, 0 = fixed base), ``xi_b``, ``m_ec``
         (kg), ``mu_s``, ``mu_k``, ``beta`` (s/m), ``gamma`` (s/m), ``g`` (m/s^2), ``Q_d`` (N),
         ``D_y`` (m), ``m_st`` (kg), ``T_s`` (s, 0 = rigid), ``xi_s``, ``floor`` (``"base"``,
@@ -398,7 +398,7 @@ def simulate_building_si(p: dict, pulse="ricker", t_end: float | None = None, rt
     rtol : float
         Relative tolerance of the integrator.
     history : bool
-        Also return the :class:`~isoslide.history.History` (dimensionless with ``a_p``, ``T_p``,
+        Also return the :class:`~isoslide.store.history.History` (dimensionless with ``a_p``, ``T_p``,
         ``M_b``; ``xs, xsd`` the roof's).
 
     Returns

@@ -3,7 +3,7 @@
 :mod:`isoslide.studies.registry` declares every study (configuration section, datasets, figures,
 reports, rule file, SLURM groups, code families) and derives the workflow's lists from them;
 :mod:`isoslide.studies.imports` computes the import closure behind each code family;
-:mod:`isoslide.studies.storeys` (with :mod:`isoslide.studies.storeys_plot`) is the storeys study.
+:mod:`isoslide.studies.storeys` (with :mod:`isoslide.reports.storeys_plot`) is the storeys study.
 
 ``python -m isoslide.studies`` prints the SLURM groups of the registry and, with ``--write PATH``,
 writes them into the ``groups:`` block of a Snakemake profile (``profiles/slurm/config.yaml``).

@@ -6,12 +6,12 @@ modules without importing anything: it reads the import statements of each modul
 functions included, so a lazily imported solver counts) and follows those that name a module of
 the package, until nothing new is reached.
 
-Conventions (those of :func:`isoslide.provenance.code_hash`): module names are relative to the
+Conventions (those of :func:`isoslide.store.provenance.code_hash`): module names are relative to the
 package, dotted for subpackages (``"solver"``, ``"peers.reference"``); importing ``a.b.c`` runs
 ``a`` and ``a.b`` first, so a subpackage's ``__init__`` counts; a name imported from the lazy
 package namespace (``from isoslide import solve``) counts as the module that defines it; the
 package's own ``__init__`` is left out (every job runs it).  :func:`module_names` writes a closure
-as the names :func:`~isoslide.provenance.code_hash` takes: a subpackage every file of which is
+as the names :func:`~isoslide.store.provenance.code_hash` takes: a subpackage every file of which is
 reached by its name (``"peers"``), otherwise each file (``"studies.__init__"``,
 ``"studies.storeys"``).
 
@@ -193,7 +193,7 @@ def files_of(modules: Iterable[str], package_dir: Path | str | None = None) -> s
 
 
 def module_names(modules: Iterable[str], package_dir: Path | str | None = None) -> list[str]:
-    """A closure as the sorted names :func:`isoslide.provenance.code_hash` takes for the same files.
+    """A closure as the sorted names :func:`isoslide.store.provenance.code_hash` takes for the same files.
 
     A subpackage every file of which is in the closure is named by itself (``"peers"``: all of
     its files); otherwise each file is named, its ``__init__`` as ``"<subpackage>.__init__"``.

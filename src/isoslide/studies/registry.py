@@ -30,7 +30,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
-from .. import fragility_study, isolation_study
+from . import fragility_study, isolation_study
 from .imports import closure, module_names
 
 DATASET_DIR = "results/datasets"
@@ -43,7 +43,7 @@ REPORT_DIR = "reports"
 """Directory of the HTML reports: ``<REPORT_DIR>/<report>.html``, and of the index page."""
 
 INDEX_PAGE = f"{REPORT_DIR}/index.html"
-"""The run at a glance (:mod:`isoslide.index_page`)."""
+"""The run at a glance (:mod:`isoslide.reports.index_page`)."""
 
 Names = Sequence[str] | Callable[[Mapping], Sequence[str]]
 """A list of names, or a callable of the complete configuration returning one."""
@@ -175,12 +175,12 @@ PAPER_FIGURES = tuple(f"fig{n}" for n in range(1, 9))
 """The paper's figures."""
 
 ISOLATION_FIGURES = ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design")
-"""The isolation studies' figures (:data:`isoslide.isolation_plot.FIGURES`)."""
+"""The isolation studies' figures (:data:`isoslide.reports.isolation_plot.FIGURES`)."""
 
 PIPELINE = Study(
     name="pipeline",
     sections=(),
-    code={"index": ("budget", "index_page", "provenance")},
+    code={"index": ("budget", "reports.index_page", "store.provenance")},
     rule_files=("reports.smk",),
     groups={"report": "reports"},
 )
@@ -202,11 +202,11 @@ STUDIES: tuple[Study, ...] = (
                    needs=tuple(figure_path(f) for f in PAPER_FIGURES + ("records",))),
         ),
         code={
-            "solve": ("budget", "datasets", "provenance", "solver", "sweep"),      # solve_chunk
-            "study": ("budget", "datasets", "provenance", "similarity", "sweep"),  # merge_study
-            "similarity": ("budget", "datasets", "provenance", "similarity"),
-            "similarity_report": ("claims", "groups"),
-            "figures": ("budget", "figures", "provenance"),                        # figure, figure_records
+            "solve": ("budget", "datasets", "store.provenance", "solver", "studies.sweep"),      # solve_chunk
+            "study": ("budget", "datasets", "store.provenance", "studies.similarity", "studies.sweep"),  # merge_study
+            "similarity": ("budget", "datasets", "store.provenance", "studies.similarity"),
+            "similarity_report": ("studies.claims", "groups"),
+            "figures": ("budget", "reports.figures", "store.provenance"),                        # figure, figure_records
         },
         # sweep.smk also solves the isolation studies (merge_isolation_study)
         rule_files=("sweep.smk", "similarity.smk", "figures.smk"),
@@ -220,7 +220,7 @@ STUDIES: tuple[Study, ...] = (
         reports=(Report("records", data={"records_path": dataset_path("records")},
                         parameters={"figure_dir": FIGURE_DIR},
                         needs=(figure_path("records"), figure_path("fig4")), code="records"),),
-        code={"records": ("budget", "datasets", "provenance", "record_study", "solver")},
+        code={"records": ("budget", "datasets", "store.provenance", "studies.record_study", "solver")},
         rule_files=("records.smk",),
         groups={"figure_records": "figures"},
     ),
@@ -232,7 +232,7 @@ STUDIES: tuple[Study, ...] = (
         reports=(Report("accuracy", data={"accuracy_path": dataset_path("accuracy"),
                                           "timings_path": "results/timings/accuracy_timings.nc"},
                         code="accuracy"),),
-        code={"accuracy": ("accuracy", "budget", "datasets", "provenance", "solver")},
+        code={"accuracy": ("accuracy", "budget", "datasets", "store.provenance", "solver")},
         rule_files=("accuracy.smk",),
     ),
     Study(
@@ -244,9 +244,9 @@ STUDIES: tuple[Study, ...] = (
         reports=(Report("fragility", data={"fragility_path": dataset_path("fragility")}, parameters=_fragility_parameters,
                         needs=_fragility_needs, code="fragility_plot"),),
         code={
-            "fragility": ("budget", "datasets", "fragility_study", "provenance", "solver"),
-            "fragility_plot": ("budget", "datasets", "fragility_plot", "provenance"),
-            "pelicun": ("budget", "datasets", "pelicun_export", "provenance"),
+            "fragility": ("budget", "datasets", "studies.fragility_study", "store.provenance", "solver"),
+            "fragility_plot": ("budget", "datasets", "reports.fragility_plot", "store.provenance"),
+            "pelicun": ("budget", "datasets", "studies.pelicun_export", "store.provenance"),
         },
         rule_files=("fragility.smk",),
         groups={"fragility_chunk": "solve", "fragility_dataset": "merge", "fragility_figure": "figures",
@@ -266,9 +266,9 @@ STUDIES: tuple[Study, ...] = (
                         parameters={"figure_dir": FIGURE_DIR},
                         needs=tuple(figure_path(f) for f in ISOLATION_FIGURES), code="isolation_report"),),
         code={
-            "isolation": ("budget", "datasets", "isolation_study", "provenance", "solver"),
-            "isolation_plot": ("budget", "isolation_plot", "provenance"),
-            "isolation_report": ("datasets", "isolation_study"),
+            "isolation": ("budget", "datasets", "studies.isolation_study", "store.provenance", "solver"),
+            "isolation_plot": ("budget", "reports.isolation_plot", "store.provenance"),
+            "isolation_report": ("datasets", "studies.isolation_study"),
         },
         rule_files=("isolation.smk",),
         groups={"merge_isolation_study": "merge", "isolation_rigid": "merge", "isolation_design": "merge",
@@ -282,8 +282,8 @@ STUDIES: tuple[Study, ...] = (
         reports=(Report("isolation", data={"storeys_path": dataset_path("storeys")},
                         needs=(figure_path("storeys"),), code="isolation_report"),),
         code={
-            "storeys": ("budget", "datasets", "provenance", "solver", "studies.storeys"),
-            "storeys_plot": ("budget", "datasets", "provenance", "studies.storeys_plot"),
+            "storeys": ("budget", "datasets", "store.provenance", "solver", "studies.storeys"),
+            "storeys_plot": ("budget", "datasets", "store.provenance", "reports.storeys_plot"),
             "isolation_report": ("studies.storeys",),
         },
         rule_files=("storeys.smk",),
@@ -417,7 +417,7 @@ def code_families(studies: Sequence[Study] | None = None) -> dict[str, tuple[str
 def code_modules(studies: Sequence[Study] | None = None, package_dir=None) -> dict[str, list[str]]:
     """``{family: module names}``: the import closure of each family's entry modules.
 
-    Named as :func:`isoslide.provenance.code_hash` takes them (see
+    Named as :func:`isoslide.store.provenance.code_hash` takes them (see
     :func:`isoslide.studies.imports.module_names`).
     """
     return {family: module_names(closure(entries, package_dir=package_dir), package_dir)

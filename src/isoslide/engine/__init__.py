@@ -1,0 +1,9 @@
+"""The compiled solvers and what they integrate: the model assembled into arrays, the kernels.
+
+:mod:`isoslide.engine.building` assembles a building into the arrays of
+:mod:`isoslide.engine.building_kernel` (the general event-driven engine of a slab, N floors and
+the contents on any floor); :mod:`isoslide.engine.kernel` (the paper's model) and
+:mod:`isoslide.engine.piecewise` (exact propagation of sampled records) are fast paths the
+planner in :mod:`isoslide.solver` chooses; :mod:`isoslide.engine.dop853` holds the Runge-Kutta
+tableau.  Nothing is imported here.
+"""

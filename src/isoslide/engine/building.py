@@ -1,0 +1,312 @@
+"""The general building (the paper's Fig. 1-a) and the smallest exact model a scene requires.
+
+Physics (dimensional; ground acceleration ``a_g(t) = a_p p(t/T_p)``, displacements
+relative to the ground):
+
+* **Isolated mass** ``M_b = m_b + m_st`` (slab and superstructure; the contents
+  excluded), on an isolator ``F_iso = k_d x_b + c_b x_b' + f_h`` with
+  ``T_b = 2 pi sqrt(M_b/k_d)`` and ``xi_b = c_b / (2 sqrt(k_d M_b))`` (``M_b``
+  alone, as in the paper).  The hysteretic part ``f_h`` of strength ``Q``
+  and yield displacement ``D_y``:
+
+  - ``Q = 0``: ``f_h = 0``, the paper's linear isolator;
+  - ``Q > 0, D_y > 0``, a **bilinear bearing** (lead-rubber): an
+    elastic-perfectly-plastic spring of stiffness ``k_e = Q / D_y`` and yield
+    force ``Q`` (initial stiffness ``k_d + k_e``, post-yield ``k_d``);
+  - ``Q > 0, D_y = 0``, a **sliding bearing** (friction pendulum of radius
+    ``R`` and friction ``mu_b``: ``k_d = M_b g / R``, ``Q = mu_b M_b g``, see
+    :func:`isoslide.friction_pendulum`), rigid-plastic with true stick: the
+    slab stays still while the force that holds it is within ``Q``.
+
+* **Superstructure**: rigid, or a mass ``m_st`` on the slab through ``k_s`` and
+  ``c_s`` (``T_s = 2 pi sqrt(m_st/k_s)``, ``xi_s = c_s / (2 sqrt(k_s m_st))``).
+* **Contents** on the slab ("base") or on the superstructure ("roof"), with the
+  paper's Eq. 1 friction and true stick; the friction acts back on that floor.
+
+Equations: slab ``m_b (a_g + x_b'') = -F_iso + (k_s x_s + c_s x_s') + [R on
+the base]``; superstructure ``m_st (a_g + x_b'' + x_s'') = -(k_s x_s + c_s
+x_s') + [R on the roof]``; block ``m (a_F + u'') = -F_f`` with ``R = F_f``.
+The groups ``Pi9 = Q/(M_b a_p)``, ``Pi10 = D_y/(a_p T_p^2)``, ``Pi11 =
+m_st/M_b``, ``Pi12 = T_s/T_p``, ``Pi13 = xi_s`` join the paper's ``Pi2 ..
+Pi8`` (:mod:`isoslide.groups`); the compiled solver is
+:mod:`isoslide.engine.building_kernel`.
+
+The smallest exact model (:func:`reduction`)
+--------------------------------------------
+``paper``
+    ``Pi9 = 0`` and ``Pi12 = 0``: the paper's model, solved by
+    :mod:`isoslide.engine.kernel` (the contents' floor makes no difference).
+``fixed-base``
+    ``Pi3 = 0`` with the contents on the slab (or a rigid superstructure): the slab moves with
+    the ground, so neither the isolator nor the superstructure acts on the contents.
+``bearing-stuck``
+    A sliding bearing under a rigid superstructure that provably never slips:
+    the force holding the slab is ``-(p + R)`` with ``|R| <= Pi8 max|p|`` for
+    speed-independent contact (``Pi7 = 0``; a stuck block needs ``Pi8 |p|``,
+    a sliding one ``Pi8 phi <= Pi8 mu_s g/a_p < Pi8 max|p|``), so
+    ``(1 + Pi8) max|p| <= Pi9`` proves it; the scene runs as the paper's fixed
+    base.
+``bearing-elastic``
+    A bilinear bearing under a rigid superstructure that provably never
+    yields: the slab obeys ``x'' + c_b x' + (k_d + k_e) x = -p + R`` with
+    ``|R| <= Pi8 max|p|`` (as above), so ``|x| <= ||h||_1 (1 + Pi8) max|p|``
+    with ``h`` the impulse response of that oscillator; when ``k_e`` times this
+    is within ``Q`` the scene runs as the paper's linear isolator of stiffness
+    ``k_d + k_e`` (``Pi3' = Pi3 sqrt(k_d/(k_d + k_e))``, ``Pi4' = Pi4
+    sqrt(k_d/(k_d + k_e))``).
+``general``
+    Anything else: :func:`isoslide.engine.building_kernel.run`, with the superstructure
+    integrated only when flexible (``Pi12 > 0``) and the back-reaction dropped
+    when ``Pi8 = 0``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from . import building_kernel as bk
+from ..model import shear_building
+from ..pulses import SAMPLED
+from ..scene import Scene
+
+REDUCTIONS = ("paper", "fixed-base", "bearing-stuck", "bearing-elastic", "general")
+"""The models :func:`reduction` can choose, smallest first (see the module docstring)."""
+
+
+def peak_accel(scene: Scene) -> float:
+    """``max |p|`` of the scene's excitation (units of a_p).
+
+    The analytic pulses of :mod:`isoslide.pulses` are normalised to a peak of 1; a sampled
+    record is linear between samples, so its peak is the largest sample.
+    """
+    pulse = scene.pulse
+    if pulse.code == SAMPLED:
+        return float(np.max(np.abs(pulse.param_array[2:])))
+    return 1.0
+
+
+def impulse_l1(stiffness: float, damping: float) -> float:
+    """``int_0^inf |h(t)| dt`` of a unit-mass oscillator ``x'' + c x' + k x = delta``.
+
+    Under-damped: ``coth(pi a / (2 w_d)) / k`` with ``a = c/2``, ``w_d = sqrt(k - a^2)``;
+    critically or over-damped (``h >= 0``): ``1 / k``; undamped: ``inf``.
+    """
+    if damping <= 0.0:
+        return math.inf
+    a = 0.5 * damping
+    if a * a >= stiffness:
+        return 1.0 / stiffness
+    wd = math.sqrt(stiffness - a * a)
+    return 1.0 / (math.tanh(math.pi * a / (2.0 * wd)) * stiffness)
+
+
+def reduction(scene: Scene) -> tuple[str, Scene | None]:
+    """The smallest exact model for ``scene`` and, where it is the paper's, the paper scene to solve.
+
+    Returns
+    -------
+    (str, Scene or None)
+        A name from :data:`REDUCTIONS` and the equivalent paper-model scene (``None`` for
+        ``"general"``).
+    """
+    paper_keys = {"pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "floor": "base", "storeys": 1,
+                  "floor_masses": None, "storey_stiffnesses": None}
+    if scene.paper_model:
+        return "paper", replace(scene, **paper_keys)
+    if scene.pi3 == 0.0 and not (scene.flexible and scene.floor_index > 0):
+        return "fixed-base", replace(scene, **paper_keys)
+    if scene.flexible:
+        return "general", None
+    if scene.pi7 == 0.0:
+        demand = (1.0 + scene.pi8) * peak_accel(scene)
+        w = 2.0 * math.pi / scene.pi3
+        kd = w * w
+        if scene.isolator == "sliding" and demand <= scene.pi9:
+            return "bearing-stuck", replace(scene, pi3=0.0, pi4=0.0, **paper_keys)
+        if scene.isolator == "bilinear":
+            ke = scene.pi9 / scene.pi10
+            k = kd + ke
+            if ke * impulse_l1(k, 2.0 * scene.pi4 * w) * demand <= scene.pi9:
+                f = math.sqrt(kd / k)
+                return "bearing-elastic", replace(scene, pi3=scene.pi3 * f, pi4=scene.pi4 * f, **paper_keys)
+    return "general", None
+
+
+def superstructure(scene: Scene) -> tuple:
+    """Floor masses, fixed-base stiffness and damping matrices of a flexible superstructure.
+
+    Units ``M_b``, ``M_b / T_p^2`` and ``M_b / T_p``.  Floor ``j`` (1-based, bottom to top) has the
+    mass ``Pi11 w_j`` (``w_j`` the scene's ``floor_masses``, uniform ``1/N`` by default); storey
+    ``j`` joins floor ``j - 1`` (0 the slab) and floor ``j`` with the stiffness ``kappa r_j``
+    (``r_j`` the scene's ``storey_stiffnesses``, 1 by default), ``kappa`` chosen so that the
+    fixed-base fundamental period (slab held) is ``Pi12``.  The damping is classical with ratio
+    ``Pi13`` in every fixed-base mode: ``Cs = Ms Phi diag(2 Pi13 omega_i) Phi^T Ms`` with the
+    mass-normalised modes ``Phi``.  One floor: ``k_s = m_st (2 pi/Pi12)^2``,
+    ``c_s = 2 Pi13 (2 pi/Pi12) m_st`` exactly.
+
+    Returns
+    -------
+    (masses, Ks, Cs) : ndarrays of shapes ``(N,)``, ``(N, N)``, ``(N, N)``
+    """
+    n = scene.storeys
+    mst = scene.pi11
+    ws = 2.0 * math.pi / scene.pi12
+    if n == 1:
+        return np.array([mst]), np.array([[mst * ws * ws]]), np.array([[2.0 * scene.pi13 * ws * mst]])
+    w = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses)
+    r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses)
+    masses = mst * w
+    shape = shear_building.stiffness_matrix(r)
+    omega, _ = shear_building.fixed_base_modes(masses, shape)
+    Ks = (ws / omega[0]) ** 2 * shape
+    omega, phi = shear_building.fixed_base_modes(masses, Ks)
+    return masses, Ks, shear_building.classical_damping(masses, omega, phi, scene.pi13)
+
+
+def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) -> np.ndarray:
+    """Model parameters of :func:`isoslide.engine.building_kernel.run` for a general scene.
+
+    ``pi8`` overrides the scene's (0: one-way coupling); ``coulomb`` skips the Stribeck terms
+    (friction at the static level ``Pi2/Pi5`` at every speed).  A rigid superstructure is one
+    floor that moves with the slab; a flexible one has the floors of :func:`superstructure`.
+    """
+    flex = scene.flexible
+    n = scene.storeys if flex else 1
+    P = np.zeros(bk.n_parameters(n))
+    mst = scene.pi11 if flex else 0.0
+    P[bk.P_MB] = 1.0 - mst
+    P[bk.P_MST] = mst
+    P[bk.P_M] = scene.pi8 if pi8 is None else pi8
+    if scene.pi3 > 0.0:
+        w = 2.0 * math.pi / scene.pi3
+        P[bk.P_KD] = w * w
+        P[bk.P_CB] = 2.0 * scene.pi4 * w
+        kind = {"linear": bk.KIND_LINEAR, "bilinear": bk.KIND_BILINEAR, "sliding": bk.KIND_SLIDING}[scene.isolator]
+    else:
+        kind = bk.KIND_FIXED
+    P[bk.P_N] = n
+    if flex:
+        masses, Ks, Cs = superstructure(scene)
+        P[bk.P_ARRAYS:bk.P_ARRAYS + n] = masses
+        P[bk.P_ARRAYS + n:bk.P_ARRAYS + n + n * n] = Ks.ravel()
+        P[bk.P_ARRAYS + n + n * n:] = Cs.ravel()
+        P[bk.P_KS] = Ks[0, 0]
+        P[bk.P_CS] = Cs[0, 0]
+        P[bk.P_FLOOR] = scene.floor_index
+    P[bk.P_Q] = scene.pi9 if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else 0.0
+    P[bk.P_KE] = scene.pi9 / scene.pi10 if kind == bk.KIND_BILINEAR else 0.0
+    P[bk.P_THR] = scene.static_level
+    P[bk.P_PI2] = scene.pi2
+    P[bk.P_PI6] = scene.pi6
+    P[bk.P_PI7] = scene.pi7
+    P[bk.P_COULOMB] = 1.0 if coulomb else 0.0
+    P[bk.P_ROOF] = 1.0 if (flex and scene.floor_index > 0) else 0.0
+    P[bk.P_KIND] = float(kind)
+    P[bk.P_FLEX] = 1.0 if flex else 0.0
+    return P
+
+
+def shortest_period(scene: Scene) -> float:
+    """Shortest fixed-base period of a flexible superstructure (units of T_p); ``Pi12`` for one floor."""
+    if scene.storeys == 1:
+        return scene.pi12
+    masses, Ks, _ = superstructure(scene)
+    omega, _ = shear_building.fixed_base_modes(masses, Ks)
+    return 2.0 * math.pi / omega[-1]
+
+
+def free_step(scene: Scene) -> float:
+    """Longest step after the pulse (units of T_p): an eighth of the shortest period followed.
+
+    The periods are the isolation period (the bilinear bearing's elastic one,
+    ``Pi3 sqrt(k_d / (k_d + k_e))``, when shorter) and the superstructure's shortest fixed-base
+    one (:func:`shortest_period`); a pulse period when there is none.
+    """
+    periods = [1.0]
+    if scene.pi3 > 0.0:
+        periods.append(scene.pi3)
+        if scene.isolator == "bilinear":
+            kd = (2.0 * math.pi / scene.pi3) ** 2
+            periods.append(scene.pi3 * math.sqrt(kd / (kd + scene.pi9 / scene.pi10)))
+    if scene.flexible:
+        periods.append(shortest_period(scene))
+    return min(periods) / 8.0
+
+
+def _empty_modal(ny: int) -> tuple:
+    return np.zeros((0, ny), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128)
+
+
+def _free_system(P: np.ndarray, code: int, params: np.ndarray, held: bool) -> tuple:
+    """``(A, idx)``: the free linear system ``z' = A z`` of the moving states ``y[idx]`` after the pulse.
+
+    The block is stuck and the isolator stuck (``held``) or elastic; built column by column from
+    :func:`isoslide.engine.building_kernel.deriv` (affine in ``y``) at a time after any pulse.
+    """
+    kind = int(P[bk.P_KIND])
+    n = int(P[bk.P_N])
+    ny = bk.state_size(n)
+    idx = [] if held else [bk.Y_X, bk.Y_XD]
+    if P[bk.P_FLEX] != 0.0:
+        idx += list(range(bk.Y_XS, bk.Y_XS + 2 * n))
+    if kind == bk.KIND_BILINEAR and not held:
+        idx.append(ny - 1)
+    late = 1e30   # after every pulse and record: p = 0
+    out = np.zeros(ny)
+    A = np.zeros((len(idx), len(idx)))
+    for j, col in enumerate(idx):
+        y = np.zeros(ny)
+        y[col] = 1.0
+        bk.deriv(0.0, 0.0, late, y, P, code, params, out)
+        A[:, j] = out[idx]
+    return A, idx
+
+
+def modal_data(scene: Scene, P: np.ndarray) -> tuple:
+    """Modal data of the settlement test of :func:`isoslide.engine.building_kernel.run`.
+
+    For the free linear system after the pulse (block stuck; the isolator elastic, ``Wm, Cm``, or
+    holding the slab, ``Wh, Ch``): ``W`` maps the state ``y`` to modal coordinates (rows: modes,
+    columns: the states) and ``C[j, k] = c_j . v_k`` gives demand ``j`` (0: the block's floor
+    acceleration; 1: the bilinear bearing's force, or the force holding a sliding bearing) per unit
+    of mode ``k``.  Empty where the configuration cannot occur, has no moving state, or its
+    eigenvectors are too ill-conditioned (condition number above 1e8) for a trustworthy bound.
+    """
+    kind = int(P[bk.P_KIND])
+    n = int(P[bk.P_N])
+    ny = bk.state_size(n)
+    code, params = scene.pulse.code, scene.pulse.param_array
+    out = []
+    for held in (False, True):
+        if held != (kind in (bk.KIND_SLIDING, bk.KIND_FIXED)):
+            out.extend(_empty_modal(ny))
+            continue
+        A, idx = _free_system(P, code, params, held)
+        if not idx:
+            out.extend(_empty_modal(ny))
+            continue
+        lam, V = np.linalg.eig(A)
+        if np.max(lam.real) > 1e-12 * max(1.0, np.max(np.abs(lam))) or np.linalg.cond(V) > 1e8:
+            out.extend(_empty_modal(ny))
+            continue
+        Winv = np.linalg.inv(V)
+        W = np.zeros((len(idx), ny), dtype=np.complex128)
+        W[:, idx] = Winv
+        demand_rows = [0] + ([1] if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else [])
+        c = np.zeros((len(demand_rows), len(idx)))
+        for k, col in enumerate(idx):
+            y = np.zeros(ny)
+            y[col] = 1.0
+            im = 0.0
+            fh = y[ny - 1] if kind == bk.KIND_BILINEAR else 0.0
+            zp, zv = y[bk.Y_XS:bk.Y_XS + n], y[bk.Y_XS + n:bk.Y_XS + 2 * n]
+            c[0, k] = bk._floor_stuck(im, y[bk.Y_X], y[bk.Y_XD], zp, zv, fh, 0.0, P)
+            if len(demand_rows) > 1:
+                c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, zp, zv, 0.0, 0.0, P)
+        # a relative margin for the round-off of the eigen-decomposition
+        margin = 1.0 + 1e-12 + 1e-14 * np.linalg.cond(V)
+        out.extend([W, (margin * (c @ V)).astype(np.complex128)])
+    return tuple(out)

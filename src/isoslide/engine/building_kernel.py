@@ -1,0 +1,986 @@
+"""Compiled event-driven kernel of the general building (numba).
+
+The general building of :mod:`isoslide.engine.building` (the paper's Fig. 1-a): a slab
+on a hysteretic isolator, a rigid superstructure or a flexible one of ``n``
+floors, and sliding contents on the slab (floor 0) or on floor ``k`` of the
+superstructure.  Units: time ``T_p``, lengths ``a_p T_p^2``, accelerations
+``a_p``, masses ``M_b``, forces ``M_b a_p``; primes are ``d/dtau``.
+
+State ``y = [x, x', xs_1 .. xs_n, xs_1' .. xs_n', u, u', fh]`` (length
+``2 n + 5``, :func:`state_size`): slab displacement relative to the ground,
+the floors' displacements relative to the slab, block displacement relative to
+its floor, and the hysteretic isolator force (a state of the bilinear bearing
+only).  Two modes: the block's ``bm`` (0 stuck, +-1 sliding in that direction)
+and the isolator's ``im`` (0 stuck sliding bearing or elastic bilinear
+bearing, +-1 sliding or yielding).  Model parameters ``P`` (indices ``P_*``,
+then the floor masses and the superstructure's fixed-base stiffness and
+damping matrices from ``P_ARRAYS`` on) are set by
+:func:`isoslide.engine.building.parameters`.
+
+Forces: isolator ``F = kd x + cb x' + fh``, storey forces on the floors
+``G = Ks xs + Cs xs'`` (fixed-base matrices, floors relative to the slab) and
+their sum on the slab ``S = sum_j G_j``, friction of the block on its floor
+``R`` (the block gets ``-R``)::
+
+    slab            mb Ab = -F + S + [R on the base]
+    floor j         m_j A_j = -G_j + [R on floor j]
+    block           m (A_F + u'') = -R
+
+with absolute accelerations ``Ab = p + x''``, ``A_j = Ab + xs_j''`` and the
+floor's ``A_F``.  Every mode gives the accelerations explicitly
+(:func:`_accels`): the mass matrix is diagonal.  A stuck block has
+``R = -m A_F`` and stays stuck while ``|A_F| <= thr``; a sliding one
+``R = m s phi(|u'|)``.  With one floor this is the slab and one
+superstructure mass of the paper's Fig. 1-a, step for step.  A stuck sliding bearing holds the slab
+(``x' = x'' = 0``) with the force ``fh = -mb p - kd x + S + [R on the base]``
+while ``|fh| <= q``, and slides with ``fh = q sgn(x')``.  A bilinear bearing's
+``fh`` follows ``fh' = ke x'`` until ``|fh| = q`` and stays at ``+-q`` until
+``x'`` changes sign.
+
+Transitions (every one located to ~1e-13 T_p by safeguarded Newton on the step
+length, re-stepping from the accepted point): a stuck interface breaks away
+when its demand reaches its limit (the demand's interior peaks are found as
+roots of its rate); a sliding one stops when its speed returns to zero; a
+bilinear bearing yields at ``|fh| = q`` and unloads when ``x'`` changes sign.
+Breakaways and yielding keep every force continuous.  When a sliding interface
+stops, the force on the other jumps, so the modes of the interfaces at rest are
+chosen together (:func:`_select_modes`): the first consistent combination in
+the order all stuck, block stuck, bearing stuck, none stuck, where consistent
+means every stuck interface's needed force is within its limit and every
+sliding one accelerates in its own direction.
+
+Settlement (:func:`_settled`): after the pulse, with the block stuck and the
+isolator stuck or elastic, the free system is linear.  With at most one floor its energy ``E``
+about its equilibrium cannot grow; every demand ``d = d0 + c.y`` obeys
+``|d| <= |d0| + sqrt(2 E c' P^-1 c)`` (``P`` the energy's quadratic form).
+Its modes give a second bound, ``|d| <= |d0| + sum_k |c.v_k| |a_k|`` (modal
+coordinates ``a_k``, eigenvalues with ``Re lambda_k <= 0``), much sharper when
+one mode dominates (a stiff superstructure's energy makes the first bound
+large while hardly moving the floor); with several floors the modal bound
+alone is used.  Once a bound puts every demand within its limit nothing can
+slip or yield again.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .. import jit_cache
+from ..model.friction import stribeck
+from .kernel import (ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
+                     _step_factor, hermite_root)
+from ..pulses import accel_at, jerk_at
+
+Y_X, Y_XD, Y_XS = range(3)
+"""Fixed state indices: slab displacement and velocity, the first floor's displacement."""
+
+(P_MB, P_MST, P_M, P_KD, P_CB, P_KS, P_CS, P_Q, P_KE, P_THR, P_PI2, P_PI6, P_PI7, P_COULOMB, P_ROOF,
+ P_KIND, P_FLEX, P_N, P_FLOOR) = range(19)
+P_ARRAYS = 19
+"""Start of the arrays in the model parameters: floor masses ``(n,)``, then ``Ks`` and ``Cs``
+``(n, n)`` row by row; ``P_N`` holds ``n``, ``P_FLOOR`` the contents' floor (0 the slab)."""
+
+
+def n_parameters(n: int) -> int:
+    """Length of the model-parameter array of a building of ``n`` floors."""
+    return P_ARRAYS + n + 2 * n * n
+
+
+def state_size(n: int) -> int:
+    """Length of the state vector of a building of ``n`` floors."""
+    return 2 * n + 5
+
+
+def history_width(n: int) -> int:
+    """Columns of a history row of a building of ``n`` floors."""
+    return state_size(n) + 3
+
+KIND_LINEAR, KIND_BILINEAR, KIND_SLIDING, KIND_FIXED = range(4)
+"""Isolator kinds (``P[P_KIND]``): linear, bilinear bearing, sliding bearing, fixed base."""
+
+INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "iso_events", "iso_moved", "rejected")
+"""The integer results of :func:`run`, in order (their indices are ``R_*``)."""
+(R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_ISO_EVENTS, R_ISO_MOVED, R_REJECTED) = range(8)
+N_R = len(INT_RESULTS)
+FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "xmax", "vmax")
+"""The float results of :func:`run`, in order (their indices are ``F_*``)."""
+F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX = range(6)
+N_F = len(FLOAT_RESULTS)
+# history columns: [tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im] (see history_columns)
+H_TAU, H_X, H_XD, H_XS = range(4)
+
+
+def history_columns(n: int) -> dict:
+    """Column of each quantity in a history row of a building of ``n`` floors.
+
+    ``xs`` and ``xsd`` are the first columns of the floors' displacements and velocities (``n``
+    each); ``fh`` is the isolator's hysteretic force (the holding force of a held slab), ``phase``
+    and ``iso_phase`` the block's and the isolator's modes.
+    """
+    ny = state_size(n)
+    return {"tau": H_TAU, "x": H_X, "xd": H_XD, "xs": H_XS, "xsd": H_XS + n, "u": 3 + 2 * n,
+            "ud": 4 + 2 * n, "fh": ny, "phase": ny + 1, "iso_phase": ny + 2}
+
+# event kinds
+EV_BLOCK, EV_BEAR, EV_YIELD, EV_BSPEED, EV_ISPEED, EV_BPEAK, EV_IPEAK, EV_XD = range(8)
+
+
+_stribeck = njit(cache=True)(stribeck)
+jit_cache.seed(_stribeck)
+
+
+@njit(cache=True)
+def friction(v, P):
+    """Friction level ``phi(|v|)`` (units of a_p) and its derivative ``d phi / d|v|``."""
+    thr = P[P_THR]
+    if P[P_COULOMB] == 1.0:
+        return thr, 0.0
+    return _stribeck(v, thr, P[P_PI2], P[P_PI6], P[P_PI7], 1.0)
+
+
+@njit(cache=True)
+def _held(im, P):
+    """True while the slab is held to the ground (stuck sliding bearing, or a fixed base)."""
+    kind = P[P_KIND]
+    return kind == KIND_FIXED or (kind == KIND_SLIDING and im == 0.0)
+
+
+@njit(cache=True)
+def _hysteretic(im, y, P):
+    """Hysteretic isolator force of a moving slab (bilinear: the state; sliding: ``q im``)."""
+    kind = P[P_KIND]
+    if kind == KIND_BILINEAR:
+        return y[y.shape[0] - 1]
+    if kind == KIND_SLIDING:
+        return P[P_Q] * im
+    return 0.0
+
+
+@njit(cache=True)
+def _storey_force(j, zp, zv, P):
+    """Force of the superstructure on floor ``j`` (0-based), negated: ``G_j = (Ks zp + Cs zv)_j``.
+
+    ``zp``, ``zv``: the floors' displacements and velocities relative to the slab (or their rates:
+    ``G`` is linear in them).
+    """
+    n = int(P[P_N])
+    ks = P_ARRAYS + n + j * n
+    cs = ks + n * n
+    acc = 0.0
+    for k in range(n):
+        acc += P[ks + k] * zp[k]
+    for k in range(n):
+        acc += P[cs + k] * zv[k]
+    return acc
+
+
+@njit(cache=True)
+def _base_shear(zp, zv, P):
+    """Force of the superstructure on the slab, ``S = sum_j G_j`` (linear in ``zp, zv``)."""
+    acc = 0.0
+    for j in range(int(P[P_N])):
+        acc += _storey_force(j, zp, zv, P)
+    return acc
+
+
+@njit(cache=True)
+def _accels(bm, im, p, y, P, A):
+    """Accelerations of a mode: ``(Ab, A_F, u'', fh, R)``; the floors' into ``A``.
+
+    ``Ab`` absolute slab acceleration, ``A[j]`` floor ``j + 1``'s absolute acceleration, ``A_F``
+    the contents' floor's, ``u''`` the block's relative acceleration, ``fh`` the hysteretic isolator
+    force (for a held slab, the force that holds it) and ``R`` the friction force of the block on
+    its floor.
+    """
+    n = int(P[P_N])
+    ny = y.shape[0]
+    m = P[P_M]
+    mb = P[P_MB]
+    roof = P[P_ROOF] != 0.0
+    flex = P[P_FLEX] != 0.0
+    fl = int(P[P_FLOOR]) - 1
+    zp = y[Y_XS:Y_XS + n]
+    zv = y[Y_XS + n:Y_XS + 2 * n]
+    ph = 0.0
+    if bm != 0.0:
+        ph, _ = friction(y[ny - 2], P)
+    rs = m * bm * ph
+    S = 0.0
+    for j in range(n):
+        if flex:
+            G = _storey_force(j, zp, zv, P)
+            S += G
+            mj = P[P_ARRAYS + j]
+            if roof and j == fl:
+                A[j] = -G / (mj + m) if bm == 0.0 else (-G + rs) / mj
+            else:
+                A[j] = -G / mj
+    if _held(im, P):
+        Ab = p
+        fh = 0.0
+    else:
+        fh = _hysteretic(im, y, P)
+        F = P[P_KD] * y[Y_X] + P[P_CB] * y[Y_XD] + fh
+        if roof:
+            Ab = (-F + S) / mb
+        else:
+            Ab = (-F + S) / (mb + m) if bm == 0.0 else (-F + S + rs) / mb
+    if not flex:
+        for j in range(n):
+            A[j] = Ab
+    AF = A[fl] if roof else Ab
+    R = rs if bm != 0.0 else -m * AF
+    if _held(im, P):
+        fh = -mb * p - P[P_KD] * y[Y_X] + S + (0.0 if roof else R)
+    udd = 0.0 if bm == 0.0 else -AF - bm * ph
+    return Ab, AF, udd, fh, R
+
+
+@njit(cache=True)
+def deriv(bm, im, tau, y, P, code, params, out):
+    """Right-hand side of the mode ``(bm, im)`` at ``(tau, y)``, written into ``out``."""
+    n = int(P[P_N])
+    ny = y.shape[0]
+    p = accel_at(code, params, tau)
+    A = out[Y_XS + n:Y_XS + 2 * n]
+    Ab, AF, udd, fh, R = _accels(bm, im, p, y, P, A)
+    if _held(im, P):
+        out[Y_X] = 0.0
+        out[Y_XD] = 0.0
+    else:
+        out[Y_X] = y[Y_XD]
+        out[Y_XD] = Ab - p
+    for j in range(n):
+        out[Y_XS + j] = y[Y_XS + n + j]
+        out[Y_XS + n + j] = A[j] - Ab
+    out[ny - 3] = y[ny - 2]
+    out[ny - 2] = udd
+    out[ny - 1] = P[P_KE] * y[Y_XD] if (P[P_KIND] == KIND_BILINEAR and im == 0.0) else 0.0
+
+
+@njit(cache=True)
+def _floor_stuck(im, x, xd, zp, zv, fh, p, P):
+    """Floor acceleration ``A_F`` of a stuck block (units of a_p).
+
+    Linear and homogeneous in ``(x, x', zp, zv, fh, p)`` (``zp``, ``zv`` the floors' displacements
+    and velocities relative to the slab): given their rates it returns the rate.
+    """
+    m = P[P_M]
+    if P[P_ROOF] != 0.0:
+        fl = int(P[P_FLOOR]) - 1
+        return -_storey_force(fl, zp, zv, P) / (P[P_ARRAYS + fl] + m)
+    if _held(im, P):
+        return p
+    S = _base_shear(zp, zv, P) if P[P_FLEX] != 0.0 else 0.0
+    return (-(P[P_KD] * x + P[P_CB] * xd + fh) + S) / (P[P_MB] + m)
+
+
+@njit(cache=True)
+def _bearing_need(bm, x, zp, zv, p, rs, P):
+    """Force (units of M_b a_p) that holds a stuck sliding bearing's slab to the ground.
+
+    ``rs = m bm phi`` is the sliding block's friction force; linear and homogeneous in
+    ``(x, zp, zv, p, rs)``: given their rates it returns the rate.
+    """
+    S = _base_shear(zp, zv, P) if P[P_FLEX] != 0.0 else 0.0
+    r = 0.0
+    if P[P_ROOF] == 0.0:
+        r = rs if bm != 0.0 else -P[P_M] * p
+    return -P[P_MB] * p - P[P_KD] * x + S + r
+
+
+@njit(cache=True)
+def _event(kind, sig, bm, im, tau, y, P, code, params, work):
+    """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)``.
+
+    EV_BLOCK  ``sig A_F - thr`` (stuck block)      EV_BEAR  ``sig fh_need - q`` (stuck bearing)
+    EV_YIELD  ``sig fh - q`` (elastic bilinear)    EV_BSPEED ``bm u'``   EV_ISPEED ``im x'``
+    EV_BPEAK, EV_IPEAK: the rates of EV_BLOCK and EV_BEAR (derivative not given: NaN).
+    EV_XD     ``sig x'`` (the rate of an elastic bilinear bearing's ``sig fh``, over ``ke``)
+    """
+    n = int(P[P_N])
+    ny = y.shape[0]
+    ud = ny - 2
+    fhi = ny - 1
+    deriv(bm, im, tau, y, P, code, params, work)
+    if kind == EV_XD:
+        return sig * y[Y_XD], sig * work[Y_XD]
+    if kind == EV_BSPEED:
+        return bm * y[ud], bm * work[ud]
+    if kind == EV_ISPEED:
+        return im * y[Y_XD], im * work[Y_XD]
+    if kind == EV_YIELD:
+        return sig * y[fhi] - P[P_Q], sig * P[P_KE] * y[Y_XD]
+    p = accel_at(code, params, tau)
+    pd = jerk_at(code, params, tau)
+    zp = y[Y_XS:Y_XS + n]
+    zv = y[Y_XS + n:Y_XS + 2 * n]
+    za = work[Y_XS + n:Y_XS + 2 * n]
+    if kind == EV_BLOCK or kind == EV_BPEAK:
+        fh = _hysteretic(im, y, P)
+        g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, P) - P[P_THR]
+        dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], zv, za, work[fhi], pd, P)
+        if kind == EV_BPEAK:
+            return dg, math.nan
+        return g, dg
+    # EV_BEAR / EV_IPEAK
+    rs = 0.0
+    rsd = 0.0
+    if bm != 0.0:
+        ph, dph = friction(y[ud], P)
+        rs = P[P_M] * bm * ph
+        rsd = P[P_M] * dph * work[ud]
+    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, P) - P[P_Q]
+    dg = sig * _bearing_need(bm, 0.0, zv, za, pd, rsd, P)
+    if kind == EV_IPEAK:
+        return dg, math.nan
+    return g, dg
+
+
+# --- one Runge-Kutta step ---------------------------------------------------
+
+
+@njit(cache=True)
+def _error_scale(i, ny, a, b, atol, rtol):
+    """Tolerance of state component ``i`` of ``ny`` (the block's ``u, u'`` get ``atol * ATOL_SLIDE``)."""
+    return (atol * ATOL_SLIDE if (i == ny - 3 or i == ny - 2) else atol) + rtol * max(abs(a), abs(b))
+
+
+@njit(cache=True)
+def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
+    """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
+
+    ``K`` (``(NS + 1, len(y))``) receives the stages, row ``NS`` the right-hand side at the step end;
+    stages at the step end see the pulse's left limit.
+    """
+    t_left = _left_limit(tau + h)
+    ny = y.shape[0]
+    ys = np.empty(ny)
+    deriv(bm, im, tau, y, P, code, params, K[0])
+    for st in range(1, NS):
+        for i in range(ny):
+            acc = 0.0
+            for j in range(st):
+                acc += A[st, j] * K[j, i]
+            ys[i] = y[i] + h * acc
+        ts = t_left if C[st] == 1.0 else tau + C[st] * h
+        deriv(bm, im, ts, ys, P, code, params, K[st])
+    for i in range(ny):
+        acc = 0.0
+        for j in range(NS):
+            acc += B[j] * K[j, i]
+        ynew[i] = y[i] + h * acc
+    deriv(bm, im, t_left, ynew, P, code, params, K[NS])
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(ny):
+        sc = _error_scale(i, ny, y[i], ynew[i], atol, rtol)
+        a5 = 0.0
+        a3 = 0.0
+        for j in range(NS + 1):
+            a5 += E5[j] * K[j, i]
+            a3 += E3[j] * K[j, i]
+        e5 += (a5 / sc) ** 2
+        e3 += (a3 / sc) ** 2
+    den = e5 + 0.01 * e3
+    if den == 0.0:
+        return 0.0
+    return abs(h) * e5 / math.sqrt(den * 4.0)
+
+
+@njit(cache=True)
+def verify(bm, im, tau, y, h, ycand, P, code, params, atol, rtol, K):
+    """Richardson check of one step: scaled error of ``ycand`` against two half steps."""
+    ny = y.shape[0]
+    ya = np.empty(ny)
+    yb = np.empty(ny)
+    rk_step(bm, im, tau, y, 0.5 * h, P, code, params, atol, rtol, K, ya)
+    rk_step(bm, im, tau + 0.5 * h, ya, 0.5 * h, P, code, params, atol, rtol, K, yb)
+    e = 0.0
+    for i in range(ny):
+        e = max(e, abs(yb[i] - ycand[i]) / _error_scale(i, ny, y[i], ycand[i], atol, rtol))
+    return e
+
+
+# --- events -------------------------------------------------------------------
+
+
+@njit(cache=True)
+def locate(kind, sig, bm, im, tau, y, ha, ga, hb, gb, h0, check, P, code, params, atol, rtol, K, yout, work,
+           cnt):
+    """Find ``h`` in ``(ha, hb]`` where the event ``kind`` vanishes (``ga``, ``gb`` of opposite sign).
+
+    Safeguarded Newton from ``h0`` (Illinois regula falsi without a derivative), each trial
+    re-stepping from the accepted point; stops when the correction is below 1e-13 (relative to
+    ``max(1, |tau|)``).  ``yout`` receives the state at the root; returns the step length and the
+    error estimate of that step (step doubling added when ``check``).
+    """
+    lo, glo, hi, ghi = ha, ga, hb, gb
+    side = 0
+    tol = 1e-13 * max(1.0, abs(tau))
+    h = h0
+    if not (lo < h < hi):
+        h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    res = hi
+    err = 0.0
+    on_res = False
+    for _it in range(100):
+        if not (lo < h < hi):
+            h = 0.5 * (lo + hi)
+        err = rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, yout)
+        cnt[0] += 1
+        g, dg = _event(kind, sig, bm, im, tau + h, yout, P, code, params, work)
+        if g == 0.0:
+            res, on_res = h, True
+            break
+        if (g > 0.0) == (glo > 0.0):
+            lo, glo = h, g
+            if side == -1:
+                ghi *= 0.5
+            side = -1
+        else:
+            hi, ghi = h, g
+            if side == 1:
+                glo *= 0.5
+            side = 1
+        if not math.isnan(dg) and dg != 0.0 and abs(g / dg) <= tol:
+            res, on_res = h, True
+            break
+        res = hi
+        if hi - lo <= tol:
+            break
+        if not math.isnan(dg) and dg != 0.0 and lo < h - g / dg < hi:
+            h = h - g / dg
+        else:
+            h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    if not on_res:
+        err = rk_step(bm, im, tau, y, res, P, code, params, atol, rtol, K, yout)
+        cnt[0] += 1
+    if check and err <= 1.0:
+        err = max(err, verify(bm, im, tau, y, res, yout, P, code, params, atol, rtol, K))
+        cnt[0] += 2
+    return res, err
+
+
+@njit(cache=True)
+def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code, params, atol, rtol, check, K, ye,
+                  work, cnt):
+    """First root of a demand event ``kind`` (EV_BLOCK or EV_BEAR, sign ``sig``) in the accepted step.
+
+    Found directly when the step ends above the limit, or past an interior peak of the demand
+    (a root of its rate, ``peak`` the kind that evaluates it) whose cubic Hermite estimate comes
+    within 1 % of the limit.  Returns ``(found, hs, herr)``; ``ye`` holds the state there.
+    """
+    g0, r0 = _event(kind, sig, bm, im, tau, y, P, code, params, work)
+    g1, r1 = _event(kind, sig, bm, im, t_end, y1, P, code, params, work)
+    if g1 > 0.0:
+        if g0 >= 0.0:
+            for i in range(y.shape[0]):
+                ye[i] = y[i]
+            return True, 0.0, 0.0
+        h0 = hermite_root(g0, r0, g1, r1, h)
+        hs, herr = locate(kind, sig, bm, im, tau, y, 0.0, g0, h, g1, h0, check, P, code, params, atol, rtol,
+                          K, ye, work, cnt)
+        return True, hs, herr
+    if not (r0 > 0.0 and r1 < 0.0):
+        return False, 0.0, 0.0
+    if _hermite_max(g0, r0, g1, r1, h) < -1e-2 * limit:
+        return False, 0.0, 0.0
+    hm, herr = locate(peak, sig, bm, im, tau, y, 0.0, r0, h, r1, -1.0, False, P, code, params, atol, rtol,
+                      K, ye, work, cnt)
+    gm, _ = _event(kind, sig, bm, im, tau + hm, ye, P, code, params, work)
+    if gm <= 0.0:
+        return False, 0.0, 0.0
+    hs, herr = locate(kind, sig, bm, im, tau, y, 0.0, g0, hm, gm, -1.0, check, P, code, params, atol, rtol,
+                      K, ye, work, cnt)
+    return True, hs, herr
+
+
+@njit(cache=True)
+def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, params, atol, rtol, K, ye, work,
+                 cnt):
+    """End of a sliding (or yielding) phase inside the accepted step: ``g1 <= 0`` (rate ``r1``) at its end.
+
+    When the phase began at the step's start (``just_started``, speed 0) an interior point of
+    positive speed is found first by halving; without one the phase ends at once.
+    Returns ``(hs, herr)``; ``ye`` holds the state there.
+    """
+    g0, r0 = _event(kind, 0.0, bm, im, tau, y, P, code, params, work)
+    if just_started or g0 <= 0.0:
+        hp = h
+        gp = g1
+        for _k in range(200):
+            hp *= 0.5
+            rk_step(bm, im, tau, y, hp, P, code, params, atol, rtol, K, ye)
+            cnt[0] += 1
+            gp, _ = _event(kind, 0.0, bm, im, tau + hp, ye, P, code, params, work)
+            if gp > 0.0 or hp < 1e-300:
+                break
+        if gp > 0.0:
+            return locate(kind, 0.0, bm, im, tau, y, hp, gp, h, g1, -1.0, check, P, code, params, atol, rtol,
+                          K, ye, work, cnt)
+        for i in range(y.shape[0]):
+            ye[i] = y[i]
+        return 0.0, 0.0
+    h0 = hermite_root(g0, r0, g1, r1, h)
+    return locate(kind, 0.0, bm, im, tau, y, 0.0, g0, h, g1, h0, check, P, code, params, atol, rtol, K, ye,
+                  work, cnt)
+
+
+# --- modes ----------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _consistent(b, i, free_b, free_i, p, y, P, A):
+    """Whether the modes ``(b, i)`` are consistent at a state where the free interfaces are at rest.
+
+    ``A`` is scratch space for the floors' accelerations.
+    """
+    Ab, AF, udd, fh, R = _accels(b, i, p, y, P, A)
+    if free_b:
+        if b == 0.0:
+            if abs(AF) > P[P_THR]:
+                return False
+        elif not b * udd > 0.0:
+            return False
+    if free_i:
+        if i == 0.0:
+            if abs(fh) > P[P_Q]:
+                return False
+        elif not i * (Ab - p) > 0.0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _select_modes(bm, im, free_b, free_i, tau, y, P, code, params):
+    """Modes of the interfaces at rest (``free_b``: the block, ``free_i``: a sliding bearing).
+
+    The first consistent combination with the fewest sliding interfaces, in the order stuck,
+    +1, -1 (see the module docstring); if none is (round-off at a limit), each free interface
+    slides in the direction its stuck demand pushes it.
+    """
+    p = accel_at(code, params, tau)
+    A = np.empty(int(P[P_N]))
+    cands = (0.0, 1.0, -1.0)
+    for nslide in range(3):
+        for b in cands:
+            if not free_b and b != bm:
+                continue
+            for i in cands:
+                if not free_i and i != im:
+                    continue
+                n = (1 if (free_b and b != 0.0) else 0) + (1 if (free_i and i != 0.0) else 0)
+                if n != nslide:
+                    continue
+                if _consistent(b, i, free_b, free_i, p, y, P, A):
+                    return b, i
+    b = bm
+    i = im
+    if free_b:
+        AF = _accels(0.0, im if not free_i else 0.0, p, y, P, A)[1]
+        b = -1.0 if AF > 0.0 else 1.0
+    if free_i:
+        fh = _accels(bm if not free_b else 0.0, 0.0, p, y, P, A)[3]
+        i = 1.0 if fh > 0.0 else -1.0
+    return b, i
+
+
+@njit(cache=True)
+def _modal_within(W, Cm, y, limits, offsets):
+    """Whether every demand's modal bound is within its limit.
+
+    Demand ``j`` of the free linear system is ``sum_k Cm[j, k] a_k exp(lambda_k t)`` with the modal
+    coordinates ``a = W y``; as ``Re lambda_k <= 0``, ``|d_j| <= |offsets[j]| + sum_k |Cm[j, k] a_k|``.
+    """
+    n = W.shape[0]
+    if n == 0:
+        return False
+    a = np.zeros(n, dtype=np.complex128)
+    for k in range(n):
+        acc = 0.0 + 0.0j
+        for i in range(W.shape[1]):
+            acc += W[k, i] * y[i]
+        a[k] = acc
+    for j in range(Cm.shape[0]):
+        bound = abs(offsets[j])
+        for k in range(n):
+            bound += abs(Cm[j, k] * a[k])
+        if bound > limits[j]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
+    """True when, after the pulse, nothing can slip or yield again (see the module docstring).
+
+    Either bound proves it: the energy bound, or the modal bound of the free linear system
+    (``Wm, Cm`` with the slab moving, ``Wh, Ch`` with it held; see
+    :func:`isoslide.engine.building.modal_data`), which is much sharper when one mode dominates.
+    """
+    if bm != 0.0:
+        return False
+    kind = P[P_KIND]
+    if kind == KIND_SLIDING and im != 0.0:
+        return False
+    if kind == KIND_BILINEAR and im != 0.0:
+        return False
+    limits = np.array([P[P_THR], P[P_Q]])
+    if _held(im, P):
+        if _energy_settled(im, y, P):
+            return True
+        return _modal_within(Wh, Ch, y, limits, np.array([0.0, P[P_KD] * y[Y_X]]))
+    if _energy_settled(im, y, P):
+        return True
+    return _modal_within(Wm, Cm, y, limits, np.zeros(2))
+
+
+@njit(cache=True)
+def _energy_settled(im, y, P):
+    """The energy bound of :func:`_settled` (the block stuck, the isolator stuck or elastic).
+
+    Written for at most one floor; with several floors it proves nothing (the modal bound does).
+    """
+    if P[P_N] > 1.0:
+        return False
+    kind = P[P_KIND]
+    m = P[P_M]
+    roof = P[P_ROOF] != 0.0
+    flex = P[P_FLEX] != 0.0
+    ks = P[P_KS]
+    cs = P[P_CS]
+    thr = P[P_THR]
+    xs = y[Y_XS]
+    xsd = y[Y_XS + 1]
+    if _held(im, P):
+        if not flex:
+            return True
+        mst = P[P_MST] + (m if roof else 0.0)
+        energy = 0.5 * mst * xsd * xsd + 0.5 * ks * xs * xs
+        smax = math.sqrt(2.0 * energy * (ks + cs * cs / mst))
+        if roof and smax / mst > thr:
+            return False
+        if kind == KIND_SLIDING and abs(P[P_KD] * y[Y_X]) + smax > P[P_Q]:
+            return False
+        return True
+    kd = P[P_KD]
+    ke = P[P_KE] if kind == KIND_BILINEAR else 0.0
+    kk = kd + ke
+    x = y[Y_X]
+    xd = y[Y_XD]
+    d0 = 0.0
+    xstar = 0.0
+    if kind == KIND_BILINEAR:
+        xp = x - y[y.shape[0] - 1] / ke
+        xstar = ke * xp / kk
+        d0 = ke * (xstar - xp)
+    dx = x - xstar
+    mslab = P[P_MB] + (0.0 if roof else m)
+    mst = P[P_MST] + (m if roof else 0.0)
+    energy = 0.5 * kk * dx * dx + 0.5 * mslab * xd * xd
+    if flex:
+        energy += 0.5 * ks * xs * xs + 0.5 * mst * (xd + xsd) ** 2
+    # c' P^-1 c for c = (c_dx, c_xs, c_xd, c_xsd): positions diag(kk, ks), velocities
+    # [[mslab + mst, mst], [mst, mst]] with inverse [[1, -1], [-1, (mslab + mst) / mst]] / mslab
+    if roof:
+        c = (0.0, -ks / mst, 0.0, -cs / mst)
+    else:
+        den = P[P_MB] + m
+        c = (-kk / den, ks / den, -P[P_CB] / den, cs / den)
+    q = c[0] * c[0] / kk + c[2] * c[2] / mslab
+    if flex:
+        q += c[1] * c[1] / ks + (-2.0 * c[2] * c[3] + c[3] * c[3] * (mslab + mst) / mst) / mslab
+    if math.sqrt(2.0 * energy * q) > thr:
+        return False
+    if kind == KIND_BILINEAR and abs(d0) + math.sqrt(2.0 * energy * ke * ke / kk) > P[P_Q]:
+        return False
+    return True
+
+
+# --- one scene ------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params):
+    """Append ``[tau, x, x', xs.., xs'.., u, u', fh, bm, im]`` to the history while it has room."""
+    if nh < hist_cap:
+        ny = y.shape[0]
+        hist[nh, H_TAU] = tau
+        for i in range(ny - 1):
+            hist[nh, H_X + i] = y[i]
+        A = np.empty(int(P[P_N]))
+        hist[nh, ny] = _accels(bm, im, accel_at(code, params, tau), y, P, A)[3]
+        hist[nh, ny + 1] = bm
+        hist[nh, ny + 2] = im
+        return nh + 1
+    return nh
+
+
+@njit(cache=True)
+def _copy(dst, src):
+    for i in range(src.shape[0]):
+        dst[i] = src[i]
+
+
+@njit(cache=True)
+def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol,
+        hist_cap, h_restart, settle, max_steps, Wm, Cm, Wh, Ch):
+    """Integrate one general scene from rest at ``tau_start`` (see the module docstring).
+
+    Arguments as :func:`isoslide.engine.kernel.run` (without ``track_max``), with the model parameters
+    ``P`` of :func:`isoslide.engine.building.parameters` and the modal data ``Wm, Cm, Wh, Ch`` of
+    :func:`isoslide.engine.building.modal_data` for the settlement test.
+
+    Returns
+    -------
+    ints : ndarray of int64, shape (N_R,)
+        ``R_STEPS`` Runge-Kutta steps of every kind, ``R_EVENTS`` block transitions,
+        ``R_SETTLED``, ``R_SLIPPED`` (the block slid), ``R_HIST`` history rows,
+        ``R_ISO_EVENTS`` isolator transitions, ``R_ISO_MOVED`` (the bearing slid or yielded),
+        ``R_REJECTED`` rejected steps.
+    floats : ndarray of float64, shape (N_F,)
+        ``F_UMAX`` (= Pi1), ``F_TPEAK``, ``F_URES`` (final u), ``F_TEND``, ``F_XMAX`` largest
+        ``|x|`` at step ends and transitions, ``F_VMAX`` largest ``|u'|`` at step ends.
+    hist : ndarray, shape (ints[R_HIST], history_width(n))
+        Rows ``[tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im]`` (:func:`history_columns`).
+    """
+    thr = P[P_THR]
+    q = P[P_Q]
+    kind = P[P_KIND]
+    nfl = int(P[P_N])
+    ny = 2 * nfl + 5
+    Y_U = ny - 3
+    Y_UD = ny - 2
+    Y_FH = ny - 1
+    y = np.zeros(ny)
+    y1 = np.empty(ny)
+    ye = np.empty(ny)
+    yb = np.empty(ny)
+    K = np.empty((NS + 1, ny))
+    work = np.empty(ny)
+    A = np.empty(nfl)
+    cnt = np.zeros(1, dtype=np.int64)
+    hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 3))
+    tau = tau_start
+    bm = 0.0
+    im = 0.0
+    b_just = False
+    i_just = False
+    umax = 0.0
+    tpeak = tau_start
+    xmax = 0.0
+    vmax = 0.0
+    steps = 0
+    rejected = 0
+    events = 0
+    iso_events = 0
+    settled = False
+    slipped = False
+    moved = False
+    h = h_restart
+    hlast = h_restart
+    ib = 0
+    nb = breakpoints.shape[0]
+    nh = _record(hist, 0, hist_cap, tau, y, bm, im, P, code, params)
+    zone = 0.0
+    if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < thr:
+        zone = 30.0 / P[P_PI6]
+    check = zone > 0.0
+    while True:
+        # --- mode checks at the accepted point (round-off past a limit) ---------
+        p_now = accel_at(code, params, tau)
+        if bm == 0.0 or (kind == KIND_SLIDING and im == 0.0):
+            Ab, AF, udd, fh, R = _accels(bm, im, p_now, y, P, A)
+            free_b = bm == 0.0 and abs(AF) > thr
+            free_i = kind == KIND_SLIDING and im == 0.0 and abs(fh) > q
+            if free_b or free_i:
+                nb_, ni_ = _select_modes(bm, im, free_b, free_i, tau, y, P, code, params)
+                if nb_ != bm:
+                    bm, b_just, slipped = nb_, True, True
+                    events += 1
+                if ni_ != im:
+                    im, i_just, moved = ni_, True, True
+                    iso_events += 1
+        if kind == KIND_BILINEAR and im == 0.0 and abs(y[Y_FH]) > q:
+            im = 1.0 if y[Y_FH] > 0.0 else -1.0
+            y[Y_FH] = im * q
+            moved = True
+            iso_events += 1
+        if tau >= tau_end and _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
+            settled = True
+            if settle:
+                break
+        if tau >= tau_stop or steps + cnt[0] > max_steps:
+            break
+        # --- step length ---------------------------------------------------------
+        while ib < nb and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
+            ib += 1
+        hmax = h_max_pulse if tau < tau_end else h_max_free
+        h = min(h, hmax)
+        target = tau_stop
+        if ib < nb and breakpoints[ib] < target:
+            target = breakpoints[ib]
+        hit_target = False
+        if tau + h >= target:
+            h = target - tau
+            hit_target = True
+        # --- attempt until accepted ------------------------------------------------
+        while True:
+            err = rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, y1)
+            steps += 1
+            if err <= 1.0 and bm != 0.0 and zone > 0.0 and (
+                    min(abs(y[Y_UD]), abs(y1[Y_UD])) < zone or y[Y_UD] * y1[Y_UD] <= 0.0):
+                err = max(err, verify(bm, im, tau, y, h, y1, P, code, params, atol, rtol, K))
+                steps += 2
+            if err <= 1.0:
+                break
+            rejected += 1
+            h *= _step_factor(err)
+            hit_target = False
+        hnext = _next_step(h, err)
+        tnew = target if hit_target else tau + h
+        t_end_step = _left_limit(tnew)
+        # --- events inside the step: the earliest --------------------------------
+        best = -1
+        best_sig = 0.0
+        hbest = math.inf
+        herr_best = 0.0
+        if bm == 0.0:
+            for sig in (1.0, -1.0):
+                found, hs, herr = _demand_event(EV_BLOCK, EV_BPEAK, thr, sig, bm, im, tau, y, y1, h, t_end_step,
+                                                P, code, params, atol, rtol, check, K, ye, work, cnt)
+                if found and hs < hbest:
+                    best, best_sig, hbest, herr_best = EV_BLOCK, sig, hs, herr
+                    _copy(yb, ye)
+        else:
+            g1, r1 = _event(EV_BSPEED, 0.0, bm, im, t_end_step, y1, P, code, params, work)
+            if g1 <= 0.0:
+                hs, herr = _speed_event(EV_BSPEED, bm, im, tau, y, h, g1, r1, b_just, check, P, code, params,
+                                        atol, rtol, K, ye, work, cnt)
+                if hs < hbest:
+                    best, hbest, herr_best = EV_BSPEED, hs, herr
+                    _copy(yb, ye)
+        if kind == KIND_SLIDING and im == 0.0:
+            for sig in (1.0, -1.0):
+                found, hs, herr = _demand_event(EV_BEAR, EV_IPEAK, q, sig, bm, im, tau, y, y1, h, t_end_step,
+                                                P, code, params, atol, rtol, check, K, ye, work, cnt)
+                if found and hs < hbest:
+                    best, best_sig, hbest, herr_best = EV_BEAR, sig, hs, herr
+                    _copy(yb, ye)
+        elif kind == KIND_BILINEAR and im == 0.0:
+            for sig in (1.0, -1.0):
+                g0, r0 = _event(EV_YIELD, sig, bm, im, tau, y, P, code, params, work)
+                g1, r1 = _event(EV_YIELD, sig, bm, im, t_end_step, y1, P, code, params, work)
+                if g1 > 0.0:
+                    if g0 >= 0.0:
+                        hs, herr = 0.0, 0.0
+                        _copy(ye, y)
+                    else:
+                        hs, herr = locate(EV_YIELD, sig, bm, im, tau, y, 0.0, g0, h, g1,
+                                          hermite_root(g0, r0, g1, r1, h), check, P, code, params, atol, rtol,
+                                          K, ye, work, cnt)
+                    if hs < hbest:
+                        best, best_sig, hbest, herr_best = EV_YIELD, sig, hs, herr
+                        _copy(yb, ye)
+                elif r0 > 0.0 and r1 < 0.0 and _hermite_max(g0, r0, g1, r1, h) >= -1e-2 * q:
+                    # an interior peak of sig fh: where x' = 0
+                    hm, herr = locate(EV_XD, sig, bm, im, tau, y, 0.0, sig * y[Y_XD], h,
+                                      sig * y1[Y_XD], -1.0, False, P, code, params, atol, rtol, K, ye, work, cnt)
+                    gm = sig * ye[Y_FH] - q
+                    if gm > 0.0:
+                        hs, herr = locate(EV_YIELD, sig, bm, im, tau, y, 0.0, g0, hm, gm, -1.0, check, P, code,
+                                          params, atol, rtol, K, ye, work, cnt)
+                        if hs < hbest:
+                            best, best_sig, hbest, herr_best = EV_YIELD, sig, hs, herr
+                            _copy(yb, ye)
+        elif kind == KIND_SLIDING or kind == KIND_BILINEAR:
+            g1, r1 = _event(EV_ISPEED, 0.0, bm, im, t_end_step, y1, P, code, params, work)
+            if g1 <= 0.0:
+                hs, herr = _speed_event(EV_ISPEED, bm, im, tau, y, h, g1, r1, i_just, check, P, code, params,
+                                        atol, rtol, K, ye, work, cnt)
+                if hs < hbest:
+                    best, hbest, herr_best = EV_ISPEED, hs, herr
+                    _copy(yb, ye)
+        if best >= 0:
+            if herr_best > 1.0:
+                h = 0.5 * hbest
+                continue
+            tau = tau + hbest
+            _copy(y, yb)
+            xmax = max(xmax, abs(y[Y_X]))
+            short = check
+            if best == EV_BLOCK:
+                bm, b_just, slipped = -best_sig, True, True
+                events += 1
+            elif best == EV_BEAR:
+                im, i_just, moved = best_sig, True, True
+                y[Y_XD] = 0.0
+                iso_events += 1
+            elif best == EV_YIELD:
+                im, moved = best_sig, True
+                y[Y_FH] = best_sig * q
+                i_just = False
+                iso_events += 1
+            elif best == EV_BSPEED:
+                y[Y_UD] = 0.0
+                events += 1
+                if abs(y[Y_U]) > umax:
+                    umax, tpeak = abs(y[Y_U]), tau
+                free_i = kind == KIND_SLIDING and im == 0.0
+                bm, ni_ = _select_modes(bm, im, True, free_i, tau, y, P, code, params)
+                b_just = bm != 0.0
+                if ni_ != im:
+                    im, i_just, moved = ni_, True, True
+                    iso_events += 1
+                short = check and bm != 0.0
+            else:  # EV_ISPEED
+                y[Y_XD] = 0.0
+                iso_events += 1
+                if kind == KIND_SLIDING:
+                    free_b = bm == 0.0
+                    nb_, im = _select_modes(bm, im, free_b, True, tau, y, P, code, params)
+                    i_just = im != 0.0
+                    if nb_ != bm:
+                        bm, b_just, slipped = nb_, True, True
+                        events += 1
+                else:
+                    # a yielding bilinear bearing unloads unless x' only touches zero
+                    Ab, AF, udd, fh, R = _accels(bm, im, accel_at(code, params, tau), y, P, A)
+                    if im * (Ab - accel_at(code, params, tau)) > 0.0:
+                        i_just = True
+                    else:
+                        im, i_just = 0.0, False
+            h = h_restart if short else max(h_restart, 0.5 * hlast)
+            nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+            continue
+        if bm != 0.0:
+            b_just = False
+            if abs(y1[Y_UD]) > vmax:
+                vmax = abs(y1[Y_UD])
+        if im != 0.0:
+            i_just = False
+        # --- accept -----------------------------------------------------------------
+        tau = tnew
+        _copy(y, y1)
+        if bm == 0.0:
+            y[Y_UD] = 0.0
+        if _held(im, P):
+            y[Y_XD] = 0.0
+        xmax = max(xmax, abs(y[Y_X]))
+        hlast = h
+        h = hnext
+        nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+    if not settled and bm != 0.0 and abs(y[Y_U]) > umax:
+        umax, tpeak = abs(y[Y_U]), tau
+    ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh, iso_events,
+                     1 if moved else 0, rejected], dtype=np.int64)
+    floats = np.array([umax, tpeak, y[Y_U], tau, xmax, vmax])
+    return ints, floats, hist[:nh]
+
+
+# numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
+jit_cache.seed(run)
