@@ -68,7 +68,7 @@ from dataclasses import replace
 import numpy as np
 
 from . import building_kernel as bk
-from ..model import shear_building
+from ..model.parts import building_of
 from ..pulses import SAMPLED
 from ..scene import Scene
 
@@ -114,22 +114,22 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
     """
     paper_keys = {"pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "floor": "base", "storeys": 1,
                   "floor_masses": None, "storey_stiffnesses": None}
+    parts = building_of(scene)
+    iso, contents = parts.isolator, parts.contents
     if scene.paper_model:
         return "paper", replace(scene, **paper_keys)
-    if scene.pi3 == 0.0 and not (scene.flexible and scene.floor_index > 0):
+    if iso.kind == "fixed" and contents.floor == 0:
         return "fixed-base", replace(scene, **paper_keys)
-    if scene.flexible:
+    if parts.superstructure.flexible:
         return "general", None
-    if scene.pi7 == 0.0:
-        demand = (1.0 + scene.pi8) * peak_accel(scene)
-        w = 2.0 * math.pi / scene.pi3
-        kd = w * w
-        if scene.isolator == "sliding" and demand <= scene.pi9:
+    if contents.viscous == 0.0:
+        demand = (1.0 + contents.mass) * peak_accel(scene)
+        if iso.kind == "sliding" and demand <= iso.strength:
             return "bearing-stuck", replace(scene, pi3=0.0, pi4=0.0, **paper_keys)
-        if scene.isolator == "bilinear":
-            ke = scene.pi9 / scene.pi10
+        if iso.kind == "bilinear":
+            kd, ke = iso.stiffness, iso.elastic_stiffness
             k = kd + ke
-            if ke * impulse_l1(k, 2.0 * scene.pi4 * w) * demand <= scene.pi9:
+            if ke * impulse_l1(k, iso.viscous) * demand <= iso.strength:
                 f = math.sqrt(kd / k)
                 return "bearing-elastic", replace(scene, pi3=scene.pi3 * f, pi4=scene.pi4 * f, **paper_keys)
     return "general", None
@@ -138,84 +138,63 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
 def superstructure(scene: Scene) -> tuple:
     """Floor masses, fixed-base stiffness and damping matrices of a flexible superstructure.
 
-    Units ``M_b``, ``M_b / T_p^2`` and ``M_b / T_p``.  Floor ``j`` (1-based, bottom to top) has the
-    mass ``Pi11 w_j`` (``w_j`` the scene's ``floor_masses``, uniform ``1/N`` by default); storey
-    ``j`` joins floor ``j - 1`` (0 the slab) and floor ``j`` with the stiffness ``kappa r_j``
-    (``r_j`` the scene's ``storey_stiffnesses``, 1 by default), ``kappa`` chosen so that the
-    fixed-base fundamental period (slab held) is ``Pi12``.  The damping is classical with ratio
-    ``Pi13`` in every fixed-base mode: ``Cs = Ms Phi diag(2 Pi13 omega_i) Phi^T Ms`` with the
-    mass-normalised modes ``Phi``.  One floor: ``k_s = m_st (2 pi/Pi12)^2``,
-    ``c_s = 2 Pi13 (2 pi/Pi12) m_st`` exactly.
+    Units ``M_b``, ``M_b / T_p^2`` and ``M_b / T_p``; see
+    :meth:`isoslide.model.parts.Superstructure.matrices`.
 
     Returns
     -------
     (masses, Ks, Cs) : ndarrays of shapes ``(N,)``, ``(N, N)``, ``(N, N)``
     """
-    n = scene.storeys
-    mst = scene.pi11
-    ws = 2.0 * math.pi / scene.pi12
-    if n == 1:
-        return np.array([mst]), np.array([[mst * ws * ws]]), np.array([[2.0 * scene.pi13 * ws * mst]])
-    w = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses)
-    r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses)
-    masses = mst * w
-    shape = shear_building.stiffness_matrix(r)
-    omega, _ = shear_building.fixed_base_modes(masses, shape)
-    Ks = (ws / omega[0]) ** 2 * shape
-    omega, phi = shear_building.fixed_base_modes(masses, Ks)
-    return masses, Ks, shear_building.classical_damping(masses, omega, phi, scene.pi13)
+    return building_of(scene).superstructure.matrices()
 
 
 def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) -> np.ndarray:
     """Model parameters of :func:`isoslide.engine.building_kernel.run` for a general scene.
 
-    ``pi8`` overrides the scene's (0: one-way coupling); ``coulomb`` skips the Stribeck terms
-    (friction at the static level ``Pi2/Pi5`` at every speed).  A rigid superstructure is one
-    floor that moves with the slab; a flexible one has the floors of :func:`superstructure`.
+    The scene's parts (:func:`isoslide.model.parts.building_of`) assembled into the kernel's
+    array.  ``pi8`` overrides the contents' mass (0: one-way coupling); ``coulomb`` skips the
+    Stribeck terms (friction at the static level ``Pi2/Pi5`` at every speed).  A rigid
+    superstructure is one floor that moves with the slab.
     """
-    flex = scene.flexible
-    n = scene.storeys if flex else 1
+    parts = building_of(scene)
+    iso, sup, contents = parts.isolator, parts.superstructure, parts.contents
+    flex = sup.flexible
+    n = sup.storeys if flex else 1
     P = np.zeros(bk.n_parameters(n))
-    mst = scene.pi11 if flex else 0.0
-    P[bk.P_MB] = 1.0 - mst
-    P[bk.P_MST] = mst
-    P[bk.P_M] = scene.pi8 if pi8 is None else pi8
-    if scene.pi3 > 0.0:
-        w = 2.0 * math.pi / scene.pi3
-        P[bk.P_KD] = w * w
-        P[bk.P_CB] = 2.0 * scene.pi4 * w
-        kind = {"linear": bk.KIND_LINEAR, "bilinear": bk.KIND_BILINEAR, "sliding": bk.KIND_SLIDING}[scene.isolator]
-    else:
-        kind = bk.KIND_FIXED
+    P[bk.P_MB] = 1.0 - sup.mass
+    P[bk.P_MST] = sup.mass
+    P[bk.P_M] = contents.mass if pi8 is None else pi8
+    P[bk.P_KD] = iso.stiffness
+    P[bk.P_CB] = iso.viscous
     P[bk.P_N] = n
     if flex:
-        masses, Ks, Cs = superstructure(scene)
+        masses, Ks, Cs = sup.matrices()
         P[bk.P_ARRAYS:bk.P_ARRAYS + n] = masses
         P[bk.P_ARRAYS + n:bk.P_ARRAYS + n + n * n] = Ks.ravel()
         P[bk.P_ARRAYS + n + n * n:] = Cs.ravel()
         P[bk.P_KS] = Ks[0, 0]
         P[bk.P_CS] = Cs[0, 0]
-        P[bk.P_FLOOR] = scene.floor_index
-    P[bk.P_Q] = scene.pi9 if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else 0.0
-    P[bk.P_KE] = scene.pi9 / scene.pi10 if kind == bk.KIND_BILINEAR else 0.0
-    P[bk.P_THR] = scene.static_level
-    P[bk.P_PI2] = scene.pi2
-    P[bk.P_PI6] = scene.pi6
-    P[bk.P_PI7] = scene.pi7
+        P[bk.P_FLOOR] = contents.floor
+    P[bk.P_Q] = iso.strength
+    P[bk.P_KE] = iso.elastic_stiffness
+    P[bk.P_THR] = contents.static
+    P[bk.P_PI2] = contents.kinetic
+    P[bk.P_PI6] = contents.sharpness
+    P[bk.P_PI7] = contents.viscous
     P[bk.P_COULOMB] = 1.0 if coulomb else 0.0
-    P[bk.P_ROOF] = 1.0 if (flex and scene.floor_index > 0) else 0.0
-    P[bk.P_KIND] = float(kind)
+    P[bk.P_ROOF] = 1.0 if contents.floor > 0 else 0.0
+    P[bk.P_KIND] = float(KINDS[iso.kind])
     P[bk.P_FLEX] = 1.0 if flex else 0.0
     return P
 
 
+KINDS = {"linear": bk.KIND_LINEAR, "bilinear": bk.KIND_BILINEAR, "sliding": bk.KIND_SLIDING, "fixed": bk.KIND_FIXED}
+"""The kernel's code of each isolator kind (:data:`isoslide.model.parts.ISOLATOR_KINDS`)."""
+
+
 def shortest_period(scene: Scene) -> float:
     """Shortest fixed-base period of a flexible superstructure (units of T_p); ``Pi12`` for one floor."""
-    if scene.storeys == 1:
-        return scene.pi12
-    masses, Ks, _ = superstructure(scene)
-    omega, _ = shear_building.fixed_base_modes(masses, Ks)
-    return 2.0 * math.pi / omega[-1]
+    return building_of(scene).superstructure.shortest_period
 
 
 def free_step(scene: Scene) -> float:
@@ -225,14 +204,9 @@ def free_step(scene: Scene) -> float:
     ``Pi3 sqrt(k_d / (k_d + k_e))``, when shorter) and the superstructure's shortest fixed-base
     one (:func:`shortest_period`); a pulse period when there is none.
     """
-    periods = [1.0]
-    if scene.pi3 > 0.0:
-        periods.append(scene.pi3)
-        if scene.isolator == "bilinear":
-            kd = (2.0 * math.pi / scene.pi3) ** 2
-            periods.append(scene.pi3 * math.sqrt(kd / (kd + scene.pi9 / scene.pi10)))
-    if scene.flexible:
-        periods.append(shortest_period(scene))
+    parts = building_of(scene)
+    periods = [1.0] + [p for p in (parts.isolator.period, parts.isolator.shortest_period,
+                                   parts.superstructure.shortest_period) if p > 0.0]
     return min(periods) / 8.0
 
 

@@ -1,0 +1,224 @@
+"""The parts of an isolated building, each reading only the groups it needs.
+
+A building is an :class:`Isolator` on the ground, a :class:`Superstructure` on the isolated slab
+and :class:`Contents` on one of its floors; :func:`building_of` composes them from a scene's
+Pi-groups (:class:`isoslide.Scene`, the Pi-form front door) and the engine assembles them into
+arrays (:func:`isoslide.engine.building.parameters`).  Units are the model's: time ``T_p``,
+lengths ``a_p T_p^2``, masses ``M_b`` (the isolated mass, contents excluded).
+
+Which groups each part reads
+----------------------------
+=================  ==========================================================================
+part               groups
+=================  ==========================================================================
+fixed base         none (``Pi3 = 0``: the slab moves with the ground)
+linear isolator    ``Pi3 = T_b/T_p``, ``Pi4 = xi_b``
+bilinear bearing   ``Pi3``, ``Pi4``, ``Pi9 = Q/(M_b a_p)``, ``Pi10 = D_y/(a_p T_p^2)``
+sliding bearing    ``Pi3``, ``Pi4``, ``Pi9`` (true stick: no yield displacement)
+rigid              none (``Pi12 = 0``)
+shear building     ``Pi11 = m_st/M_b``, ``Pi12 = T_s/T_p``, ``Pi13 = xi_s``, ``storeys``, the
+                   floors' masses and storeys' stiffnesses (uniform by default)
+contents           ``Pi2 = mu_k g/a_p``, ``Pi5 = mu_k/mu_s``, ``Pi6 = beta a_p T_p``,
+                   ``Pi7 = gamma g T_p``, ``Pi8 = m_EC/M_b``, the floor
+=================  ==========================================================================
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import shear_building
+
+ISOLATOR_KINDS = ("fixed", "linear", "bilinear", "sliding")
+"""Kinds of :class:`Isolator`."""
+
+
+@dataclass(frozen=True)
+class Isolator:
+    """The isolation system between the ground and the slab.
+
+    Attributes
+    ----------
+    kind : {"fixed", "linear", "bilinear", "sliding"}
+        A fixed base; the paper's linear spring and dashpot; a bilinear (lead-rubber) bearing, an
+        elastic-perfectly-plastic spring in parallel; a sliding bearing (friction pendulum) that
+        holds the slab (true stick) while the force needed is within its strength.
+    period : float
+        ``Pi3 = T_b / T_p`` with the post-yield (or linear) stiffness ``k_d``; 0 for a fixed base.
+    damping : float
+        ``Pi4 = xi_b``.
+    strength : float
+        ``Pi9 = Q / (M_b a_p)`` of a bilinear or sliding bearing (0 otherwise).
+    yield_displacement : float
+        ``Pi10 = D_y / (a_p T_p^2)`` of a bilinear bearing (0 otherwise).
+    """
+
+    kind: str
+    period: float = 0.0
+    damping: float = 0.0
+    strength: float = 0.0
+    yield_displacement: float = 0.0
+
+    def __post_init__(self):
+        if self.kind not in ISOLATOR_KINDS:
+            raise ValueError(f"kind = {self.kind!r} is invalid; allowed: {ISOLATOR_KINDS}")
+
+    @property
+    def omega(self) -> float:
+        """Circular frequency ``2 pi / Pi3`` of the post-yield (or linear) stiffness (0 fixed)."""
+        return 2.0 * math.pi / self.period if self.kind != "fixed" else 0.0
+
+    @property
+    def stiffness(self) -> float:
+        """Post-yield (or linear) stiffness ``k_d = (2 pi / Pi3)^2`` (units ``M_b / T_p^2``; 0 fixed)."""
+        w = self.omega
+        return w * w
+
+    @property
+    def viscous(self) -> float:
+        """Viscous coefficient ``c_b = 2 Pi4 (2 pi / Pi3)`` (units ``M_b / T_p``; 0 fixed)."""
+        return 2.0 * self.damping * self.omega
+
+    @property
+    def elastic_stiffness(self) -> float:
+        """Stiffness ``k_e = Q / D_y`` of a bilinear bearing's elastic-plastic spring (0 otherwise)."""
+        return self.strength / self.yield_displacement if self.kind == "bilinear" else 0.0
+
+    @property
+    def shortest_period(self) -> float:
+        """Shortest period of the isolator (the bilinear bearing's elastic one); 0 for a fixed base."""
+        if self.kind != "bilinear":
+            return self.period
+        kd = self.stiffness
+        return self.period * math.sqrt(kd / (kd + self.elastic_stiffness))
+
+
+@dataclass(frozen=True)
+class Superstructure:
+    """What stands on the slab: rigid, or a shear building of ``storeys`` floors.
+
+    Attributes
+    ----------
+    mass : float
+        ``Pi11 = m_st / M_b`` of a shear building (0 when rigid: the whole ``M_b`` is the slab's).
+    period : float
+        ``Pi12 = T_s / T_p``, the fixed-base fundamental period (0 when rigid).
+    damping : float
+        ``Pi13 = xi_s``, the damping ratio of every fixed-base mode.
+    storeys : int
+        Floors above the slab.
+    floor_masses, storey_stiffnesses : tuple of float or None
+        Shares of ``m_st`` per floor and relative storey stiffnesses, bottom to top; None: uniform.
+    """
+
+    mass: float = 0.0
+    period: float = 0.0
+    damping: float = 0.0
+    storeys: int = 1
+    floor_masses: tuple | None = None
+    storey_stiffnesses: tuple | None = None
+
+    @property
+    def flexible(self) -> bool:
+        """True for a shear building (``Pi12 > 0``)."""
+        return self.period > 0.0
+
+    def matrices(self) -> tuple:
+        """Floor masses ``(N,)``, fixed-base stiffness and damping matrices ``(N, N)``.
+
+        Units ``M_b``, ``M_b/T_p^2`` and ``M_b/T_p``.  Storey ``j`` joins floor ``j - 1`` (0 the slab) and floor ``j`` with the stiffness
+        ``kappa r_j``, ``kappa`` chosen so that the fixed-base fundamental period is ``Pi12``; the
+        damping is classical with ratio ``Pi13`` in every fixed-base mode
+        (:mod:`isoslide.model.shear_building`).  One floor: ``k_s = m_st (2 pi/Pi12)^2``,
+        ``c_s = 2 Pi13 (2 pi/Pi12) m_st`` exactly.
+        """
+        n = self.storeys
+        ws = 2.0 * math.pi / self.period
+        if n == 1:
+            return (np.array([self.mass]), np.array([[self.mass * ws * ws]]),
+                    np.array([[2.0 * self.damping * ws * self.mass]]))
+        w = np.full(n, 1.0 / n) if self.floor_masses is None else np.asarray(self.floor_masses)
+        r = np.ones(n) if self.storey_stiffnesses is None else np.asarray(self.storey_stiffnesses)
+        masses = self.mass * w
+        shape = shear_building.stiffness_matrix(r)
+        omega, _ = shear_building.fixed_base_modes(masses, shape)
+        Ks = (ws / omega[0]) ** 2 * shape
+        omega, phi = shear_building.fixed_base_modes(masses, Ks)
+        return masses, Ks, shear_building.classical_damping(masses, omega, phi, self.damping)
+
+    @property
+    def shortest_period(self) -> float:
+        """Shortest fixed-base period (``Pi12`` for one floor; 0 when rigid)."""
+        if not self.flexible or self.storeys == 1:
+            return self.period
+        masses, Ks, _ = self.matrices()
+        omega, _ = shear_building.fixed_base_modes(masses, Ks)
+        return 2.0 * math.pi / omega[-1]
+
+
+@dataclass(frozen=True)
+class Contents:
+    """The sliding contents on one floor, with the Stribeck law and true stick.
+
+    Attributes
+    ----------
+    floor : int
+        0 the slab, ``storeys`` the roof (the slab whenever the superstructure is rigid).
+    mass : float
+        ``Pi8 = m_EC / M_b``.
+    kinetic, static : float
+        Friction levels ``Pi2 = mu_k g / a_p`` and ``Pi2 / Pi5 = mu_s g / a_p``.
+    sharpness, viscous : float
+        ``Pi6 = beta a_p T_p`` and ``Pi7 = gamma g T_p``.
+    """
+
+    floor: int
+    mass: float
+    kinetic: float
+    static: float
+    sharpness: float = 0.0
+    viscous: float = 0.0
+
+    @property
+    def rate_independent(self) -> bool:
+        """True when the friction does not depend on speed (plain Coulomb at the static level)."""
+        return self.viscous == 0.0 and (self.static == self.kinetic or self.sharpness == 0.0)
+
+
+@dataclass(frozen=True)
+class Building:
+    """An isolated building with its contents: the parts the engine assembles."""
+
+    isolator: Isolator
+    superstructure: Superstructure
+    contents: Contents
+
+    @property
+    def shortest_period(self) -> float:
+        """Shortest period the engine follows (isolator and superstructure; 0 when neither moves)."""
+        periods = [p for p in (self.isolator.shortest_period, self.superstructure.shortest_period) if p > 0.0]
+        return min(periods) if periods else 0.0
+
+
+def building_of(scene) -> Building:
+    """The parts of a scene (:class:`isoslide.Scene`), each reading only the groups it needs.
+
+    The isolator is fixed for ``Pi3 = 0`` and otherwise the scene's kind (``scene.isolator``:
+    linear, bilinear or sliding); the superstructure is a shear building for ``Pi12 > 0``; the
+    contents sit on the scene's floor of a shear building, on the slab of a rigid one.
+    """
+    kind = "fixed" if scene.pi3 == 0.0 else scene.isolator
+    groups = {"fixed": {}, "linear": dict(period=scene.pi3, damping=scene.pi4),
+              "bilinear": dict(period=scene.pi3, damping=scene.pi4, strength=scene.pi9,
+                               yield_displacement=scene.pi10),
+              "sliding": dict(period=scene.pi3, damping=scene.pi4, strength=scene.pi9)}[kind]
+    iso = Isolator(kind, **groups)
+    flexible = scene.pi12 > 0.0
+    sup = Superstructure(scene.pi11, scene.pi12, scene.pi13, scene.storeys, scene.floor_masses,
+                         scene.storey_stiffnesses) if flexible else Superstructure()
+    contents = Contents(floor=scene.floor_index if flexible else 0, mass=scene.pi8, kinetic=scene.pi2,
+                        static=scene.pi2 / scene.pi5, sharpness=scene.pi6, viscous=scene.pi7)
+    return Building(iso, sup, contents)
