@@ -230,21 +230,18 @@ class Scene:
             total mass and ``T_s`` their fixed-base fundamental period (leave ``m_st`` and ``T_s``
             at 0, or give the same values).
         """
-        a_p = check_range("a_p", a_p, 0.0, math.inf, False, False)
-        T_p = check_range("T_p", T_p, 0.0, math.inf, False, False)
-        M_b = check_range("M_b", M_b, 0.0, math.inf, False, False)
-        T_b = check_range("T_b", T_b, 0.0, math.inf, True, False)
-        xi_b = check_range("xi_b", xi_b, 0.0, math.inf, True, False)
-        m_ec = check_range("m_ec", m_ec, 0.0, math.inf, True, False)
-        mu_s = check_range("mu_s", mu_s, 0.0, math.inf, False, False)
-        mu_k = check_range("mu_k", mu_k, 0.0, mu_s, False, True)
-        beta = check_range("beta", beta, 0.0, math.inf, True, False)
-        gamma = check_range("gamma", gamma, 0.0, math.inf, True, False)
-        g = check_range("g", g, 0.0, math.inf, False, False)
-        Q_d = check_range("Q_d", Q_d, 0.0, math.inf, True, False)
-        D_y = check_range("D_y", D_y, 0.0, math.inf, True, False)
-        T_s = check_range("T_s", T_s, 0.0, math.inf, True, False)
-        xi_s = check_range("xi_s", xi_s, 0.0, math.inf, True, False)
+        v = {"a_p": a_p, "T_p": T_p, "M_b": M_b, "T_b": T_b, "xi_b": xi_b, "m_ec": m_ec, "mu_s": mu_s,
+             "mu_k": mu_k, "beta": beta, "gamma": gamma, "g": g, "Q_d": Q_d, "D_y": D_y, "T_s": T_s,
+             "xi_s": xi_s}
+        # checked in this order: (name, whether 0 is allowed); every one is finite and >= 0, and
+        # mu_k is at most mu_s
+        for name, zero_allowed in (("a_p", False), ("T_p", False), ("M_b", False), ("T_b", True),
+                                   ("xi_b", True), ("m_ec", True), ("mu_s", False), ("mu_k", False),
+                                   ("beta", True), ("gamma", True), ("g", False), ("Q_d", True),
+                                   ("D_y", True), ("T_s", True), ("xi_s", True)):
+            hi, hi_in = (v["mu_s"], True) if name == "mu_k" else (math.inf, False)
+            v[name] = check_range(name, v[name], 0.0, hi, zero_allowed, hi_in)
+        a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta, gamma, g, Q_d, D_y, T_s, xi_s = v.values()
         if (floor_masses is None) != (storey_stiffnesses is None):
             raise ValueError("floor_masses and storey_stiffnesses are given together; allowed: both or neither")
         if floor_masses is not None:
