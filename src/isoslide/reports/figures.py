@@ -677,19 +677,28 @@ def draw(name: str, datasets: dict, outputs, settings: dict):
     str
         The caption.
     """
+    if name not in FIGURES:
+        raise ValueError(f"figure = {name!r} is invalid; allowed: {sorted(FIGURES)}")
+    caption = _render(FIGURES[name], (datasets, settings), outputs, settings["dpi"])
+    log.info("%s", caption)
+    return caption
+
+
+def _render(drawer, args, outputs, dpi: int) -> str:
+    """Draw ``drawer(*args)`` -> ``(fig, caption)`` in :data:`STYLE`, save it into every path of ``outputs``.
+
+    Each file is written by :func:`_save`; the figure is closed, also on error.  Returns the caption.
+    """
     import matplotlib
     import matplotlib.pyplot as plt
 
-    if name not in FIGURES:
-        raise ValueError(f"figure = {name!r} is invalid; allowed: {sorted(FIGURES)}")
     with matplotlib.rc_context(STYLE):
-        fig, caption = FIGURES[name](datasets, settings)
+        fig, caption = drawer(*args)
         try:
             for out in outputs:
-                _save(fig, Path(out), caption, dpi=settings["dpi"])
+                _save(fig, Path(out), caption, dpi=dpi)
         finally:
             plt.close(fig)
-    log.info("%s", caption)
     return caption
 
 

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..datasets import open_dataset
-from .figures import LABELS, STYLE, WIDTH, _colors, _fixed_text, _save, master_curves
+from .figures import LABELS, WIDTH, _colors, _fixed_text, _render, master_curves
 
 log = logging.getLogger(__name__)
 
@@ -206,26 +206,17 @@ def draw_all(datasets: dict, outputs, settings: dict) -> dict:
     dict of str -> str
         Caption of each figure.
     """
-    import matplotlib
-    import matplotlib.pyplot as plt
-
     outputs = [Path(p) for p in outputs]
     unknown = sorted({p.stem for p in outputs} - set(FIGURES))
     if unknown:
         raise ValueError(f"outputs = {unknown!r} are not isolation figures; allowed stems: {list(FIGURES)}")
     data = {k: _open(v) for k, v in datasets.items()}
     captions = {}
-    with matplotlib.rc_context(STYLE):
-        for name in FIGURES:
-            mine = [p for p in outputs if p.stem == name]
-            if not mine:
-                continue
-            fig, caption = DRAWERS[name](data)
-            try:
-                for out in mine:
-                    _save(fig, out, caption, dpi=settings["dpi"])
-            finally:
-                plt.close(fig)
-            log.info("%s: %s", name, caption)
-            captions[name] = caption
+    for name in FIGURES:
+        mine = [p for p in outputs if p.stem == name]
+        if not mine:
+            continue
+        caption = _render(DRAWERS[name], (data,), mine, settings["dpi"])
+        log.info("%s: %s", name, caption)
+        captions[name] = caption
     return captions

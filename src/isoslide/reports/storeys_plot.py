@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ..datasets import open_dataset
-from .figures import STYLE, WIDTH, _colors, _save
+from .figures import WIDTH, _colors, _render
 
 log = logging.getLogger(__name__)
 
@@ -75,20 +75,11 @@ def draw(dataset, outputs, settings: dict) -> str:
     str
         The caption (also stored in each file's metadata).
     """
-    import matplotlib
-    import matplotlib.pyplot as plt
-
     outputs = [Path(p) for p in outputs]
     wrong = sorted({p.stem for p in outputs} - {FIGURE})
     if wrong:
         raise ValueError(f"outputs = {wrong!r} are not the storeys figure; allowed stem: {FIGURE!r}")
     ds = open_dataset(dataset) if isinstance(dataset, (str, Path)) else dataset
-    with matplotlib.rc_context(STYLE):
-        fig, caption = figure(ds)
-        try:
-            for out in outputs:
-                _save(fig, out, caption, dpi=settings["dpi"])
-        finally:
-            plt.close(fig)
+    caption = _render(figure, (ds,), outputs, settings["dpi"])
     log.info("%s: %s", FIGURE, caption)
     return caption
