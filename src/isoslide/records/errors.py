@@ -1,8 +1,17 @@
-"""The error raised for malformed or truncated record files."""
+"""The error raised for malformed or truncated record files, and the bound on a record's values."""
 
 from __future__ import annotations
 
-__all__ = ["RecordFormatError"]
+__all__ = ["MAX_ABS_ACCEL_G", "RecordFormatError"]
+
+MAX_ABS_ACCEL_G = 100.0
+"""Largest ground acceleration a record may hold, in g (|a| <= 100 g).
+
+Earthquake records peak at a few g; a larger value is a damaged file or a
+wrong unit, so the readers, :class:`~isoslide.records.Record` and
+:func:`~isoslide.records.fit_pulse` refuse it (the readers name the file, the
+line and the value).
+"""
 
 
 class RecordFormatError(ValueError):

@@ -31,6 +31,7 @@ from scipy.optimize import least_squares
 
 from ..pulses import (Pulse, get_pulse, mp_accel, mp_accel_jacobian, mp_velocity, ricker,
                       ricker_accel, ricker_velocity)
+from .errors import MAX_ABS_ACCEL_G
 from .units import G, unit_factor
 
 __all__ = ["PulseFit", "SHAPES", "canonical_shape", "fit_pulse"]
@@ -236,6 +237,13 @@ def fit_pulse(accel, dt, shape: str = "ricker", *, units: str = "g", t_start: fl
         ``a_p`` in m/s^2, ``T_p`` and ``t_peak`` in s, shape parameters and
         goodness of fit.
 
+    Raises
+    ------
+    ValueError
+        Fewer than 8 samples, a non-finite sample or one beyond ``|accel| <=
+        100 g`` (:data:`~isoslide.records.errors.MAX_ABS_ACCEL_G`), a bad
+        ``dt``, an all-zero record or a bad search range.
+
     Notes
     -----
     The Ricker fit minimises ``sum (a - A r((t - t_peak)/T_p))^2`` over the
@@ -251,7 +259,13 @@ def fit_pulse(accel, dt, shape: str = "ricker", *, units: str = "g", t_start: fl
     dt = float(dt)
     if not (math.isfinite(dt) and dt > 0):
         raise ValueError(f"dt = {dt!r} is invalid; allowed range: 0 < dt < inf (s)")
-    a = a * (unit_factor(units, "<accel>", None) * G)  # -> m/s^2
+    factor = unit_factor(units, "<accel>", None)
+    big = np.nonzero(np.abs(a) * factor > MAX_ABS_ACCEL_G)[0]
+    if big.size:  # also keeps the products below from overflowing
+        k = int(big[0])
+        raise ValueError(f"accel[{k}] = {a[k]:.6g} {units} is invalid; allowed range: "
+                         f"|accel| <= {MAX_ABS_ACCEL_G:g} g")
+    a = a * (factor * G)  # -> m/s^2
     if not np.any(a):
         raise ValueError("accel is identically zero: no pulse to fit")
     n = a.size

@@ -51,9 +51,9 @@ def load_record(spec) -> Record:
             raise ValueError(f"record = {text!r}: cannot be read ({exc.strerror})") from None
     if path.exists() or "/" in text or "\\" in text:
         raise ValueError(f"record = {text!r} is invalid; allowed: a file ending in "
-                         f"{' or '.join(RECORD_SUFFIXES)} (any case), or a sample name (isoslide records)")
+                         f"{' or '.join(RECORD_SUFFIXES)} (any case), or a sample name (isoslide records pyslammer)")
     hits = [n for n in samples() if text.lower() in n.lower()]
     if text not in hits and len(hits) != 1:
         raise ValueError(f"record = {text!r} is not a .at2/.csv file or a bundled sample; allowed: a sample "
-                         f"name or a part matching exactly one (isoslide records lists them; matched {hits})")
+                         f"name or a part matching exactly one (isoslide records pyslammer lists them; matched {hits})")
     return sample(text)

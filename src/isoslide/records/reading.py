@@ -7,7 +7,9 @@
 Both return a :class:`~isoslide.records.Record` with the acceleration in g.
 Malformed input raises :class:`~isoslide.records.RecordFormatError` (a
 ``ValueError``) naming the file, the line and what was expected; a truncated
-file never yields a partial record.
+file never yields a partial record, and an acceleration beyond ``|a| <= 100 g``
+(:data:`~isoslide.records.errors.MAX_ABS_ACCEL_G`) is refused with its line and
+value.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import RecordFormatError
+from .errors import MAX_ABS_ACCEL_G, RecordFormatError
 from .record import Record
 from .units import unit_factor
 
@@ -135,15 +137,13 @@ def read_at2(path, name: str | None = None, units: str | None = None) -> Record:
     Raises
     ------
     RecordFormatError
-        Missing or malformed header, a non-numeric or ambiguous token, or a
-        value count different from ``NPTS``; the message names the file, the
-        line and what was expected.
+        Missing or malformed header, a non-numeric or ambiguous token, a
+        value count different from ``NPTS``, or an acceleration beyond
+        ``|a| <= 100 g`` (:data:`~isoslide.records.errors.MAX_ABS_ACCEL_G`);
+        the message names the file, the line and what was expected.
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig", errors="strict")
-    except UnicodeDecodeError:
-        text = path.read_text(encoding="latin-1")
+    text = _read_text(path, fallback="latin-1")
     lines = text.splitlines()
     if not lines:
         raise RecordFormatError(path, 1, "a PEER NGA AT2 header (4 lines)", "empty file")
@@ -172,6 +172,9 @@ def read_at2(path, name: str | None = None, units: str | None = None) -> Record:
                                 "'<npts> <dt> NPTS, DT' within the first 8 lines",
                                 lines[line - 1].strip() if lines else None)
 
+    if not math.isfinite(dt * (npts - 1)):
+        raise RecordFormatError(path, hdr_end + 1, "a time step DT that keeps the duration (NPTS - 1) DT "
+                                "finite (s)", lines[hdr_end].strip())
     header = lines[:hdr_end]
     # quantity and units
     factor = None
@@ -196,6 +199,7 @@ def read_at2(path, name: str | None = None, units: str | None = None) -> Record:
         event, station, component = _header_line2(header[1])
 
     values: list[float] = []
+    linenos: list[int] = []
     last_data_line = hdr_end + 1
     for j in range(hdr_end + 1, len(lines)):
         raw = lines[j]
@@ -206,17 +210,64 @@ def read_at2(path, name: str | None = None, units: str | None = None) -> Record:
             raise RecordFormatError(path, j + 1, f"{npts} values in all (NPTS on line {hdr_end + 1}); "
                                     f"extra values start here", raw.strip())
         values.extend(vals)
+        linenos.extend([j + 1] * len(vals))
         last_data_line = j + 1
     if len(values) != npts:
         raise RecordFormatError(path, last_data_line,
                                 f"{npts} values (NPTS on line {hdr_end + 1}); file ends after "
                                 f"{len(values)} values (truncated file)")
-    acc = np.asarray(values) * factor
-    if not np.all(np.isfinite(acc)):
-        raise RecordFormatError(path, None, "finite acceleration values")
+    acc = _checked_accel(np.asarray(values), factor, linenos, path)
     return Record(name or path.stem, acc, dt, event=event, station=station, component=component,
                   source=str(path), licence="")
 
+
+
+def _checked_accel(values: np.ndarray, factor: float, linenos, path) -> np.ndarray:
+    """``values * factor`` (g), refusing a non-finite value or one beyond :data:`MAX_ABS_ACCEL_G`.
+
+    Parameters
+    ----------
+    values : ndarray
+        Accelerations as written in the file.
+    factor : float
+        Conversion of the file's units to g.
+    linenos : sequence of int
+        1-based line of each value.
+    path : str or Path
+        The file, named in the error.
+
+    Returns
+    -------
+    ndarray
+        Accelerations in g.
+
+    Raises
+    ------
+    RecordFormatError
+        Names the file, the line and the first offending value.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        acc = values * factor
+        bad = np.nonzero(~(np.abs(acc) <= MAX_ABS_ACCEL_G))[0]
+    if bad.size:
+        k = int(bad[0])
+        raise RecordFormatError(path, linenos[k], f"a finite acceleration within |a| <= {MAX_ABS_ACCEL_G:g} g "
+                                "(a larger value is no ground motion: a damaged file or wrong units)",
+                                f"{values[k]:.6g}" + ("" if factor == 1.0 else f" ({acc[k]:.6g} g)"))
+    return acc
+
+
+def _read_text(path: Path, fallback: str | None = None) -> str:
+    """The file's text (UTF-8, a BOM dropped; else ``fallback``); undecodable bytes are a RecordFormatError."""
+    data = path.read_bytes()
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        if fallback is not None:
+            return data.decode(fallback)
+        line = data[:exc.start].count(b"\n") + 1
+        raise RecordFormatError(path, line, "a text file in UTF-8",
+                                f"not a text file ({exc.reason} at byte {exc.start})") from None
 
 
 # --------------------------------------------------------------------------- CSV reader
@@ -271,13 +322,15 @@ def read_csv(path, name: str | None = None, units: str = "g", dt_tolerance: floa
     Raises
     ------
     RecordFormatError
-        A row without exactly two numbers, fewer than two rows, or a
-        non-uniform or non-increasing time column; the message names the file
-        and the line.
+        A file that is not UTF-8 text, a row without exactly two numbers,
+        fewer than two rows, a non-uniform or non-increasing time column, or
+        an acceleration beyond ``|a| <= 100 g``
+        (:data:`~isoslide.records.errors.MAX_ABS_ACCEL_G`); the message names
+        the file and the line.
     """
     path = Path(path)
     factor = unit_factor(units, path, None)
-    text = path.read_text(encoding="utf-8-sig")
+    text = _read_text(path)
     t, a, linenos = [], [], []
     header_seen = False
     for i, raw in enumerate(text.splitlines(), start=1):
@@ -302,14 +355,18 @@ def read_csv(path, name: str | None = None, units: str = "g", dt_tolerance: floa
     if not np.all(np.isfinite(t)) or not np.all(np.isfinite(acc)):
         k = int(np.nonzero(~(np.isfinite(t) & np.isfinite(acc)))[0][0])
         raise RecordFormatError(path, linenos[k], "finite numbers", f"{t[k]}, {acc[k]}")
-    steps = np.diff(t)
-    dt = float(np.median(steps))
-    bad = np.nonzero(~(np.abs(steps - dt) <= dt_tolerance * abs(dt)) | (steps <= 0))[0]
-    if dt <= 0 or bad.size:
+    acc = _checked_accel(acc, factor, linenos, path)
+    with np.errstate(over="ignore", invalid="ignore"):
+        steps = np.diff(t)
+        dt = float(np.median(steps))
+        bad = np.nonzero(~(np.abs(steps - dt) <= dt_tolerance * abs(dt)) | (steps <= 0))[0]
+    if not (math.isfinite(dt) and dt > 0) or bad.size:
         k = int(bad[0]) + 1 if bad.size else 1
         raise RecordFormatError(path, linenos[k], f"a uniform, increasing time step of {dt:.6g} s "
                                 f"(tolerance {dt_tolerance:.0%})", f"time {t[k]:.6g} after {t[k - 1]:.6g}")
     dt = (t[-1] - t[0]) / (t.size - 1)  # mean step: removes the rounding of the time column
+    if not (math.isfinite(dt) and dt > 0):
+        raise RecordFormatError(path, linenos[-1], "a finite time span (s)", f"{t[0]:.6g} to {t[-1]:.6g}")
     meta = {"source": str(path)} | metadata
-    return Record(name or path.stem, acc * factor, float(dt), t_start=float(t[0]), **meta)
+    return Record(name or path.stem, acc, float(dt), t_start=float(t[0]), **meta)
 

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..pulses import Pulse, sampled
+from .errors import MAX_ABS_ACCEL_G
 from .fitting import PulseFit, canonical_shape, fit_pulse
 from .units import G
 
@@ -24,8 +25,9 @@ class Record:
     name : str
         Short identifier, e.g. ``"Kobe_1995_TAK-090"``.
     accel : array_like
-        Ground acceleration, **in units of g** (9.80665 m/s^2).  Stored as a
-        read-only float64 array.
+        Ground acceleration, **in units of g** (9.80665 m/s^2), finite and
+        within ``|accel| <= 100 g`` (:data:`~isoslide.records.errors.MAX_ABS_ACCEL_G`).
+        Stored as a read-only float64 array.
     dt : float
         Sampling interval, s (> 0).
     event, station, component : str
@@ -36,6 +38,12 @@ class Record:
         Licence or terms under which the data are distributed, if known.
     t_start : float
         Time of the first sample, s.
+
+    Raises
+    ------
+    ValueError
+        Bad ``accel``, ``dt`` or ``t_start``; the message names the record,
+        its ``source`` (the file) when given, the value and the allowed range.
 
     Notes
     -----
@@ -54,19 +62,43 @@ class Record:
     _fits: dict = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self):
-        a = np.array(self.accel, dtype=np.float64)
+        who = self._who
+        try:
+            a = np.array(self.accel, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"{who}: accel is invalid; allowed: a 1-D array of numbers (g)") from None
         if a.ndim != 1 or a.size < 2:
-            raise ValueError(f"Record {self.name!r}: accel must be a 1-D array of at least 2 samples, "
-                             f"got shape {a.shape}")
+            raise ValueError(f"{who}: accel must be a 1-D array of at least 2 samples, got shape {a.shape}")
         if not np.all(np.isfinite(a)):
-            raise ValueError(f"Record {self.name!r}: accel contains NaN or inf")
-        dt = float(self.dt)
+            k = int(np.nonzero(~np.isfinite(a))[0][0])
+            raise ValueError(f"{who}: accel[{k}] = {a[k]!r} is invalid (NaN or inf); allowed: finite values (g)")
+        big = np.nonzero(np.abs(a) > MAX_ABS_ACCEL_G)[0]
+        if big.size:
+            k = int(big[0])
+            raise ValueError(f"{who}: accel[{k}] = {a[k]:.6g} g is invalid; allowed range: "
+                             f"|accel| <= {MAX_ABS_ACCEL_G:g} g")
+        try:
+            dt = float(self.dt)
+        except (TypeError, ValueError):
+            dt = math.nan
         if not (math.isfinite(dt) and dt > 0):
-            raise ValueError(f"Record {self.name!r}: dt = {self.dt!r} is invalid; allowed range: 0 < dt < inf (s)")
+            raise ValueError(f"{who}: dt = {self.dt!r} is invalid; allowed range: 0 < dt < inf (s)")
+        t_start = float(self.t_start)
+        if not math.isfinite(t_start):
+            raise ValueError(f"{who}: t_start = {self.t_start!r} is invalid; allowed range: "
+                             "-inf < t_start < inf (s)")
+        if not math.isfinite(t_start + dt * (a.size - 1)):
+            raise ValueError(f"{who}: dt = {dt!r} with {a.size} samples from t_start = {t_start!r} is "
+                             "invalid; allowed: a finite end time (s)")
         a.setflags(write=False)
         object.__setattr__(self, "accel", a)
         object.__setattr__(self, "dt", dt)
-        object.__setattr__(self, "t_start", float(self.t_start))
+        object.__setattr__(self, "t_start", t_start)
+
+    @property
+    def _who(self) -> str:
+        """``Record 'name'`` and, when known, the file it was read from (for error messages)."""
+        return f"Record {self.name!r}" + (f" from {self.source}" if self.source else "")
 
     # ---- basic properties
     @property
@@ -128,6 +160,12 @@ class Record:
         -------
         PulseFit
 
+        Raises
+        ------
+        ValueError
+            The record cannot be fitted (too few samples, all zero, a bad
+            option); the message names the record and its file.
+
         Notes
         -----
         Fits are cached per record object and, across objects, by content
@@ -140,7 +178,10 @@ class Record:
             ckey = (self.content_key, key)
             fit = _FIT_CACHE.get(ckey)
             if fit is None:
-                fit = fit_pulse(self.accel, self.dt, shape=shape, t_start=self.t_start, **options)
+                try:
+                    fit = fit_pulse(self.accel, self.dt, shape=shape, t_start=self.t_start, **options)
+                except ValueError as exc:
+                    raise ValueError(f"{self._who}: no pulse fit: {exc}") from exc
                 if len(_FIT_CACHE) >= _FIT_CACHE_SIZE:
                     _FIT_CACHE.pop(next(iter(_FIT_CACHE)))
                 _FIT_CACHE[ckey] = fit
@@ -214,7 +255,7 @@ class Record:
             t = self.time
             keep = np.nonzero((t >= window[0]) & (t <= window[1]))[0]
             if keep.size < 2:
-                raise ValueError(f"window = {window!r} keeps fewer than 2 samples of record {self.name!r} "
+                raise ValueError(f"window = {window!r} keeps fewer than 2 samples of {self._who} "
                                  f"(t from {t[0]:g} to {t[-1]:g} s)")
             i0, i1 = int(keep[0]), int(keep[-1]) + 1
         p = self.accel[i0:i1] * (G / (polarity * a_p))
