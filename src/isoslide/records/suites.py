@@ -39,8 +39,8 @@ A user's suite is a path (:func:`suite`):
   manifest's folder.
 
 Every error is a ``ValueError`` naming the file and, where there is one, the
-line: a missing or unreadable file, a duplicate name, a pair with different
-``dt``, an empty manifest, or a damaged record file (the reader's
+line: a missing or unreadable file, a duplicate name, components whose ``dt``
+differ (by more than :data:`DT_RTOL`, 1e-6 relative), an empty manifest, or a damaged record file (the reader's
 :class:`~isoslide.records.RecordFormatError`).
 """
 
@@ -59,7 +59,7 @@ from .reading import read_at2, read_csv
 from .record import Record
 from .samples import PULSE_LIKE_SAMPLES, sample, samples
 
-__all__ = ["GroundMotion", "SUITES", "split_component", "suite", "suites"]
+__all__ = ["DT_RTOL", "GroundMotion", "SUITES", "split_component", "suite", "suites"]
 
 _FEMA_SETS = {
     "fema-p695-far-field": ("farfield", None),
@@ -312,6 +312,15 @@ def split_component(stem: str) -> tuple[str, str] | None:
     return base, (m.group("sep") or m.group("tail"))
 
 
+DT_RTOL = 1e-6
+"""Components of one ground motion must share their time step to this relative tolerance (a CSV
+record's step is the mean of its rounded time column)."""
+
+
+def _same_dt(a: float, b: float) -> bool:
+    return abs(a - b) <= DT_RTOL * max(a, b)
+
+
 def _is_vertical(suffix: str) -> bool:
     return suffix.upper() in _VERTICAL
 
@@ -345,7 +354,7 @@ def _folder_suite(folder: Path) -> tuple[GroundMotion, ...]:
                                     ", ".join(p.name for p in vertical))
         recs = [_read_component(p) for p in horizontal + vertical]
         for p, r in zip(horizontal[1:] + vertical, recs[1:], strict=True):
-            if r.dt != recs[0].dt:
+            if not _same_dt(r.dt, recs[0].dt):
                 raise RecordFormatError(p, _sampling_line(p), f"the time step of {horizontal[0].name} "
                                         f"(DT = {recs[0].dt:g} s) in a ground motion's components",
                                         f"DT = {r.dt:g} s")
@@ -443,7 +452,7 @@ def _manifest_suite(path: Path) -> tuple[GroundMotion, ...]:
                                         f"to {folder})", cell)
             comps[label] = _read_component(file, path, line)
         for label in ("y", "z"):
-            if label in comps and comps[label].dt != comps["x"].dt:
+            if label in comps and not _same_dt(comps[label].dt, comps["x"].dt):
                 raise RecordFormatError(path, line, f"components with the same time step (x: "
                                         f"{comps['x'].dt:g} s)", f"{label}: {comps[label].dt:g} s")
         meta = {"suite": str(path), "pulse": None, "source": str(path), "line": line}
