@@ -44,7 +44,8 @@ roots of its rate); a sliding one stops when its speed returns to zero; a
 bilinear bearing yields at ``|fh| = q`` and unloads when ``x'`` changes sign.
 Breakaways and yielding keep every force continuous.  When a sliding interface
 stops, the force on the other jumps, so the modes of the interfaces at rest are
-chosen together (:func:`_select_modes`): the first consistent combination in
+chosen together (:func:`_select_modes`, in the order of
+:func:`isoslide.engine.modes.candidates`): the first consistent combination in
 the order all stuck, block stuck, bearing stuck, none stuck, where consistent
 means every stuck interface's needed force is within its limit and every
 sliding one accelerates in its own direction.
@@ -70,6 +71,7 @@ from numba import njit
 
 from .. import jit_cache
 from ..model.friction import stribeck
+from .modes import candidates
 from .kernel import (ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
                      _step_factor, hermite_root)
 from ..pulses import accel_at, jerk_at
@@ -559,25 +561,16 @@ def _consistent(b, i, free_b, free_i, p, y, P, A):
 def _select_modes(bm, im, free_b, free_i, tau, y, P, code, params):
     """Modes of the interfaces at rest (``free_b``: the block, ``free_i``: a sliding bearing).
 
-    The first consistent combination with the fewest sliding interfaces, in the order stuck,
-    +1, -1 (see the module docstring); if none is (round-off at a limit), each free interface
-    slides in the direction its stuck demand pushes it.
+    The first consistent combination of :func:`isoslide.engine.modes.candidates` (the fewest
+    sliding interfaces first); if none is (round-off at a limit), each free interface slides in
+    the direction its stuck demand pushes it.
     """
     p = accel_at(code, params, tau)
     A = np.empty(int(P[P_N]))
-    cands = (0.0, 1.0, -1.0)
-    for nslide in range(3):
-        for b in cands:
-            if not free_b and b != bm:
-                continue
-            for i in cands:
-                if not free_i and i != im:
-                    continue
-                n = (1 if (free_b and b != 0.0) else 0) + (1 if (free_i and i != 0.0) else 0)
-                if n != nslide:
-                    continue
-                if _consistent(b, i, free_b, free_i, p, y, P, A):
-                    return b, i
+    trial = candidates(np.array([free_b, free_i]), np.array([bm, im]))
+    for r in range(trial.shape[0]):
+        if _consistent(trial[r, 0], trial[r, 1], free_b, free_i, p, y, P, A):
+            return trial[r, 0], trial[r, 1]
     b = bm
     i = im
     if free_b:
