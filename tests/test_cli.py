@@ -12,6 +12,7 @@ import pytest
 import isoslide
 from isoslide.cli import main
 from isoslide.store.history_io import read_history
+from test_records import DAMAGE  # tests/ is on sys.path
 
 
 def test_cli_pi_groups_json_matches_python(capsys):
@@ -184,6 +185,30 @@ def test_records_command_refuses_a_damaged_pair_in_one_line_naming_the_file(tmp_
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert r.stderr.count("\n") == 1
     assert "RSN1_TEST_STA090.AT2, line 5:" in r.stderr and "100 g" in r.stderr and "1e+308" in r.stderr
+
+
+@pytest.mark.parametrize("command", ["fit", "records"])
+def test_every_damaged_record_file_gives_a_result_or_one_line_naming_it(capsys, tmp_path, command):
+    """Each kind of damage of tests/test_records.py, through ``isoslide fit FILE`` and ``isoslide
+    records FOLDER`` (the damaged file as the y component of a pair): exit 0, or exit 2 with one
+    line that names the file (an exception other than ValueError would escape main)."""
+    source = Path(__file__).parent / "data" / "records" / "nga_west2.AT2"
+    codes = set()
+    for kind, damage in DAMAGE.items():
+        folder = tmp_path / kind
+        folder.mkdir()
+        out = damage(source.read_text())
+        bad = folder / ("RSN1_TEST_STA090.AT2" if command == "records" else "damaged.AT2")
+        bad.write_bytes(out if isinstance(out, bytes) else out.encode("utf-8"))
+        if command == "records":
+            (folder / "RSN1_TEST_STA000.AT2").write_text(source.read_text())
+        code = main([command, str(folder if command == "records" else bad)])
+        err = capsys.readouterr().err
+        assert code in (0, 2), kind
+        if code == 2:
+            assert err.count("\n") == 1 and err.startswith("isoslide: error: ") and bad.name in err, (kind, err)
+        codes.add(code)
+    assert codes == {0, 2}
 
 
 @pytest.mark.parametrize("args, words", [
