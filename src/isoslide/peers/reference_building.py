@@ -813,19 +813,20 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         def add(fn, kind, direction=-1.0, specs=specs):
             specs.append((fn, kind, direction))
 
+        def add_breaks(lim, k, kind, mb_=mb_, mi_=mi_):
+            # a stuck contact breaks away when its need (item k of _dynamics) reaches +lim or -lim
+            def ev(t, yy, sgn):
+                return lim - sgn * _dynamics(B, p_of(t), yy, mb_, mi_)[k]
+            add(lambda t, yy: ev(t, yy, 1.0), kind)
+            add(lambda t, yy: ev(t, yy, -1.0), kind)
+
         if sb == 0:
-            def ev_b(t, yy, sgn, mb_=mb_, mi_=mi_):
-                return lim_b - sgn * _dynamics(B, p_of(t), yy, mb_, mi_)[4]
-            add(lambda t, yy: ev_b(t, yy, 1.0), "block_break")
-            add(lambda t, yy: ev_b(t, yy, -1.0), "block_break")
+            add_breaks(lim_b, 4, "block_break")
         else:
             add(_stop_event(sb, UD, t0, y, udd0), "block_stop")
         if B.kind == "sliding":
             if si == 0:
-                def ev_i(t, yy, sgn, mb_=mb_):
-                    return lim_q - sgn * _dynamics(B, p_of(t), yy, mb_, 0)[5]
-                add(lambda t, yy: ev_i(t, yy, 1.0), "iso_break")
-                add(lambda t, yy: ev_i(t, yy, -1.0), "iso_break")
+                add_breaks(lim_q, 5, "iso_break")       # mi_ = si = 0
             else:
                 add(_stop_event(si, XD, t0, y, xdd0), "iso_stop")
         elif B.kind == "bilinear":
