@@ -6,7 +6,7 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.store.history
 :func:`solve_reference` (:mod:`.reference`)
     Plain SciPy event-driven solver (DOP853 with events); ``solve(scene, method="reference")``.
     A general building (bearings, a flexible superstructure of one or more storeys, contents on
-    any floor) goes to
+    any floor, vertical ground motion through the normal forces) goes to
     :func:`~.reference_building.solve_reference_building` (:mod:`.reference_building`).
 :func:`solve_regularized` (:mod:`.regularized`)
     The paper's method: the signum replaced by a stiff elastic-plastic spring, SciPy

@@ -219,9 +219,10 @@ def solve_reference(scene: Scene, rtol: float = 1e-12, history: bool = False,
                     max_events: int = 100_000, max_work: int | None = None) -> PeerResult:
     """Solve one scene with the event-driven DOP853 reference integrator.
 
-    A general building (``not scene.paper_model``: a hysteretic isolator or a flexible
-    superstructure) goes to :func:`isoslide.peers.reference_building.solve_reference_building`
-    with the same arguments and result type.
+    A general building (``not scene.paper_model``: a hysteretic isolator, a flexible
+    superstructure or vertical ground motion) goes to
+    :func:`isoslide.peers.reference_building.solve_reference_building` with the same arguments and
+    result type.
 
     Parameters
     ----------

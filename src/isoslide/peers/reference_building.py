@@ -66,6 +66,20 @@ A stop (a sliding velocity ``v`` back to zero) is located as the root of ``s v /
 has the sign of ``s v`` but not its trivial root at a phase start ``t0`` from rest: a reversal
 that starts with a tiny acceleration and ends within one step is still found.
 
+Vertical ground motion
+----------------------
+With ``Pi17 > 0`` and a vertical pulse shape ``p_z`` (``scene.vertical``; upward ground acceleration
+``Pi17 g p_z(tau)`` on the horizontal pulse's time axis) the building, rigid vertically, moves up
+and down with the ground, so every normal force carries the factor ``n(tau) = 1 + Pi17 p_z(tau)``
+(``> 0``; the scene refuses lift-off).  The contents slide against ``R = m s n phi(|u'|)`` and stick
+while ``|A_F| <= n thr``; a sliding bearing (friction pendulum) has the strength ``q n``, is held
+while ``|fh_needed| <= q n`` with ``fh_needed = -mb p - kd n x + S + [R on the slab]``, and its
+restoring stiffness is ``kd n`` (the pendulum's force ``W x / R`` scales with the weight).  Linear
+and bilinear isolators and the superstructure do not change.  The vertical pulse's breakpoints are
+phase breakpoints, and "after the pulse" below means after both pulses (``n = 1`` again): from
+``max(tau_end, tau_end_z)``.  Before the horizontal pulse starts the building is at rest and stays
+so (``p = 0``, every stick need zero), so the run starts at the horizontal pulse's start.
+
 Settlement bound
 ----------------
 After the pulse, with the block stuck and the bearing held, elastic or linear, the system is free
@@ -77,7 +91,8 @@ acceleration ``A_F``, the bilinear force ``fh``, the held bearing's ``fh_needed`
 ``|d| <= |d0| + sqrt(2 E c^T P^-1 c)``, ``P = diag(K, M)`` (Cauchy-Schwarz).  The run settles
 (``settled = True``) at the first moment every bound is within its limit: this is a terminal
 event of the free phase, and changes only where the run stops, never ``Pi1``.  A run that has not
-settled by the horizon (default ``tau_end + max(50 max(1, Pi3, Pi12), 50/rate)``, ``rate`` the
+settled by the horizon (default ``tau_end + max(50 max(1, Pi3, Pi12), 50/rate)``, ``tau_end`` the
+later end of the two pulses, ``rate`` the
 slowest decay rate of the free system, 0 for an undamped one) ends with ``settled = False``.
 """
 
@@ -96,8 +111,8 @@ from ..pulses import accel_at
 from ..scene import Scene
 from .result import PeerResult, counted
 
-__all__ = ["LEDGER_NAMES", "Building", "BuildingRun", "building_of", "default_horizon", "energies", "run_building",
-           "shear_building", "solve_reference_building"]
+__all__ = ["LEDGER_NAMES", "Building", "BuildingRun", "building_of", "default_horizon", "energies",
+           "excitation_breakpoints", "excitation_end", "run_building", "shear_building", "solve_reference_building"]
 
 X, XD, XS = 0, 1, 2
 """Indices of the slab's displacement and velocity and of the first floor's displacement in the
@@ -188,6 +203,12 @@ class Building:
         Flexible superstructure (``Pi12 > 0``).
     floor : int
         The block's floor: 0 the slab (always when rigid), ``N`` the roof.
+    pi17 : float
+        Vertical amplitude ``Pi17`` (units ``g``; 0 without vertical ground motion).
+    zcode : int
+        Shape code of the vertical pulse (:mod:`isoslide.pulses`; -1 without one).
+    zparams : ndarray
+        Shape parameters of the vertical pulse.
     """
 
     mst: float
@@ -208,6 +229,26 @@ class Building:
     pi2: float = field(repr=False, default=0.0)
     pi6: float = field(repr=False, default=0.0)
     pi7: float = field(repr=False, default=0.0)
+    pi17: float = 0.0
+    zcode: int = -1
+    zparams: np.ndarray = field(repr=False, default_factory=lambda: np.zeros(0))
+
+    @property
+    def vertical(self) -> bool:
+        """True when the ground moves vertically (the normal forces vary)."""
+        return self.pi17 > 0.0 and self.zcode >= 0
+
+    def normal(self, tau: float) -> float:
+        """Normal-force factor ``n(tau) = 1 + Pi17 p_z(tau)`` (dimensionless; 1 without vertical motion).
+
+        Parameters
+        ----------
+        tau : float
+            Time, units ``T_p``.
+        """
+        if not self.vertical:
+            return 1.0
+        return 1.0 + self.pi17 * accel_at(self.zcode, self.zparams, tau)
 
     @property
     def n(self) -> int:
@@ -293,12 +334,35 @@ def building_of(scene: Scene) -> Building:
         mst, floor = 0.0, 0
     q = math.inf if kind == "fixed" else scene.pi9
     ke = scene.pi9 / scene.pi10 if kind == "bilinear" else 0.0
+    vertical = scene.vertical
+    zp = scene.pulse_z if vertical else None
     return Building(mst=mst, mb=1.0 - mst, m=scene.pi8, kd=kd, cb=cb, ms=ms, Ks=Ks, Cs=Cs, omega=omega, q=q,
                     ke=ke, thr=scene.pi2 / scene.pi5, kind=kind, flexible=flexible, floor=floor, pi2=scene.pi2,
-                    pi6=scene.pi6, pi7=scene.pi7)
+                    pi6=scene.pi6, pi7=scene.pi7, pi17=float(scene.pi17) if vertical else 0.0,
+                    zcode=int(zp.code) if vertical else -1,
+                    zparams=np.asarray(zp.param_array, dtype=float) if vertical else np.zeros(0))
 
 
-def _dynamics(B: Building, p: float, y, sb: int, si: int):
+def excitation_end(scene: Scene) -> float:
+    """End of the ground motion, units ``T_p``.
+
+    The later of the two pulses' ends; the horizontal pulse's alone without vertical motion.
+    """
+    end = float(scene.pulse.tau_end)
+    if scene.vertical:
+        end = max(end, float(scene.pulse_z.tau_end))
+    return end
+
+
+def excitation_breakpoints(scene: Scene) -> np.ndarray:
+    """Sorted breakpoints of the ground motion (both pulses'), units ``T_p``."""
+    b = np.asarray(scene.pulse.breakpoint_array, dtype=float)
+    if scene.vertical:
+        b = np.union1d(b, np.asarray(scene.pulse_z.breakpoint_array, dtype=float))
+    return b
+
+
+def _dynamics(B: Building, p: float, y, sb: int, si: int, nz: float = 1.0):
     """Accelerations and forces in the mode ``(sb, si)``.
 
     Parameters
@@ -313,6 +377,9 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int):
     si : int
         Isolator mode: 0 held (sliding bearing, fixed base) or elastic (bilinear), +-1 sliding or
         yielding; ignored for a linear isolator.
+    nz : float
+        Normal-force factor ``n(tau)`` (dimensionless, > 0): scales the block's friction and a
+        sliding bearing's strength and stiffness.
 
     Returns
     -------
@@ -331,14 +398,15 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int):
     if B.kind == "bilinear":
         fh = y[B.FH]
     elif B.kind == "sliding":
-        fh = si * B.q
+        fh = si * B.q * nz
     else:
         fh = 0.0
-    F = B.kd * x + B.cb * xd + fh
+    kd = B.kd * nz if B.kind == "sliding" else B.kd     # a friction pendulum's W x / R
+    F = kd * x + B.cb * xd + fh
     m = B.m
     k = B.floor
     if sb != 0:
-        ph = B.phi(ud)
+        ph = nz * B.phi(ud)
         R = m * sb * ph
     if k:
         Ab = p if held else (-F + S) / B.mb
@@ -370,7 +438,7 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int):
         AF = Ab
     if held:
         xdd = 0.0
-        fh_need = -B.mb * p - B.kd * x + S + (0.0 if k else R)
+        fh_need = -B.mb * p - kd * x + S + (0.0 if k else R)
         fh = fh_need
     else:
         xdd = Ab - p
@@ -384,7 +452,8 @@ def _sign(a: float) -> int:
     return 1 if a > 0.0 else (-1 if a < 0.0 else 0)
 
 
-def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, forced_i: int = 0):
+def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, forced_i: int = 0,
+            nz: float = 1.0):
     """Consistent modes of the frictional interfaces at a phase start (module docstring).
 
     Parameters
@@ -395,13 +464,15 @@ def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, force
         Current modes.
     forced_b, forced_i : int
         Nonzero: the block (bearing) just broke away and slides in this direction.
+    nz : float
+        Normal-force factor ``n(tau)`` (scales both stick limits).
 
     Returns
     -------
     (sb, si) : tuple of int
     """
-    lim_b = B.thr * (1.0 + _ULP4)
-    lim_q = B.q * (1.0 + _ULP4)
+    lim_b = B.thr * nz * (1.0 + _ULP4)
+    lim_q = B.q * nz * (1.0 + _ULP4)
     if forced_b:
         cb_modes, free_b = [forced_b], False
     elif sb == 0 or y[B.UD] == 0.0:
@@ -422,7 +493,7 @@ def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, force
     combos = sorted(((b, i) for b in cb_modes for i in ci_modes),
                     key=lambda c: (c[0] != 0, B.kind == "sliding" and c[1] != 0))
     for b, i in combos:
-        xdd, _, udd, _, AF, fh_need, _, _ = _dynamics(B, p, y, b, i)
+        xdd, _, udd, _, AF, fh_need, _, _ = _dynamics(B, p, y, b, i, nz)
         if b == 0 and abs(AF) > lim_b:
             continue
         if b != 0 and free_b and not b * udd > 0.0:
@@ -454,17 +525,20 @@ def _stop_event(s: int, k: int, t0: float, y0, acc0: float):
     return g
 
 
-def _bilinear_mode(B: Building, p: float, y, sb: int, si: int) -> int:
-    """Elastic (0) or yielding (+-1) mode of a bilinear bearing at a phase start (not an event)."""
+def _bilinear_mode(B: Building, p: float, y, sb: int, si: int, nz: float = 1.0) -> int:
+    """Elastic (0) or yielding (+-1) mode of a bilinear bearing at a phase start (not an event).
+
+    ``nz`` is the normal-force factor (it scales the sliding block's friction).
+    """
     fh, xd = y[B.FH], y[XD]
     if si == 0:
         if abs(fh) >= B.q * (1.0 - _ULP4):
             s = _sign(fh)
-            v = xd if xd != 0.0 else _dynamics(B, p, y, sb, s)[0]
+            v = xd if xd != 0.0 else _dynamics(B, p, y, sb, s, nz)[0]
             if s * v > 0.0:
                 return s
         return 0
-    v = xd if xd != 0.0 else _dynamics(B, p, y, sb, si)[0]
+    v = xd if xd != 0.0 else _dynamics(B, p, y, sb, si, nz)[0]
     return si if si * v > 0.0 else 0
 
 
@@ -595,7 +669,7 @@ def default_horizon(scene: Scene) -> float:
     base = 50.0 * max(1.0, scene.pi3, scene.pi12)
     rate = _slowest_rate(B)
     extra = base if rate == 0.0 or not math.isfinite(rate) else max(base, 50.0 / rate)
-    return float(scene.pulse.tau_end) + extra
+    return excitation_end(scene) + extra
 
 
 @dataclass(frozen=True)
@@ -706,7 +780,8 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         As :func:`solve_reference_building`.
     ledger : bool
         Integrate the input work and the dissipations along with the state and return them
-        (implies ``history=True``); see :class:`BuildingRun`.
+        (implies ``history=True``); see :class:`BuildingRun`.  Refused (ValueError) for a scene
+        with vertical ground motion, whose work the ledger does not hold.
     settle : bool
         Stop at settlement (default); ``False`` follows the scene to the horizon (``settled``
         stays False), to check the settlement bound.
@@ -720,9 +795,12 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
     code = int(pulse.code)
     params = pulse.param_array
     history = history or ledger
-    tau_end = float(pulse.tau_end)
+    if ledger and B.vertical:
+        raise ValueError("ledger = True is invalid for a scene with vertical ground motion (the ledger holds "
+                         "no vertical work); allowed: ledger = False, or pi17 = 0")
+    tau_end = excitation_end(scene)
     horizon = default_horizon(scene) if tau_max is None else float(tau_max)
-    bps = [float(b) for b in pulse.breakpoint_array if b < horizon]
+    bps = [float(b) for b in excitation_breakpoints(scene) if b < horizon]
     periods = _periods(B)
     hmax_pulse = min([1.0 / 64.0] + [T / 32.0 for T in periods])
     hmax_free = min([max(1.0, scene.pi3) / 64.0] + [T / 32.0 for T in periods])
@@ -747,20 +825,23 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
     def p_at(t):
         return accel_at(code, params, t)
 
+    n_at = B.normal
+
     while True:
         if n_events > max_events:
             raise RuntimeError(f"more than {max_events} transitions; scene={scene!r}")
         # ---- modes at the phase start ---------------------------------------------------------
         # (an event was counted where it was located; elsewhere every mode change counts)
         p0 = p_at(tau)
+        n0 = n_at(tau)
         if B.kind == "bilinear" and not event_transition:
-            new_si = _bilinear_mode(B, p0, y, sb, si)
+            new_si = _bilinear_mode(B, p0, y, sb, si, n0)
             if new_si != si:
                 n_events += 1
                 si = new_si
                 if si:
                     y[FH] = si * B.q
-        nb, ni = _choose(B, p0, y, sb, si, forced_b, forced_i)
+        nb, ni = _choose(B, p0, y, sb, si, forced_b, forced_i, n0)
         if not event_transition:
             n_events += (nb != sb) + (B.kind == "sliding" and ni != si)
         sb, si = nb, ni
@@ -790,9 +871,12 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         def p_of(t, t0=t0, t_clip=t_clip):
             return accel_at(code, params, min(max(t, t0), t_clip))
 
+        def n_of(t, t0=t0, t_clip=t_clip):
+            return n_at(min(max(t, t0), t_clip))
+
         def rhs(t, yy, mb_=mb_, mi_=mi_):
             p = p_of(t)
-            xdd, xsdd, udd, fhd, _, _, R, fh = _dynamics(B, p, yy, mb_, mi_)
+            xdd, xsdd, udd, fhd, _, _, R, fh = _dynamics(B, p, yy, mb_, mi_, n_of(t))
             d = np.empty(yy.size)
             d[X], d[XD] = yy[XD], xdd
             d[XS:XSD] = yy[XSD:U]
@@ -808,15 +892,16 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
             return d
 
         specs = []          # (event function, what it marks, direction of the zero crossing)
-        xdd0, _, udd0 = _dynamics(B, p0, y, sb, si)[:3]
+        xdd0, _, udd0 = _dynamics(B, p0, y, sb, si, n0)[:3]
 
         def add(fn, kind, direction=-1.0, specs=specs):
             specs.append((fn, kind, direction))
 
         def add_breaks(lim, k, kind, mb_=mb_, mi_=mi_):
-            # a stuck contact breaks away when its need (item k of _dynamics) reaches +lim or -lim
+            # a stuck contact breaks away when its need (item k of _dynamics) reaches +-lim n(tau)
             def ev(t, yy, sgn):
-                return lim - sgn * _dynamics(B, p_of(t), yy, mb_, mi_)[k]
+                nz = n_of(t)
+                return lim * nz - sgn * _dynamics(B, p_of(t), yy, mb_, mi_, nz)[k]
             add(lambda t, yy: ev(t, yy, 1.0), kind)
             add(lambda t, yy: ev(t, yy, -1.0), kind)
 
@@ -868,15 +953,15 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
             break
         n_events += 1
         event_transition = True
-        p = p_at(tau)
+        p, nz = p_at(tau), n_at(tau)
         if kind == "block_break":
-            forced_b = -_sign(_dynamics(B, p, y, sb, si)[4])
+            forced_b = -_sign(_dynamics(B, p, y, sb, si, nz)[4])
         elif kind == "block_stop":
             y[UD] = 0.0
             if abs(y[U]) > peak:
                 peak, tau_peak = abs(y[U]), tau
         elif kind == "iso_break":
-            forced_i = _sign(_dynamics(B, p, y, sb, si)[5])
+            forced_i = _sign(_dynamics(B, p, y, sb, si, nz)[5])
         elif kind == "iso_stop":
             y[XD] = 0.0
         elif kind == "yield":
@@ -901,7 +986,7 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         fh = yy[FH].copy()
         top = XS + B.n - 1                     # the roof's slot
         if B.kind == "sliding":
-            fh = np.array([_dynamics(B, p_at(t), col, b, i)[7] for t, col, b, i in
+            fh = np.array([_dynamics(B, p_at(t), col, b, i, n_at(t))[7] for t, col, b, i in
                            zip(tt, yy.T, ph_b, ph_i, strict=True)])
         iso = B.kind in ("bilinear", "sliding")
         h = History(tau=tt, x=yy[X].copy(), xd=yy[XD].copy(), u=yy[U].copy(), ud=yy[UD].copy(), phase=ph_b,
