@@ -19,7 +19,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from isoslide import Scene, solve
+from isoslide import Scene, StepBudgetError, solve
 from isoslide.accuracy import DOMAIN
 from isoslide.pulses import PULSE_NAMES, sampled
 from isoslide.scene import G_STANDARD, PI_RANGES
@@ -114,6 +114,8 @@ def test_domain_is_inside_the_scene_ranges():
         for v in (lo, hi):
             kw = {"pi2": 1.0, "pi3": 0.0, "pi11": 0.5}   # pi11 is read with a flexible superstructure
             kw[k] = v
+            if k == "pi17":
+                kw["pulse_z"] = "ricker"                  # pi17 scales a vertical pulse
             assert getattr(Scene(**kw), k) == v
 
 
@@ -209,6 +211,10 @@ def test_buckingham_invariance(sc, log_ap_g, log_tp, log_mb):
     assert b.u_max == pytest.approx(b.pi1 * a_p * T_p ** 2, rel=1e-14)
 
 
+MIRROR_HORIZON = 50.0
+"""Isolation periods followed after the record in the mirror check (the property holds for any)."""
+
+
 @HYP
 @given(st.lists(st.floats(-1.0, 1.0), min_size=3, max_size=24), st.floats(0.02, 0.3),
        pi3_s, pi4_s, pi5_s, pi6_s, pi7_s, pi8_s, st.floats(0.02, 0.9))
@@ -223,8 +229,19 @@ def test_mirror_invariance(acc, dtau, pi3, pi4, pi5, pi6, pi7, pi8, frac):
     pi2 = frac * peak_stuck_demand(base) * pi5
     if pi2 <= 0.0:
         return
-    sp = solve(Scene(pi2=pi2, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8, pulse=plus))
-    sm = solve(Scene(pi2=pi2, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8, pulse=minus))
+    outcomes = []
+    for pulse in (plus, minus):
+        try:
+            outcomes.append(solve(Scene(pi2=pi2, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8, pulse=pulse),
+                                  horizon=MIRROR_HORIZON))
+        except StepBudgetError as e:
+            outcomes.append(e)
+    sp, sm = outcomes
+    if isinstance(sp, StepBudgetError) or isinstance(sm, StepBudgetError):
+        # an undamped, very stiff base followed for thousands of periods can exceed the step budget;
+        # the mirrored run must then exceed it at the same time
+        assert str(sp).split(" for Scene")[0] == str(sm).split(" for Scene")[0], (sp, sm)
+        return
     assert sm.pi1 == pytest.approx(sp.pi1, rel=1e-10, abs=1e-15)
     assert sm.pi1_residual == pytest.approx(-sp.pi1_residual, rel=1e-10, abs=1e-14)
 

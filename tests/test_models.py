@@ -13,7 +13,8 @@ import xarray as xr
 
 import isoslide
 from isoslide import datasets
-from isoslide.models import BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, Facets, label
+from isoslide.models import (BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, VERTICAL_LABELS,
+                             Facets, label)
 from isoslide.pulses import sampled
 
 CODES_FILE = Path(__file__).parent / "data" / "facet_codes.json"
@@ -72,15 +73,17 @@ def building_scene(name: str) -> isoslide.Scene:
         kw["floor"] = "roof"
     if "intermediate" in parts:
         kw.update(storeys=2, floor=1)
+    if "vertical" in parts:
+        kw.update(pi17=0.2, pulse_z="ricker")
     return isoslide.Scene(**kw)
 
 
-PATHS += [(building_scene(name), {}) for name in BUILDING_LABELS]
+PATHS += [(building_scene(name), {}) for name in BUILDING_LABELS + VERTICAL_LABELS]
 
 
 def test_building_labels_name_their_scenes():
-    """Each general-building label is the label of the scene built from its parts."""
-    for name in BUILDING_LABELS:
+    """Each general-building label is the label of the scene built from its parts (vertical motion too)."""
+    for name in BUILDING_LABELS + VERTICAL_LABELS:
         assert isoslide.solve(building_scene(name)).model == name
 
 

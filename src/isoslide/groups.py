@@ -3,9 +3,9 @@
 Buckingham's theorem with the repeating variables ``a_p`` (pulse acceleration
 amplitude, m/s^2), ``T_p`` (pulse period, s) and ``M_b`` (isolated mass, kg)
 turns the eleven physical parameters of the paper's model into one result
-group and seven input groups, and the five parameters of the general building
+group and seven input groups, the five parameters of the general building
 (hysteretic isolator, flexible superstructure; see :mod:`isoslide.engine.building`)
-into five more:
+into five more, and the vertical ground motion into one:
 
 =====  ===================  ==========================================  ================
 group  definition           meaning                                     valid range
@@ -23,13 +23,15 @@ Pi10   D_y / (a_p T_p^2)    isolator yield displacement; 0 = sliding    0 <= Pi1
 Pi11   m_st / M_b           superstructure mass fraction                0 <= Pi11 < 1
 Pi12   T_s / T_p            superstructure period; 0 = rigid            0 <= Pi12 <= 1e4
 Pi13   xi_s                 superstructure damping ratio                0 <= Pi13 <= 1e3
+Pi17   a_pz / g             vertical ground acceleration over gravity   0 <= Pi17 <= 1e3
 =====  ===================  ==========================================  ================
 
 ``M_b = m_b + m_st`` is the whole isolated mass (base slab and superstructure,
 the contents excluded) and ``T_b = 2 pi sqrt(M_b / k_d)`` the isolation
 period with the isolator's post-yield (or linear) stiffness ``k_d``.  Pi11 is
 read only with a flexible superstructure (``Pi12 > 0``), where ``0 < Pi11 < 1``
-(checked by :class:`isoslide.Scene`).
+(checked by :class:`isoslide.Scene`).  Pi17 scales the vertical ground acceleration
+``a_gz = Pi17 g p_z(t/T_p)`` of a scene's ``pulse_z``; it acts through the normal forces.
 
 Scene validation, dataset attributes, figure labels, the similarity check's
 definitions, study dimension names and the command-line help are all derived
@@ -172,6 +174,11 @@ INPUTS = (
                   "0 = rigid superstructure (the paper's Fig. 1-b)"),
     Group("pi13", "xi_s", "superstructure damping ratio", r"\Pi_{13}", r"\xi_s", "Π₁₃",
           hi=1e3, default=0.0, comment="xi_s = c_s / (2 sqrt(k_s m_st))"),
+    Group("pi17", "a_pz / g", "vertical ground acceleration over gravity", r"\Pi_{17}", r"a_{pz}/g", "Π₁₇",
+          hi=1e3, default=0.0,
+          comment="amplitude of the vertical ground acceleration a_gz = Pi17 g p_z(t/T_p) over g; it acts "
+                  "through the normal forces (contents, sliding bearing): N = m (g + a_gz); 0 = no vertical "
+                  "motion"),
 )
 """The input groups, in the order of :class:`isoslide.Scene`'s arguments."""
 
@@ -184,8 +191,11 @@ INPUT_NAMES = tuple(g.name for g in INPUTS)
 PAPER_NAMES = INPUT_NAMES[:7]
 """The paper's input groups ``("pi2", ..., "pi8")``: the model of its Fig. 1-b."""
 
-BUILDING_NAMES = INPUT_NAMES[7:]
+BUILDING_NAMES = INPUT_NAMES[7:12]
 """The general building's groups ``("pi9", ..., "pi13")``: zero in the paper's model."""
+
+EXCITATION_NAMES = INPUT_NAMES[12:]
+"""The groups of the excitation beyond the horizontal pulse (``("pi17",)``): zero in the paper's model."""
 
 
 def group(name: str) -> Group:

@@ -50,7 +50,7 @@ label a solve can produce (new labels are appended).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 FRICTION_MODELS = ("coulomb", "stribeck", "static-kinetic")
 """Friction laws the exact solver integrates."""
@@ -67,6 +67,7 @@ FACETS = {
     "reduction": ("none", "bearing-stuck", "bearing-elastic", "demand-bound"),
     "propagation": ("integrated", "piecewise", "none"),
     "solver": ("exact",) + PEER_LABELS,
+    "vertical": ("none", "normal-force"),
 }
 """The independent properties of the model that ran, and the values each can take.
 
@@ -79,7 +80,8 @@ the contact law integrated (``coulomb`` when friction does not depend on speed);
 ``reduction``: a proof that replaced the scene by a smaller model (a sliding bearing that never
 slips, a bilinear bearing that never yields, or a floor demand below the stick limit:
 ``demand-bound``, answered ``Pi1 = 0`` without integrating); ``propagation``: integrated, the
-exact piecewise propagation of a sampled record, or none; ``solver``: the exact solver or a peer.
+exact piecewise propagation of a sampled record, or none; ``solver``: the exact solver or a peer;
+``vertical``: vertical ground motion acting through the normal forces, or none.
 The position of a value is its code in the dataset flag variable ``model_<facet>``; values are
 only ever appended."""
 
@@ -189,9 +191,9 @@ def building_label(isolator: str, flexible: bool, floor, noslide: bool, friction
     return "+".join(parts)
 
 
-def _building_labels(floors=("base", "roof")) -> tuple:
+def _building_labels(floors=("base", "roof"), rigid: bool = True) -> tuple:
     out = []
-    supers = ((False, "base"),) + tuple((True, f) for f in floors)
+    supers = (((False, "base"),) if rigid else ()) + tuple((True, f) for f in floors)
     for iso in ISOLATOR_PARTS:
         for flexible, floor in supers:
             if (iso == "linear" and not flexible) or (iso == "fixed-base" and floor == "base"):
@@ -212,13 +214,17 @@ def _building_labels(floors=("base", "roof")) -> tuple:
 
 
 BUILDING_LABELS = _building_labels()
-BUILDING_LABELS = BUILDING_LABELS + _building_labels(("intermediate",))
+BUILDING_LABELS = BUILDING_LABELS + _building_labels(("intermediate",), rigid=False)
 """Labels of the general building; contents on a floor between the slab and the roof of a building
 of several storeys come last."""
 
 MODEL_LABELS = (_STABLE + tuple(n for n in _exact_labels() + PEER_LABELS if n not in _STABLE)
                 + PIECEWISE_LABELS)
 MODEL_LABELS = MODEL_LABELS + tuple(n for n in BUILDING_LABELS if n not in MODEL_LABELS)
+VERTICAL_LABELS = tuple(f"{n}+vertical" for n in _exact_labels() + _building_labels(("base", "roof", "intermediate"))
+                        if "static-kinetic" not in n)
+"""Labels of the general building under vertical ground motion (every reduction is off there)."""
+MODEL_LABELS = MODEL_LABELS + VERTICAL_LABELS
 """Every label :func:`isoslide.solve` can produce."""
 
 
@@ -238,6 +244,7 @@ class Facets:
     reduction: str = "none"
     propagation: str = "integrated"
     solver: str = "exact"
+    vertical: str = "none"
 
     def __post_init__(self):
         for name, allowed in FACETS.items():
@@ -255,6 +262,8 @@ class Facets:
         """
         if self.solver != "exact":
             return self.solver
+        if self.vertical != "none":
+            return f"{replace(self, vertical='none').label(slid)}+vertical"
         oneway = self.coupling == "one-way"
         fixed = self.isolator == "fixed-base"
         piecewise = self.propagation == "piecewise"

@@ -28,6 +28,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from .pulses import Pulse, get_pulse
 from .groups import INPUT_NAMES, INPUTS
 from .model.shear_building import fundamental_period
@@ -157,6 +159,8 @@ class Scene:
     storeys: int = 1
     floor_masses: tuple | None = None
     storey_stiffnesses: tuple | None = None
+    pi17: float = _DEFAULTS["pi17"]
+    pulse_z: Pulse | str | None = None
     scale: PhysicalScale | None = field(default=None, compare=False)
 
     def __post_init__(self):
@@ -176,11 +180,19 @@ class Scene:
             k0 = self.storey_stiffnesses[0]
             object.__setattr__(self, "storey_stiffnesses", tuple(k / k0 for k in self.storey_stiffnesses))
         object.__setattr__(self, "pulse", _resolve_pulse(self.pulse))
+        if self.pulse_z is not None:
+            object.__setattr__(self, "pulse_z", _resolve_pulse(self.pulse_z))
+        elif self.pi17 > 0.0:
+            raise ValueError(f"pulse_z = None with pi17 = {self.pi17!r} > 0; allowed: a vertical pulse shape "
+                             "(pulse_z) when pi17 > 0")
+        if self.vertical:
+            _check_contact(self.pi17, self.pulse_z)
 
     @classmethod
     def from_physical(cls, a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0,
                       g=G_STANDARD, pulse="ricker", Q_d=0.0, D_y=0.0, m_st=0.0, T_s=0.0, xi_s=0.0,
-                      floor="base", storeys=1, floor_masses=None, storey_stiffnesses=None) -> "Scene":
+                      floor="base", storeys=1, floor_masses=None, storey_stiffnesses=None, a_pz=0.0,
+                      pulse_z=None) -> "Scene":
         """Build a scene from physical parameters in SI units.
 
         Parameters
@@ -229,6 +241,11 @@ class Scene:
             stiffnesses (N/m), bottom to top.  Then ``storeys`` is their length, ``m_st`` their
             total mass and ``T_s`` their fixed-base fundamental period (leave ``m_st`` and ``T_s``
             at 0, or give the same values).
+        a_pz : float
+            Amplitude of the vertical ground acceleration, m/s^2 (>= 0; upward positive).
+        pulse_z : str or Pulse or record, optional
+            Shape of the vertical ground acceleration on the horizontal pulse's time axis (a record
+            runs as recorded, scaled by ``a_pz``).
         """
         v = {"a_p": a_p, "T_p": T_p, "M_b": M_b, "T_b": T_b, "xi_b": xi_b, "m_ec": m_ec, "mu_s": mu_s,
              "mu_k": mu_k, "beta": beta, "gamma": gamma, "g": g, "Q_d": Q_d, "D_y": D_y, "T_s": T_s,
@@ -256,7 +273,9 @@ class Scene:
             pulse=_resolve_pulse(pulse, a_p=a_p, T_p=T_p),
             pi9=Q_d / (M_b * a_p), pi10=D_y / (a_p * T_p**2), pi11=m_st / M_b, pi12=T_s / T_p,
             pi13=xi_s, floor=floor, storeys=storeys, floor_masses=floor_masses,
-            storey_stiffnesses=storey_stiffnesses, scale=PhysicalScale(a_p, T_p, M_b, g),
+            storey_stiffnesses=storey_stiffnesses, pi17=a_pz / g,
+            pulse_z=None if pulse_z is None else _resolve_pulse(pulse_z, a_p=a_pz if a_pz > 0.0 else None, T_p=T_p),
+            scale=PhysicalScale(a_p, T_p, M_b, g),
         )
 
     @property
@@ -301,17 +320,45 @@ class Scene:
         return self.floor_masses is None and self.storey_stiffnesses is None
 
     @property
+    def vertical(self) -> bool:
+        """True when the ground moves vertically (``Pi17 > 0`` with a ``pulse_z``)."""
+        return self.pi17 > 0.0 and self.pulse_z is not None
+
+    @property
     def paper_model(self) -> bool:
         """True when the scene is the paper's model (Fig. 1-b).
 
-        A linear isolator (``Pi9 = 0``) and a rigid superstructure (``Pi12 = 0``); the contents'
-        floor then makes no difference.
+        A linear isolator (``Pi9 = 0``), a rigid superstructure (``Pi12 = 0``) and no vertical
+        ground motion; the contents' floor then makes no difference.
         """
-        return self.pi9 == 0.0 and self.pi12 == 0.0
+        return self.pi9 == 0.0 and self.pi12 == 0.0 and not self.vertical
 
     def pis(self) -> dict:
         """The input groups as a dict ``{"pi2": ..., ..., "pi13": ...}``."""
         return {k: getattr(self, k) for k in INPUT_NAMES}
+
+
+def _check_contact(pi17: float, pulse_z: Pulse) -> None:
+    """ValueError when the vertical ground motion lifts the contents off (normal force ``<= 0``).
+
+    The normal force over its static value is ``1 + Pi17 p_z(tau)``; it is evaluated on a grid of
+    the pulse's support and every breakpoint, and the first time it reaches zero is located by
+    bisection.
+    """
+    taus = np.union1d(np.linspace(pulse_z.tau_start, pulse_z.tau_end, 20001), pulse_z.breakpoint_array)
+    n = 1.0 + pi17 * np.asarray(pulse_z.accel(taus), dtype=float)
+    if np.all(n > 0.0):
+        return
+    k = int(np.argmax(n <= 0.0))
+    lo, hi = (taus[k - 1], taus[k]) if k > 0 else (taus[0], taus[0])
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if 1.0 + pi17 * float(pulse_z.accel(np.array([mid]))[0]) > 0.0 else (lo, mid)
+    i = int(np.argmin(n))
+    raise ValueError(f"pi17 = {pi17!r} lifts the contents off under pulse_z {pulse_z.name!r}: the normal force "
+                     f"over its static value, 1 + pi17 p_z(tau), reaches 0 at tau = {hi:.6g} (its least value "
+                     f"{n[i]:.6g} at tau = {taus[i]:.6g}); allowed: 1 + pi17 p_z(tau) > 0 at every tau, "
+                     f"pi17 < {1.0 / -float(np.min(pulse_z.accel(taus))):.6g} for this pulse")
 
 
 def _check_storeys(storeys) -> int:

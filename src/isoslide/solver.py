@@ -175,9 +175,13 @@ def _model_array(scene: Scene, pi8: float, coulomb: float, thr: float | None = N
     return m
 
 
+def _tau_end(scene: Scene) -> float:
+    """End of the excitation: the horizontal pulse's, or the vertical one's when that ends later."""
+    return max(scene.pulse.tau_end, scene.pulse_z.tau_end) if scene.vertical else scene.pulse.tau_end
+
+
 def _horizon(scene: Scene, horizon: float) -> float:
-    pulse = scene.pulse
-    return pulse.tau_end + horizon * max(scene.pi3, 1.0)
+    return _tau_end(scene) + horizon * max(scene.pi3, 1.0)
 
 
 def _long_run_factor(scene: Scene, horizon: float) -> float:
@@ -456,6 +460,9 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
         if method not in SCENE_SOLVERS:
             raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', "
                              + ", ".join(repr(m) for m in SCENE_SOLVERS))
+        if scene.vertical and method != "reference":
+            raise ValueError(f"method = {method!r} does not model vertical ground motion (pi17 = {scene.pi17!r} "
+                             "with a pulse_z); allowed: method='exact', or pi17 = 0")
         return _from_peer(scene, SCENE_SOLVERS[method](scene, history=history, **options))
     if options:
         raise TypeError(f"unexpected options for method='exact': {sorted(options)}")
@@ -540,10 +547,13 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     stop = _horizon(scene, horizon)
     budget = step_budget(scene, horizon)
     h_free = min(building.free_step(scene), max_step)
+    breakpoints = pulse.breakpoint_array
+    if scene.vertical:
+        breakpoints = np.union1d(breakpoints, scene.pulse_z.breakpoint_array)
 
     def run(irtol, many=False):
-        res = building_kernel.run(P, pulse.code, pulse.param_array, pulse.breakpoint_array, pulse.tau_start,
-                                  pulse.tau_end, stop, min(H_MAX_PULSE, max_step), h_free, irtol,
+        res = building_kernel.run(P, pulse.code, pulse.param_array, breakpoints, pulse.tau_start,
+                                  _tau_end(scene), stop, min(H_MAX_PULSE, max_step), h_free, irtol,
                                   base_atol(scene, irtol, many), hist_cap, min(H_RESTART, max_step), settle, budget,
                                   *modal)
         return _checked(Run.of(building_kernel, res), scene, horizon, budget, "Runge-Kutta steps", rtol)
@@ -586,7 +596,7 @@ def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "
     floor = "base" if k == 0 else ("roof" if k == scene.storeys else "intermediate")
     return Facets(isolator=isolator, superstructure="flexible" if scene.flexible else "rigid", floor=floor,
                   friction=friction, coupling="one-way" if oneway else "two-way", propagation=propagation,
-                  solver=solver)
+                  solver=solver, vertical="normal-force" if scene.vertical else "none")
 
 
 def _solution(scene, run: Run, facets: Facets, hist=None) -> Solution:

@@ -27,6 +27,8 @@ DOMAIN = {
     "pi11": (0.01, 0.95, "0.01 (light superstructure) to 0.95 (nearly all the isolated mass)"),
     "pi12": (0.0, 10.0, "0 (rigid superstructure), 0.01 (very stiff) to 10 (very flexible)"),
     "pi13": (0.0, 1.0, "0 (undamped superstructure) to 1 (critically damped)"),
+    "pi17": (0.0, 2.0, "0 (no vertical motion) to 2 (a vertical Ricker pulse of twice g: the normal force "
+                       "falls to 11 % of its static value)"),
 }
 """The domain over which isoslide is tested (``tests/test_extremes.py``) and mapped
 (:func:`domain_map`): (low, high, meaning).  The valid range of each group in
@@ -38,9 +40,9 @@ MAP_BASE = {"pi2": 0.1, "pi3": 1.0, "pi4": 0.1, "pi5": 0.7, "pi6": 1000.0, "pi7"
 model: ``pi11`` is read only with a flexible superstructure)."""
 
 MAP_COMPANIONS = {"pi10": {"pi9": 0.1}, "pi11": {"pi12": 0.2, "pi13": 0.02},
-                  "pi12": {"pi13": 0.02}, "pi13": {"pi12": 0.2}}
-"""Groups set beside a swept one so that it acts: a bearing for ``pi10``, a flexible
-superstructure for ``pi11`` and ``pi13``."""
+                  "pi12": {"pi13": 0.02}, "pi13": {"pi12": 0.2}, "pi17": {"pulse_z": "ricker"}}
+"""Groups (and the vertical pulse) set beside a swept one so that it acts: a bearing for ``pi10``,
+a flexible superstructure for ``pi11`` and ``pi13``, a vertical Ricker pulse for ``pi17``."""
 
 
 def map_values(group: str, npts: int = 9) -> np.ndarray:

@@ -55,7 +55,7 @@ The smallest exact model (:func:`reduction`)
     ``k_d + k_e`` (``Pi3' = Pi3 sqrt(k_d/(k_d + k_e))``, ``Pi4' = Pi4
     sqrt(k_d/(k_d + k_e))``).
 ``general``
-    Anything else: :func:`isoslide.engine.building_kernel.run`, with the superstructure
+    Vertical ground motion (the normal forces vary: no reduction holds), and anything else: :func:`isoslide.engine.building_kernel.run`, with the superstructure
     integrated only when flexible (``Pi12 > 0``) and the back-reaction dropped
     when ``Pi8 = 0``.
 """
@@ -118,6 +118,8 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
     iso, contents = parts.isolator, parts.contents
     if scene.paper_model:
         return "paper", replace(scene, **paper_keys)
+    if scene.vertical:       # the reductions below hold for constant friction limits only
+        return "general", None
     if iso.kind == "fixed" and contents.floor == 0:
         return "fixed-base", replace(scene, **paper_keys)
     if parts.superstructure.flexible:
@@ -154,13 +156,16 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     The scene's parts (:func:`isoslide.model.parts.building_of`) assembled into the kernel's
     array.  ``pi8`` overrides the contents' mass (0: one-way coupling); ``coulomb`` skips the
     Stribeck terms (friction at the static level ``Pi2/Pi5`` at every speed).  A rigid
-    superstructure is one floor that moves with the slab.
+    superstructure is one floor that moves with the slab.  A vertical ground motion
+    (:attr:`isoslide.Scene.vertical`) appends its pulse's parameters, read by
+    :func:`isoslide.engine.building_kernel.normal`.
     """
     parts = building_of(scene)
     iso, sup, contents = parts.isolator, parts.superstructure, parts.contents
     flex = sup.flexible
     n = sup.storeys if flex else 1
-    P = np.zeros(bk.n_parameters(n))
+    zparams = scene.pulse_z.param_array if scene.vertical else np.zeros(0)
+    P = np.zeros(bk.n_parameters(n, zparams.size))
     P[bk.P_MB] = 1.0 - sup.mass
     P[bk.P_MST] = sup.mass
     P[bk.P_M] = contents.mass if pi8 is None else pi8
@@ -171,7 +176,7 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
         masses, Ks, Cs = sup.matrices()
         P[bk.P_ARRAYS:bk.P_ARRAYS + n] = masses
         P[bk.P_ARRAYS + n:bk.P_ARRAYS + n + n * n] = Ks.ravel()
-        P[bk.P_ARRAYS + n + n * n:] = Cs.ravel()
+        P[bk.P_ARRAYS + n + n * n:bk.P_ARRAYS + n + 2 * n * n] = Cs.ravel()
         P[bk.P_KS] = Ks[0, 0]
         P[bk.P_CS] = Cs[0, 0]
         P[bk.P_FLOOR] = contents.floor
@@ -185,6 +190,10 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     P[bk.P_ROOF] = 1.0 if contents.floor > 0 else 0.0
     P[bk.P_KIND] = float(KINDS[iso.kind])
     P[bk.P_FLEX] = 1.0 if flex else 0.0
+    if scene.vertical:
+        P[bk.P_ZAMP] = scene.pi17
+        P[bk.P_ZCODE] = scene.pulse_z.code
+        P[bk.n_parameters(n):] = zparams
     return P
 
 
@@ -277,9 +286,9 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
             im = 0.0
             fh = y[ny - 1] if kind == bk.KIND_BILINEAR else 0.0
             zp, zv = y[bk.Y_XS:bk.Y_XS + n], y[bk.Y_XS + n:bk.Y_XS + 2 * n]
-            c[0, k] = bk._floor_stuck(im, y[bk.Y_X], y[bk.Y_XD], zp, zv, fh, 0.0, P)
+            c[0, k] = bk._floor_stuck(im, y[bk.Y_X], y[bk.Y_XD], zp, zv, fh, 0.0, P[bk.P_KD], P)
             if len(demand_rows) > 1:
-                c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, zp, zv, 0.0, 0.0, P)
+                c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, zp, zv, 0.0, 0.0, P[bk.P_KD], P)
         # a relative margin for the round-off of the eigen-decomposition
         margin = 1.0 + 1e-12 + 1e-14 * np.linalg.cond(V)
         out.extend([W, (margin * (c @ V)).astype(np.complex128)])

@@ -80,15 +80,17 @@ Y_X, Y_XD, Y_XS = range(3)
 """Fixed state indices: slab displacement and velocity, the first floor's displacement."""
 
 (P_MB, P_MST, P_M, P_KD, P_CB, P_KS, P_CS, P_Q, P_KE, P_THR, P_PI2, P_PI6, P_PI7, P_COULOMB, P_ROOF,
- P_KIND, P_FLEX, P_N, P_FLOOR) = range(19)
-P_ARRAYS = 19
+ P_KIND, P_FLEX, P_N, P_FLOOR, P_ZAMP, P_ZCODE) = range(21)
+P_ARRAYS = 21
 """Start of the arrays in the model parameters: floor masses ``(n,)``, then ``Ks`` and ``Cs``
-``(n, n)`` row by row; ``P_N`` holds ``n``, ``P_FLOOR`` the contents' floor (0 the slab)."""
+``(n, n)`` row by row, then the vertical pulse's parameters; ``P_N`` holds ``n``, ``P_FLOOR`` the
+contents' floor (0 the slab), ``P_ZAMP`` the vertical amplitude ``Pi17`` (0: no vertical motion)
+and ``P_ZCODE`` the vertical pulse's shape code (:mod:`isoslide.pulses`)."""
 
 
-def n_parameters(n: int) -> int:
-    """Length of the model-parameter array of a building of ``n`` floors."""
-    return P_ARRAYS + n + 2 * n * n
+def n_parameters(n: int, n_z: int = 0) -> int:
+    """Length of the model-parameter array of a building of ``n`` floors (``n_z`` vertical pulse parameters)."""
+    return P_ARRAYS + n + 2 * n * n + n_z
 
 
 def state_size(n: int) -> int:
@@ -151,13 +153,42 @@ def _held(im, P):
 
 
 @njit(cache=True)
-def _hysteretic(im, y, P):
-    """Hysteretic isolator force of a moving slab (bilinear: the state; sliding: ``q im``)."""
+def normal(tau, P):
+    """Normal force over its static value, ``1 + Pi17 p_z(tau)``, and its tau-rate (1, 0 without vertical motion).
+
+    The whole building moves vertically with the ground, so the contents' and a sliding bearing's
+    normal forces carry the same factor; friction forces, stick limits and a friction pendulum's
+    restoring stiffness scale with it.
+    """
+    amp = P[P_ZAMP]
+    if amp == 0.0:
+        return 1.0, 0.0
+    n = int(P[P_N])
+    zp = P[P_ARRAYS + n + 2 * n * n:]
+    code = int(P[P_ZCODE])
+    return 1.0 + amp * accel_at(code, zp, tau), amp * jerk_at(code, zp, tau)
+
+
+@njit(cache=True)
+def _pendulum(P):
+    """1 for a sliding bearing (a friction pendulum's stiffness scales with its normal force), else 0."""
+    return 1.0 if P[P_KIND] == KIND_SLIDING else 0.0
+
+
+@njit(cache=True)
+def _stiffness(nz, P):
+    """Isolator stiffness under the normal-force factor ``nz`` (a friction pendulum's scales with it)."""
+    return P[P_KD] * nz if P[P_KIND] == KIND_SLIDING else P[P_KD]
+
+
+@njit(cache=True)
+def _hysteretic(im, nz, y, P):
+    """Hysteretic isolator force of a moving slab (bilinear: the state; sliding: ``q nz im``)."""
     kind = P[P_KIND]
     if kind == KIND_BILINEAR:
         return y[y.shape[0] - 1]
     if kind == KIND_SLIDING:
-        return P[P_Q] * im
+        return P[P_Q] * nz * im
     return 0.0
 
 
@@ -189,13 +220,13 @@ def _base_shear(zp, zv, P):
 
 
 @njit(cache=True)
-def _accels(bm, im, p, y, P, A):
+def _accels(bm, im, p, nz, y, P, A):
     """Accelerations of a mode: ``(Ab, A_F, u'', fh, R)``; the floors' into ``A``.
 
     ``Ab`` absolute slab acceleration, ``A[j]`` floor ``j + 1``'s absolute acceleration, ``A_F``
     the contents' floor's, ``u''`` the block's relative acceleration, ``fh`` the hysteretic isolator
     force (for a held slab, the force that holds it) and ``R`` the friction force of the block on
-    its floor.
+    its floor; ``nz`` is the normal-force factor (:func:`normal`).
     """
     n = int(P[P_N])
     ny = y.shape[0]
@@ -209,6 +240,7 @@ def _accels(bm, im, p, y, P, A):
     ph = 0.0
     if bm != 0.0:
         ph, _ = friction(y[ny - 2], P)
+        ph *= nz
     rs = m * bm * ph
     S = 0.0
     for j in range(n):
@@ -224,8 +256,8 @@ def _accels(bm, im, p, y, P, A):
         Ab = p
         fh = 0.0
     else:
-        fh = _hysteretic(im, y, P)
-        F = P[P_KD] * y[Y_X] + P[P_CB] * y[Y_XD] + fh
+        fh = _hysteretic(im, nz, y, P)
+        F = _stiffness(nz, P) * y[Y_X] + P[P_CB] * y[Y_XD] + fh
         if roof:
             Ab = (-F + S) / mb
         else:
@@ -236,7 +268,7 @@ def _accels(bm, im, p, y, P, A):
     AF = A[fl] if roof else Ab
     R = rs if bm != 0.0 else -m * AF
     if _held(im, P):
-        fh = -mb * p - P[P_KD] * y[Y_X] + S + (0.0 if roof else R)
+        fh = -mb * p - _stiffness(nz, P) * y[Y_X] + S + (0.0 if roof else R)
     udd = 0.0 if bm == 0.0 else -AF - bm * ph
     return Ab, AF, udd, fh, R
 
@@ -247,8 +279,9 @@ def deriv(bm, im, tau, y, P, code, params, out):
     n = int(P[P_N])
     ny = y.shape[0]
     p = accel_at(code, params, tau)
+    nz, _ = normal(tau, P)
     A = out[Y_XS + n:Y_XS + 2 * n]
-    Ab, AF, udd, fh, R = _accels(bm, im, p, y, P, A)
+    Ab, AF, udd, fh, R = _accels(bm, im, p, nz, y, P, A)
     if _held(im, P):
         out[Y_X] = 0.0
         out[Y_XD] = 0.0
@@ -264,11 +297,12 @@ def deriv(bm, im, tau, y, P, code, params, out):
 
 
 @njit(cache=True)
-def _floor_stuck(im, x, xd, zp, zv, fh, p, P):
-    """Floor acceleration ``A_F`` of a stuck block (units of a_p).
+def _floor_stuck(im, x, xd, zp, zv, fh, p, kd, P):
+    """Floor acceleration ``A_F`` of a stuck block (units of a_p), with the isolator stiffness ``kd``.
 
     Linear and homogeneous in ``(x, x', zp, zv, fh, p)`` (``zp``, ``zv`` the floors' displacements
-    and velocities relative to the slab): given their rates it returns the rate.
+    and velocities relative to the slab): given their rates it returns the rate (a stiffness that
+    varies with the normal force adds its rate's term to ``fh``).
     """
     m = P[P_M]
     if P[P_ROOF] != 0.0:
@@ -277,21 +311,21 @@ def _floor_stuck(im, x, xd, zp, zv, fh, p, P):
     if _held(im, P):
         return p
     S = _base_shear(zp, zv, P) if P[P_FLEX] != 0.0 else 0.0
-    return (-(P[P_KD] * x + P[P_CB] * xd + fh) + S) / (P[P_MB] + m)
+    return (-(kd * x + P[P_CB] * xd + fh) + S) / (P[P_MB] + m)
 
 
 @njit(cache=True)
-def _bearing_need(bm, x, zp, zv, p, rs, P):
+def _bearing_need(bm, x, zp, zv, p, rs, kd, P):
     """Force (units of M_b a_p) that holds a stuck sliding bearing's slab to the ground.
 
-    ``rs = m bm phi`` is the sliding block's friction force; linear and homogeneous in
-    ``(x, zp, zv, p, rs)``: given their rates it returns the rate.
+    ``rs = m bm phi`` is the sliding block's friction force, ``kd`` the pendulum's stiffness; linear
+    and homogeneous in ``(x, zp, zv, p, rs)``: given their rates it returns the rate.
     """
     S = _base_shear(zp, zv, P) if P[P_FLEX] != 0.0 else 0.0
     r = 0.0
     if P[P_ROOF] == 0.0:
         r = rs if bm != 0.0 else -P[P_M] * p
-    return -P[P_MB] * p - P[P_KD] * x + S + r
+    return -P[P_MB] * p - kd * x + S + r
 
 
 @njit(cache=True)
@@ -318,13 +352,17 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
         return sig * y[fhi] - P[P_Q], sig * P[P_KE] * y[Y_XD]
     p = accel_at(code, params, tau)
     pd = jerk_at(code, params, tau)
+    nz, dnz = normal(tau, P)
+    kd = _stiffness(nz, P)
+    dkd = P[P_KD] * dnz * _pendulum(P)
     zp = y[Y_XS:Y_XS + n]
     zv = y[Y_XS + n:Y_XS + 2 * n]
     za = work[Y_XS + n:Y_XS + 2 * n]
     if kind == EV_BLOCK or kind == EV_BPEAK:
-        fh = _hysteretic(im, y, P)
-        g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, P) - P[P_THR]
-        dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], zv, za, work[fhi], pd, P)
+        fh = _hysteretic(im, nz, y, P)
+        dfh = work[fhi] + dkd * y[Y_X] + P[P_Q] * dnz * im * _pendulum(P)
+        g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, kd, P) - P[P_THR] * nz
+        dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], zv, za, dfh, pd, kd, P) - P[P_THR] * dnz
         if kind == EV_BPEAK:
             return dg, math.nan
         return g, dg
@@ -333,10 +371,10 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     rsd = 0.0
     if bm != 0.0:
         ph, dph = friction(y[ud], P)
-        rs = P[P_M] * bm * ph
-        rsd = P[P_M] * dph * work[ud]
-    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, P) - P[P_Q]
-    dg = sig * _bearing_need(bm, 0.0, zv, za, pd, rsd, P)
+        rs = P[P_M] * bm * ph * nz
+        rsd = P[P_M] * (dph * work[ud] * nz + bm * ph * dnz)
+    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, kd, P) - P[P_Q] * nz
+    dg = sig * (_bearing_need(bm, 0.0, zv, za, pd, rsd, kd, P) - dkd * y[Y_X]) - P[P_Q] * dnz
     if kind == EV_IPEAK:
         return dg, math.nan
     return g, dg
@@ -536,21 +574,22 @@ def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, 
 
 
 @njit(cache=True)
-def _consistent(b, i, free_b, free_i, p, y, P, A):
+def _consistent(b, i, free_b, free_i, p, nz, y, P, A):
     """Whether the modes ``(b, i)`` are consistent at a state where the free interfaces are at rest.
 
-    ``A`` is scratch space for the floors' accelerations.
+    ``nz`` is the normal-force factor (:func:`normal`), ``A`` scratch space for the floors'
+    accelerations.
     """
-    Ab, AF, udd, fh, R = _accels(b, i, p, y, P, A)
+    Ab, AF, udd, fh, R = _accels(b, i, p, nz, y, P, A)
     if free_b:
         if b == 0.0:
-            if abs(AF) > P[P_THR]:
+            if abs(AF) > P[P_THR] * nz:
                 return False
         elif not b * udd > 0.0:
             return False
     if free_i:
         if i == 0.0:
-            if abs(fh) > P[P_Q]:
+            if abs(fh) > P[P_Q] * nz:
                 return False
         elif not i * (Ab - p) > 0.0:
             return False
@@ -566,18 +605,19 @@ def _select_modes(bm, im, free_b, free_i, tau, y, P, code, params):
     the direction its stuck demand pushes it.
     """
     p = accel_at(code, params, tau)
+    nz, _ = normal(tau, P)
     A = np.empty(int(P[P_N]))
     trial = candidates(np.array([free_b, free_i]), np.array([bm, im]))
     for r in range(trial.shape[0]):
-        if _consistent(trial[r, 0], trial[r, 1], free_b, free_i, p, y, P, A):
+        if _consistent(trial[r, 0], trial[r, 1], free_b, free_i, p, nz, y, P, A):
             return trial[r, 0], trial[r, 1]
     b = bm
     i = im
     if free_b:
-        AF = _accels(0.0, im if not free_i else 0.0, p, y, P, A)[1]
+        AF = _accels(0.0, im if not free_i else 0.0, p, nz, y, P, A)[1]
         b = -1.0 if AF > 0.0 else 1.0
     if free_i:
-        fh = _accels(bm if not free_b else 0.0, 0.0, p, y, P, A)[3]
+        fh = _accels(bm if not free_b else 0.0, 0.0, p, nz, y, P, A)[3]
         i = 1.0 if fh > 0.0 else -1.0
     return b, i
 
@@ -706,7 +746,7 @@ def _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params):
         for i in range(ny - 1):
             hist[nh, H_X + i] = y[i]
         A = np.empty(int(P[P_N]))
-        hist[nh, ny] = _accels(bm, im, accel_at(code, params, tau), y, P, A)[3]
+        hist[nh, ny] = _accels(bm, im, accel_at(code, params, tau), normal(tau, P)[0], y, P, A)[3]
         hist[nh, ny + 1] = bm
         hist[nh, ny + 2] = im
         return nh + 1
@@ -787,9 +827,10 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         # --- mode checks at the accepted point (round-off past a limit) ---------
         p_now = accel_at(code, params, tau)
         if bm == 0.0 or (kind == KIND_SLIDING and im == 0.0):
-            Ab, AF, udd, fh, R = _accels(bm, im, p_now, y, P, A)
-            free_b = bm == 0.0 and abs(AF) > thr
-            free_i = kind == KIND_SLIDING and im == 0.0 and abs(fh) > q
+            nz_now, _ = normal(tau, P)
+            Ab, AF, udd, fh, R = _accels(bm, im, p_now, nz_now, y, P, A)
+            free_b = bm == 0.0 and abs(AF) > thr * nz_now
+            free_i = kind == KIND_SLIDING and im == 0.0 and abs(fh) > q * nz_now
             if free_b or free_i:
                 nb_, ni_ = _select_modes(bm, im, free_b, free_i, tau, y, P, code, params)
                 if nb_ != bm:
@@ -942,7 +983,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                         events += 1
                 else:
                     # a yielding bilinear bearing unloads unless x' only touches zero
-                    Ab, AF, udd, fh, R = _accels(bm, im, accel_at(code, params, tau), y, P, A)
+                    Ab, AF, udd, fh, R = _accels(bm, im, accel_at(code, params, tau), normal(tau, P)[0], y, P, A)
                     if im * (Ab - accel_at(code, params, tau)) > 0.0:
                         i_just = True
                     else:

@@ -161,7 +161,8 @@ def _building_floor(h: History, scene: Scene, facets: Facets, ground: np.ndarray
     iso = h.iso_phase if h.iso_phase is not None else np.zeros(n, dtype=np.int8)
     for i in range(n):
         y[:] = (h.x[i], h.xd[i], *xs[i], *xsd[i], h.u[i], h.ud[i], fh[i])
-        acc[i] = bk._accels(float(h.phase[i]), float(iso[i]), ground[i], y, P, floors)[1]
+        acc[i] = bk._accels(float(h.phase[i]), float(iso[i]), ground[i], bk.normal(h.tau[i], P)[0], y, P,
+                            floors)[1]
     k = scene.floor_index if scene.flexible else 0
     if k == 0:
         return acc, h.x, h.xd
