@@ -28,7 +28,7 @@ import xarray as xr
 
 from . import claims
 from ..datasets import global_attrs, open_dataset, pi_attrs
-from ..groups import BUILDING_NAMES, INPUT_NAMES, INPUTS
+from ..groups import BUILDING_NAMES, EXCITATION_NAMES, INPUT_NAMES, INPUTS
 from ..peers.si import simulate_si
 from ..scene import FLOORS, G_STANDARD
 
@@ -96,10 +96,11 @@ def _study_seed(seed: int, study: str) -> int:
 
 
 def _point_pis(ds: xr.Dataset, index: tuple) -> dict:
-    """Every input group at one grid point; a building group the dataset lacks is 0 (the paper's model)."""
+    """Every input group at one grid point; a building or vertical group the dataset lacks is 0 (the paper's model)."""
     sel = {d: i for d, i in zip(ds["pi1"].dims, index, strict=True)}
     pt = ds.isel(sel)
-    return {g: float(pt[g]) if g in pt.variables or g not in BUILDING_NAMES else 0.0 for g in GROUPS}
+    return {g: float(pt[g]) if g in pt.variables or g not in BUILDING_NAMES + EXCITATION_NAMES else 0.0
+            for g in GROUPS}
 
 
 def study_floor(ds: xr.Dataset) -> str:
