@@ -258,3 +258,15 @@ def test_console_script_solves_a_record_and_reports_bad_input(tmp_path):
     assert "fitted pulse: ricker" in r.stdout and read_history(h).attrs["pulse"] == "Kobe_1995_TAK-090"
     bad = subprocess.run([str(script), "fit", "nope"], capture_output=True, text=True)
     assert bad.returncode == 2 and bad.stderr.startswith("isoslide: error: record = 'nope'")
+
+
+def test_solve_with_vertical_motion_matches_the_library(capsys):
+    """--pi17 with --pulse-z is the scene with vertical ground motion; lift-off exits 2 naming pi17."""
+    assert main(["solve", "--pi2", "0.2", "--pi3", "1", "--pi4", "0.1", "--pi17", "0.3", "--pulse-z", "ricker",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    sol = isoslide.solve(isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi17=0.3, pulse_z="ricker"))
+    assert out["pi1"] == sol.pi1 and out["model"] == sol.model == "coulomb+vertical"
+    assert out["scene"]["pi17"] == 0.3 and out["scene"]["pulse_z"] == "ricker"
+    assert main(["solve", "--pi2", "0.2", "--pi3", "1", "--pi17", "3", "--pulse-z", "ricker"]) == 2
+    assert "pi17 = 3.0 lifts the contents off" in capsys.readouterr().err

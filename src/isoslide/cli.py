@@ -55,6 +55,8 @@ def _floor(text: str):
 
 
 def _common(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--pulse-z", default=None, choices=PULSE_NAMES,
+                   help="shape of the vertical ground acceleration (with --pi17 or --a-pz; none by default)")
     p.add_argument("--pulse", default=None, choices=PULSE_NAMES,
                    help="pulse shape (default ricker; not with --record)")
     p.add_argument("--record", metavar="PATH|SAMPLE",
@@ -99,7 +101,8 @@ def _parser() -> argparse.ArgumentParser:
                                 ("T-s", "s, superstructure period; 0 = rigid", 0.0),
                                 ("xi-s", "-, superstructure damping ratio", 0.0),
                                 ("R", "m, friction pendulum radius: sets T_b and, with --mu-b, Q_d", None),
-                                ("mu-b", "-, friction pendulum's friction coefficient", None)]:
+                                ("mu-b", "-, friction pendulum's friction coefficient", None),
+                                ("a-pz", "m/s^2, vertical ground acceleration amplitude (with --pulse-z)", 0.0)]:
         required = default is None and name not in ("a-p", "T-p", "T-b", "R", "mu-b")
         q.add_argument(f"--{name}", type=float, required=required, default=default,
                        help=f"{name.replace('-', '_')} [{unit}]")
@@ -153,7 +156,7 @@ def _scene(args):
     info = None if rec is None else {"record": _record_dict(rec)}
     if args.command == "solve":
         scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=excitation, floor=args.floor,
-                      storeys=args.storeys)
+                      storeys=args.storeys, pulse_z=args.pulse_z)
         if rec is not None:
             info["fitted_pulse"] = _fit_dict(rec.fit())
         return scene, info
@@ -180,7 +183,8 @@ def _scene(args):
         raise ValueError("the following arguments are required: --T-b (or --R and --mu-b for a friction pendulum)")
     scene = Scene.from_physical(a_p, T_p, args.M_b, T_b, args.xi_b, args.m_ec, args.mu_s, args.mu_k,
                                 args.beta, args.gamma, args.g, excitation, Q_d=Q_d, D_y=D_y, m_st=args.m_st,
-                                T_s=args.T_s, xi_s=args.xi_s, floor=args.floor, storeys=args.storeys)
+                                T_s=args.T_s, xi_s=args.xi_s, floor=args.floor, storeys=args.storeys,
+                                a_pz=args.a_pz, pulse_z=args.pulse_z)
     return scene, info
 
 
@@ -198,7 +202,8 @@ def _solve(args) -> int:
     sol = solve(scene, rtol=args.rtol, history=want_history)
     out = {"pi1": sol.pi1, "pi1_residual": sol.pi1_residual, "tau_peak": sol.tau_peak,
            "settled": sol.settled, "model": sol.model, "n_steps": sol.n_steps, "n_events": sol.n_events,
-           "scene": {**scene.pis(), "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name}}
+           "scene": {**scene.pis(), "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name,
+                     "pulse_z": None if scene.pulse_z is None else scene.pulse_z.name}}
     if scene.scale is not None:
         out.update({"u_max_m": sol.u_max, "u_residual_m": sol.u_residual, "t_peak_s": sol.t_peak})
         out["scene"].update({"a_p": scene.scale.a_p, "T_p": scene.scale.T_p} if info else {})
