@@ -281,6 +281,8 @@ BUILDING_POINTS = [dict(pi2=pi2, pi3=pi3, pi4=0.05, pi8=0.01) for pi2 in (0.05, 
 """Pi points of the buildings section: the paper's model at each, and every building beside it."""
 STOREYS = (2, 5, 8)
 """Storey counts of the uniform N-storey buildings timed beside the others."""
+STOREYS_NAME = "{} storeys, contents on the roof"
+"""Row name of the uniform building of ``n`` storeys (``STOREYS_NAME.format(n)``)."""
 BUILDINGS = {
     "paper model (linear isolator, rigid)": {},
     "friction pendulum (pi9 = 0.05)": dict(pi9=0.05),
@@ -288,7 +290,7 @@ BUILDINGS = {
     "flexible superstructure, contents on the base": dict(pi11=0.6, pi12=0.2, pi13=0.02),
     "flexible superstructure, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
     "friction pendulum, flexible, roof": dict(pi9=0.05, pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
-    **{f"{n} storeys, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, storeys=n, floor="roof")
+    **{STOREYS_NAME.format(n): dict(pi11=0.6, pi12=0.2, pi13=0.02, storeys=n, floor="roof")
        for n in STOREYS},
 }
 """Buildings timed side by side on :data:`BUILDING_POINTS` (keyword arguments of :class:`isoslide.Scene`)."""
@@ -337,11 +339,11 @@ def report_buildings(res: dict, file=sys.stdout) -> dict:
                       "err_max": float(err.max())}
         p(f"{name:48s} {1e6 * np.median(t):9.1f} {ratio:8.2f} {np.median(err):9.1e} {err.max():9.1e}  "
           f"{', '.join(sorted(set(r['models'])))}")
-    multi = {f"{n} storeys, contents on the roof" for n in STOREYS}
+    multi = {STOREYS_NAME.format(n) for n in STOREYS}
     worst = max(v["ratio"] for k, v in summ.items() if k not in multi)
     p(f"aim: a general building of one storey at most {TARGET_BUILDING_RATIO:g}x the paper model's cost per "
       f"scene -> {'MET' if worst <= TARGET_BUILDING_RATIO else 'NOT MET'} (largest median ratio {worst:.2f})")
-    five = summ["5 storeys, contents on the roof"]["ratio"]
+    five = summ[STOREYS_NAME.format(5)]["ratio"]
     p(f"aim: five storeys at most {TARGET_STOREYS_RATIO:g}x -> "
       f"{'MET' if five <= TARGET_STOREYS_RATIO else 'NOT MET'} (median ratio {five:.2f})")
     return summ

@@ -358,7 +358,7 @@ def _check_contact(pi17: float, pulse_z: Pulse) -> None:
     raise ValueError(f"pi17 = {pi17!r} lifts the contents off under pulse_z {pulse_z.name!r}: the normal force "
                      f"over its static value, 1 + pi17 p_z(tau), reaches 0 at tau = {hi:.6g} (its least value "
                      f"{n[i]:.6g} at tau = {taus[i]:.6g}); allowed: 1 + pi17 p_z(tau) > 0 at every tau, "
-                     f"pi17 < {1.0 / -float(np.min(pulse_z.accel(taus))):.6g} for this pulse")
+                     f"pi17 < {pi17 / (1.0 - n[i]):.6g} for this pulse")
 
 
 def _check_storeys(storeys) -> int:

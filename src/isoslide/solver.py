@@ -61,6 +61,7 @@ import numpy as np
 
 from .engine import building, building_kernel, kernel, piecewise
 from .store.history import History
+from .model.parts import building_of
 from .models import BEARING_REDUCTIONS, Facets
 from .peers import SCENE_SOLVERS, PeerResult
 from .pulses import SAMPLED, sampled
@@ -586,15 +587,17 @@ def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "
                  solver: str = "exact") -> Facets:
     """The facets of a solve of ``scene`` (:class:`isoslide.models.Facets`) that integrated its model.
 
-    The isolator, superstructure and floor come from the scene (a base with ``Pi3 = 0`` is
-    ``fixed-base``, a rigid superstructure carries the contents on the slab); ``friction``,
-    ``oneway``, ``propagation`` and ``solver`` say how it was solved.
+    The isolator, superstructure and floor are the scene's parts
+    (:func:`isoslide.model.parts.building_of`: a base with ``Pi3 = 0`` is ``fixed-base``, a rigid
+    superstructure carries the contents on the slab); ``friction``, ``oneway``, ``propagation`` and
+    ``solver`` say how it was solved.
     """
-    isolator = "fixed-base" if scene.pi3 == 0.0 else {"sliding": "sliding-bearing"}.get(scene.isolator,
-                                                                                           scene.isolator)
-    k = scene.floor_index if scene.flexible else 0
-    floor = "base" if k == 0 else ("roof" if k == scene.storeys else "intermediate")
-    return Facets(isolator=isolator, superstructure="flexible" if scene.flexible else "rigid", floor=floor,
+    parts = building_of(scene)
+    kind = parts.isolator.kind
+    k, top = parts.contents.floor, parts.superstructure.storeys
+    return Facets(isolator={"fixed": "fixed-base", "sliding": "sliding-bearing"}.get(kind, kind),
+                  superstructure="flexible" if parts.superstructure.flexible else "rigid",
+                  floor="base" if k == 0 else ("roof" if k == top else "intermediate"),
                   friction=friction, coupling="one-way" if oneway else "two-way", propagation=propagation,
                   solver=solver, vertical="normal-force" if scene.vertical else "none")
 

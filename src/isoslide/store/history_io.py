@@ -51,6 +51,7 @@ from ..engine import building
 from ..engine import building_kernel as bk
 from .history import History
 from ..model.friction import stribeck
+from ..model.parts import building_of
 from ..models import Facets
 from ..scene import Scene
 
@@ -163,7 +164,7 @@ def _building_floor(h: History, scene: Scene, facets: Facets, ground: np.ndarray
         y[:] = (h.x[i], h.xd[i], *xs[i], *xsd[i], h.u[i], h.ud[i], fh[i])
         acc[i] = bk._accels(float(h.phase[i]), float(iso[i]), ground[i], bk.normal(h.tau[i], P)[0], y, P,
                             floors)[1]
-    k = scene.floor_index if scene.flexible else 0
+    k = building_of(scene).contents.floor
     if k == 0:
         return acc, h.x, h.xd
     return acc, h.x + xs[:, k - 1], h.xd + xsd[:, k - 1]
