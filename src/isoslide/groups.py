@@ -5,7 +5,7 @@ amplitude, m/s^2), ``T_p`` (pulse period, s) and ``M_b`` (isolated mass, kg)
 turns the eleven physical parameters of the paper's model into one result
 group and seven input groups, the five parameters of the general building
 (hysteretic isolator, flexible superstructure; see :mod:`isoslide.engine.building`)
-into five more, and the vertical ground motion into one:
+into five more, the second horizontal ground component into three and the vertical one into one:
 
 =====  ===================  ==========================================  ================
 group  definition           meaning                                     valid range
@@ -23,6 +23,9 @@ Pi10   D_y / (a_p T_p^2)    isolator yield displacement; 0 = sliding    0 <= Pi1
 Pi11   m_st / M_b           superstructure mass fraction                0 <= Pi11 < 1
 Pi12   T_s / T_p            superstructure period; 0 = rigid            0 <= Pi12 <= 1e4
 Pi13   xi_s                 superstructure damping ratio                0 <= Pi13 <= 1e3
+Pi14   a_py / a_p           transverse-to-main pulse amplitude ratio    0 <= Pi14 <= 1e3
+Pi15   T_py / T_p           transverse-to-main pulse period ratio       0 < Pi15 <= 1e4
+Pi16   t_y / T_p            transverse pulse time shift                 -1e4 <= Pi16 <= 1e4
 Pi17   a_pz / g             vertical ground acceleration over gravity   0 <= Pi17 <= 1e3
 =====  ===================  ==========================================  ================
 
@@ -30,7 +33,8 @@ Pi17   a_pz / g             vertical ground acceleration over gravity   0 <= Pi1
 the contents excluded) and ``T_b = 2 pi sqrt(M_b / k_d)`` the isolation
 period with the isolator's post-yield (or linear) stiffness ``k_d``.  Pi11 is
 read only with a flexible superstructure (``Pi12 > 0``), where ``0 < Pi11 < 1``
-(checked by :class:`isoslide.Scene`).  Pi17 scales the vertical ground acceleration
+(checked by :class:`isoslide.Scene`).  Pi14 to Pi16 shape the second horizontal component,
+``a_gy = Pi14 a_p p_y((tau - Pi16)/Pi15)`` of a scene's ``pulse_y`` (read only with one).  Pi17 scales the vertical ground acceleration
 ``a_gz = Pi17 g p_z(t/T_p)`` of a scene's ``pulse_z``; it acts through the normal forces.
 
 Scene validation, dataset attributes, figure labels, the similarity check's
@@ -174,6 +178,17 @@ INPUTS = (
                   "0 = rigid superstructure (the paper's Fig. 1-b)"),
     Group("pi13", "xi_s", "superstructure damping ratio", r"\Pi_{13}", r"\xi_s", "Π₁₃",
           hi=1e3, default=0.0, comment="xi_s = c_s / (2 sqrt(k_s m_st))"),
+    Group("pi14", "a_py / a_p", "transverse-to-main pulse amplitude ratio", r"\Pi_{14}", r"a_{py}/a_p", "Π₁₄",
+          hi=1e3, default=1.0,
+          comment="amplitude of the second horizontal ground acceleration a_gy = Pi14 a_p p_y((t - t_y)/T_py) "
+                  "over the main one's; read only with a pulse_y (no pulse_y: no y motion)"),
+    Group("pi15", "T_py / T_p", "transverse-to-main pulse period ratio", r"\Pi_{15}", r"T_{py}/T_p", "Π₁₅",
+          lo_in=False, hi=1e4, default=1.0,
+          comment="period of the second horizontal pulse over the main one's; read only with a pulse_y"),
+    Group("pi16", "t_y / T_p", "transverse pulse time shift", r"\Pi_{16}", r"t_y/T_p", "Π₁₆",
+          lo=-1e4, hi=1e4, default=0.0,
+          comment="time by which the second horizontal pulse lags the main one, over T_p; read only with "
+                  "a pulse_y"),
     Group("pi17", "a_pz / g", "vertical ground acceleration over gravity", r"\Pi_{17}", r"a_{pz}/g", "Π₁₇",
           hi=1e3, default=0.0,
           comment="amplitude of the vertical ground acceleration a_gz = Pi17 g p_z(t/T_p) over g; it acts "
@@ -195,7 +210,8 @@ BUILDING_NAMES = INPUT_NAMES[7:12]
 """The general building's groups ``("pi9", ..., "pi13")``: zero in the paper's model."""
 
 EXCITATION_NAMES = INPUT_NAMES[12:]
-"""The groups of the excitation beyond the horizontal pulse (``("pi17",)``): zero in the paper's model."""
+"""The groups of the excitation beyond the main horizontal pulse (``("pi14", ..., "pi17")``): at their
+defaults in the paper's model (without a ``pulse_y`` and a ``pulse_z`` they have no effect)."""
 
 
 def group(name: str) -> Group:

@@ -48,6 +48,9 @@ FLOORS = ("base", "roof")
 """Named floors the contents can sit on: the isolated slab (floor ``0``), or the superstructure's top
 floor (floor ``storeys``); the floors between are given by their number."""
 
+ANGLE_LIMIT = 8.0 * math.pi
+"""Largest ``|angle|`` (radians) a scene accepts."""
+
 MAX_STOREYS = 64
 """Most storeys a superstructure may have."""
 
@@ -135,6 +138,25 @@ class Scene:
         Non-uniform building: the storeys' relative stiffnesses, bottom to top (``storeys``
         positive values, normalised to 1 for the bottom storey; their scale is set by ``T_s``);
         ``None`` is uniform.
+    pulse_y : str or Pulse or record, optional
+        Shape of the second horizontal ground component (``None``: none).  In the scene's
+        excitation axes ``a_gx(tau) = a_p p(tau)`` and ``a_gy(tau) = Pi14 a_p p_y((tau - Pi16) /
+        Pi15)``.  With a record as ``pulse`` and another as ``pulse_y`` (a recorded pair) both
+        run as recorded on the record's time axis with one ``a_p``, ``T_p`` (the ``pulse``
+        record's fitted pulse's): keep ``Pi14 = Pi15 = 1``, ``Pi16 = 0``.
+    pi14, pi15, pi16 : float, default 1, 1, 0
+        ``a_py / a_p``, ``T_py / T_p`` and ``t_y / T_p`` of the second horizontal component (see
+        :mod:`isoslide.groups`); read only with a ``pulse_y``.
+    pi17 : float, default 0
+        ``a_pz / g``: vertical ground acceleration ``a_gz = Pi17 g p_z(tau)``; read only with a
+        ``pulse_z``.
+    pulse_z : str or Pulse or record, optional
+        Shape of the vertical ground acceleration, on the main pulse's time axis.
+    angle : float, default 0
+        Angle (radians, counter-clockwise) from the building's x axis to the excitation's x axis:
+        the horizontal ground acceleration in the building's axes is the excitation's rotated by
+        ``angle`` (``|angle| <= 8 pi``).  The building and the contents are isotropic in the plane,
+        so ``angle`` only turns the answer's direction (:attr:`Solution.peak_angle`).
     scale : PhysicalScale or None
         Set by :meth:`from_physical`, so results can be given in metres.
 
@@ -159,8 +181,13 @@ class Scene:
     storeys: int = 1
     floor_masses: tuple | None = None
     storey_stiffnesses: tuple | None = None
+    pulse_y: Pulse | str | None = None
+    pi14: float = _DEFAULTS["pi14"]
+    pi15: float = _DEFAULTS["pi15"]
+    pi16: float = _DEFAULTS["pi16"]
     pi17: float = _DEFAULTS["pi17"]
     pulse_z: Pulse | str | None = None
+    angle: float = 0.0
     scale: PhysicalScale | None = field(default=None, compare=False)
 
     def __post_init__(self):
@@ -179,7 +206,10 @@ class Scene:
         if self.storey_stiffnesses is not None:
             k0 = self.storey_stiffnesses[0]
             object.__setattr__(self, "storey_stiffnesses", tuple(k / k0 for k in self.storey_stiffnesses))
-        object.__setattr__(self, "pulse", _resolve_pulse(self.pulse))
+        object.__setattr__(self, "angle", check_range("angle", self.angle, -ANGLE_LIMIT, ANGLE_LIMIT))
+        x, y = _resolve_pair(self.pulse, self.pulse_y)
+        object.__setattr__(self, "pulse", x)
+        object.__setattr__(self, "pulse_y", y)
         if self.pulse_z is not None:
             object.__setattr__(self, "pulse_z", _resolve_pulse(self.pulse_z))
         elif self.pi17 > 0.0:
@@ -192,7 +222,7 @@ class Scene:
     def from_physical(cls, a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0,
                       g=G_STANDARD, pulse="ricker", Q_d=0.0, D_y=0.0, m_st=0.0, T_s=0.0, xi_s=0.0,
                       floor="base", storeys=1, floor_masses=None, storey_stiffnesses=None, a_pz=0.0,
-                      pulse_z=None) -> "Scene":
+                      pulse_z=None, pulse_y=None, a_py=None, T_py=None, t_y=0.0, angle=0.0) -> "Scene":
         """Build a scene from physical parameters in SI units.
 
         Parameters
@@ -246,6 +276,16 @@ class Scene:
         pulse_z : str or Pulse or record, optional
             Shape of the vertical ground acceleration on the horizontal pulse's time axis (a record
             runs as recorded, scaled by ``a_pz``).
+        pulse_y : str or Pulse or record, optional
+            Shape of the second horizontal ground component (a record runs as recorded, scaled by
+            ``a_p`` and ``T_p`` like the main one).
+        a_py, T_py : float, optional
+            Amplitude (m/s^2, >= 0) and period (s, > 0) of the second horizontal component;
+            default ``a_p`` and ``T_p``.
+        t_y : float
+            Time (s) by which the second horizontal component lags the main one.
+        angle : float
+            Angle (radians) from the building's x axis to the excitation's (see :class:`Scene`).
         """
         v = {"a_p": a_p, "T_p": T_p, "M_b": M_b, "T_b": T_b, "xi_b": xi_b, "m_ec": m_ec, "mu_s": mu_s,
              "mu_k": mu_k, "beta": beta, "gamma": gamma, "g": g, "Q_d": Q_d, "D_y": D_y, "T_s": T_s,
@@ -267,13 +307,18 @@ class Scene:
             storey_stiffnesses = _check_shape("storey_stiffnesses", storey_stiffnesses, storeys)
             m_st, T_s = _derived_superstructure(m_st, T_s, floor_masses, storey_stiffnesses)
         m_st = check_range("m_st", m_st, 0.0, M_b, T_s == 0.0, False)
+        a_py = a_p if a_py is None else check_range("a_py", a_py, 0.0, math.inf, True, False)
+        T_py = T_p if T_py is None else check_range("T_py", T_py, 0.0, math.inf, False, False)
+        t_y = check_range("t_y", t_y, -math.inf, math.inf, False, False)
         return cls(
             pi2=mu_k * g / a_p, pi3=T_b / T_p, pi4=xi_b, pi5=mu_k / mu_s,
             pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b,
             pulse=_resolve_pulse(pulse, a_p=a_p, T_p=T_p),
             pi9=Q_d / (M_b * a_p), pi10=D_y / (a_p * T_p**2), pi11=m_st / M_b, pi12=T_s / T_p,
             pi13=xi_s, floor=floor, storeys=storeys, floor_masses=floor_masses,
-            storey_stiffnesses=storey_stiffnesses, pi17=a_pz / g,
+            storey_stiffnesses=storey_stiffnesses,
+            pulse_y=None if pulse_y is None else _resolve_pulse(pulse_y, a_p=a_p, T_p=T_p),
+            pi14=a_py / a_p, pi15=T_py / T_p, pi16=t_y / T_p, angle=angle, pi17=a_pz / g,
             pulse_z=None if pulse_z is None else _resolve_pulse(pulse_z, a_p=a_pz if a_pz > 0.0 else None, T_p=T_p),
             scale=PhysicalScale(a_p, T_p, M_b, g),
         )
@@ -328,10 +373,58 @@ class Scene:
     def paper_model(self) -> bool:
         """True when the scene is the paper's model (Fig. 1-b).
 
-        A linear isolator (``Pi9 = 0``), a rigid superstructure (``Pi12 = 0``) and no vertical
-        ground motion; the contents' floor then makes no difference.
+        A linear isolator (``Pi9 = 0``), a rigid superstructure (``Pi12 = 0``), no vertical ground
+        motion and the main pulse alone along the building's x axis (:attr:`in_line`); the
+        contents' floor then makes no difference.
         """
-        return self.pi9 == 0.0 and self.pi12 == 0.0 and not self.vertical
+        return self.pi9 == 0.0 and self.pi12 == 0.0 and not self.vertical and self.in_line
+
+    @property
+    def in_line(self) -> bool:
+        """True when the excitation is the main pulse along the building's x axis (the 1-D model as is)."""
+        return not self.bidirectional and self.angle == 0.0
+
+    @property
+    def bidirectional(self) -> bool:
+        """True when the ground moves in both horizontal directions (a ``pulse_y`` with ``Pi14 > 0``)."""
+        return self.pulse_y is not None and self.pi14 > 0.0
+
+    @property
+    def direction(self) -> float | None:
+        """Direction (radians, building axes) of a horizontal excitation along one line, else ``None``.
+
+        One line: no second component, or a second one proportional to the first (the same shape,
+        ``Pi15 = 1``, ``Pi16 = 0``: the ground moves along ``atan2(Pi14, 1)`` in the excitation's
+        axes).  Such a scene is the 1-D model along that line (:attr:`planar` is False).
+        """
+        if not self.bidirectional:
+            return self.angle
+        if self.pulse_y == self.pulse and self.pi15 == 1.0 and self.pi16 == 0.0:
+            return self.angle + math.atan2(self.pi14, 1.0)
+        return None
+
+    @property
+    def planar(self) -> bool:
+        """True when the horizontal ground motion is not along one line: the contents slide in the plane."""
+        return self.direction is None
+
+    @property
+    def line_amplitude(self) -> float:
+        """Peak ground acceleration along :attr:`direction` over ``a_p``: ``sqrt(1 + Pi14^2)`` or 1."""
+        return math.hypot(1.0, self.pi14) if self.bidirectional and not self.planar else 1.0
+
+    def ground(self, tau) -> tuple:
+        """Horizontal ground acceleration ``(a_gx, a_gy) / a_p`` in the building's axes at ``tau``.
+
+        The excitation ``(p(tau), Pi14 p_y((tau - Pi16) / Pi15))`` (second term 0 without a
+        ``pulse_y``) rotated by :attr:`angle`; vectorised numpy.
+        """
+        tau = np.asarray(tau, dtype=float)
+        ax = self.pulse.accel(tau)
+        ay = (self.pi14 * self.pulse_y.accel((tau - self.pi16) / self.pi15) if self.pulse_y is not None
+              else np.zeros_like(ax))
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        return c * ax - s * ay, s * ax + c * ay
 
     def pis(self) -> dict:
         """The input groups as a dict ``{"pi2": ..., ..., "pi13": ...}``."""
@@ -359,6 +452,22 @@ def _check_contact(pi17: float, pulse_z: Pulse) -> None:
                      f"over its static value, 1 + pi17 p_z(tau), reaches 0 at tau = {hi:.6g} (its least value "
                      f"{n[i]:.6g} at tau = {taus[i]:.6g}); allowed: 1 + pi17 p_z(tau) > 0 at every tau, "
                      f"pi17 < {pi17 / (1.0 - n[i]):.6g} for this pulse")
+
+
+def _resolve_pair(pulse, pulse_y) -> tuple:
+    """The main and the second horizontal pulses; a recorded pair shares the main record's scales.
+
+    A record as ``pulse_y`` next to a record as ``pulse`` runs on the main record's fitted
+    ``a_p``, ``T_p`` (both as recorded, one time axis); otherwise each is resolved on its own.
+    """
+    if pulse_y is None:
+        return _resolve_pulse(pulse), None
+    fit = getattr(pulse, "fit", None)
+    if callable(getattr(pulse, "as_pulse", None)) and callable(getattr(pulse_y, "as_pulse", None)) \
+            and callable(fit):
+        f = fit()
+        return _resolve_pulse(pulse, f.a_p, f.T_p), _resolve_pulse(pulse_y, f.a_p, f.T_p)
+    return _resolve_pulse(pulse), _resolve_pulse(pulse_y)
 
 
 def _check_storeys(storeys) -> int:
