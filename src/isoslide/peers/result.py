@@ -43,6 +43,9 @@ class PeerResult:
     history : History or None
         Time history when requested, with the solver's fields
         (``tau, x, xd, u, ud, phase``, dimensionless).
+    peak_angle : float
+        Direction of the sliding displacement at its peak, ``atan2(u_y, u_x)`` in the building's
+        axes (radians; nan when the contents never slid, or for a peer that does not report it).
     """
 
     method: str
@@ -58,6 +61,7 @@ class PeerResult:
     stiffness: float = math.nan
     integrator: str = ""
     history: History | None = field(default=None, repr=False)
+    peak_angle: float = math.nan
 
     @property
     def work(self) -> int:
