@@ -24,6 +24,10 @@ scene, as parts joined by ``+``:
     ``coulomb+piecewise``, ``fixed-base+no-slide+piecewise``.
 ``regularized``, ``reference``
     A peer solver ran instead (``solve(..., method=...)``).
+``planar``
+    Appended when the contents slid in the plane under two horizontal ground components that are
+    not along one line (:mod:`isoslide.engine.planar_kernel`), e.g. ``fixed-base+coulomb+planar``;
+    an excitation along one line runs the 1-D model along it.
 
 The general building (:mod:`isoslide.engine.building`) adds, in front of the friction part:
 
@@ -68,6 +72,7 @@ FACETS = {
     "propagation": ("integrated", "piecewise", "none"),
     "solver": ("exact",) + PEER_LABELS,
     "vertical": ("none", "normal-force"),
+    "contact": ("line", "plane"),
 }
 """The independent properties of the model that ran, and the values each can take.
 
@@ -81,7 +86,8 @@ the contact law integrated (``coulomb`` when friction does not depend on speed);
 slips, a bilinear bearing that never yields, or a floor demand below the stick limit:
 ``demand-bound``, answered ``Pi1 = 0`` without integrating); ``propagation``: integrated, the
 exact piecewise propagation of a sampled record, or none; ``solver``: the exact solver or a peer;
-``vertical``: vertical ground motion acting through the normal forces, or none.
+``vertical``: vertical ground motion acting through the normal forces, or none; ``contact``: the
+contents slide on a line (the 1-D model, along the excitation's direction) or in the plane.
 The position of a value is its code in the dataset flag variable ``model_<facet>``; values are
 only ever appended."""
 
@@ -225,6 +231,11 @@ VERTICAL_LABELS = tuple(f"{n}+vertical" for n in _exact_labels() + _building_lab
                         if "static-kinetic" not in n)
 """Labels of the general building under vertical ground motion (every reduction is off there)."""
 MODEL_LABELS = MODEL_LABELS + VERTICAL_LABELS
+PLANAR_LABELS = tuple(f"{n}+planar{v}" for v in ("", "+vertical")
+                      for n in _exact_labels() + _building_labels(("base", "roof", "intermediate"))
+                      if "static-kinetic" not in n and "piecewise" not in n)
+"""Labels of planar sliding (two horizontal ground components), with and without vertical motion."""
+MODEL_LABELS = MODEL_LABELS + PLANAR_LABELS
 """Every label :func:`isoslide.solve` can produce."""
 
 
@@ -245,6 +256,7 @@ class Facets:
     propagation: str = "integrated"
     solver: str = "exact"
     vertical: str = "none"
+    contact: str = "line"
 
     def __post_init__(self):
         for name, allowed in FACETS.items():
@@ -264,6 +276,8 @@ class Facets:
             return self.solver
         if self.vertical != "none":
             return f"{replace(self, vertical='none').label(slid)}+vertical"
+        if self.contact != "line":
+            return f"{replace(self, contact='line').label(slid)}+planar"
         oneway = self.coupling == "one-way"
         fixed = self.isolator == "fixed-base"
         piecewise = self.propagation == "piecewise"

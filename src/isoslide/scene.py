@@ -380,6 +380,17 @@ class Scene:
         return self.pi9 == 0.0 and self.pi12 == 0.0 and not self.vertical and self.in_line
 
     @property
+    def span(self) -> tuple:
+        """``(start, end)`` of the whole excitation, units of T_p: the union of its components' supports."""
+        starts, ends = [self.pulse.tau_start], [self.pulse.tau_end]
+        if self.bidirectional:
+            starts.append(self.pi16 + self.pi15 * self.pulse_y.tau_start)
+            ends.append(self.pi16 + self.pi15 * self.pulse_y.tau_end)
+        if self.vertical:
+            ends.append(self.pulse_z.tau_end)
+        return min(starts), max(ends)
+
+    @property
     def in_line(self) -> bool:
         """True when the excitation is the main pulse along the building's x axis (the 1-D model as is)."""
         return not self.bidirectional and self.angle == 0.0

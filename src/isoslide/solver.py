@@ -59,7 +59,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .engine import building, building_kernel, kernel, piecewise
+from .engine import building, building_kernel, kernel, piecewise, planar_kernel
 from .store.history import History
 from .model.parts import building_of
 from .models import BEARING_REDUCTIONS, Facets
@@ -117,6 +117,11 @@ class Solution:
         Time history when requested.
     facets : Facets
         The model that ran, one value per independent property (:data:`isoslide.models.FACETS`).
+    peak_angle : float
+        Direction of the sliding displacement at its peak, ``atan2(u_y, u_x)`` in the building's
+        axes (radians, in ``(-pi, pi]``); ``0`` or ``pi`` for the 1-D model along x, nan when the
+        contents never slid.  ``pi1_residual`` is then the final displacement's component along
+        the excitation's line, or its magnitude in the plane.
     """
 
     pi1: float
@@ -132,6 +137,7 @@ class Solution:
     n_events: int
     history: History | None = field(default=None, repr=False)
     facets: Facets | None = None
+    peak_angle: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -177,8 +183,8 @@ def _model_array(scene: Scene, pi8: float, coulomb: float, thr: float | None = N
 
 
 def _tau_end(scene: Scene) -> float:
-    """End of the excitation: the horizontal pulse's, or the vertical one's when that ends later."""
-    return max(scene.pulse.tau_end, scene.pulse_z.tau_end) if scene.vertical else scene.pulse.tau_end
+    """End of the excitation: the last of its components' (:attr:`isoslide.Scene.span`)."""
+    return scene.span[1]
 
 
 def _horizon(scene: Scene, horizon: float) -> float:
@@ -457,6 +463,9 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be an isoslide.Scene, got {type(scene).__name__}")
+    if not scene.in_line:
+        return _solve_horizontal(scene, rtol, history, method, horizon, model, max_step, settle, piecewise_path,
+                                 options)
     if method != "exact":
         if method not in SCENE_SOLVERS:
             raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', "
@@ -567,6 +576,144 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     return sol
 
 
+def _solve_horizontal(scene: Scene, rtol, history: bool, method: str, horizon: float, model: str,
+                      max_step: float, settle: bool, piecewise_path: bool, options: dict) -> Solution:
+    """:func:`solve` for an excitation that is not the main pulse along x alone.
+
+    In the plane (:attr:`isoslide.Scene.planar`, or any such scene with ``model="full"``) the
+    planar kernel integrates it; along one line the 1-D model runs along that line
+    (:func:`along_line`), the building and the contents being isotropic.
+    """
+    if method != "exact":
+        if method == "reference":
+            from .peers.reference_planar import solve_reference_planar
+
+            return _from_peer(scene, solve_reference_planar(scene, history=history, **options))
+        raise ValueError(f"method = {method!r} does not model two horizontal ground components or an angle "
+                         f"(pulse_y = {getattr(scene.pulse_y, 'name', None)!r}, angle = {scene.angle!r}); allowed: "
+                         "method='exact' or 'reference', or the main pulse alone along x")
+    if model == "static-kinetic":
+        raise ValueError("model = 'static-kinetic' is available for the paper's model only "
+                         "(pi9 = 0, pi12 = 0, the main pulse alone along x)")
+    if scene.planar or model == "full":
+        return _solve_planar(scene, _check_rtol(rtol), history, horizon, model, max_step, settle)
+    line, lam, theta = along_line(scene)
+    sol = solve(line, rtol=rtol, history=history, horizon=horizon, model=model, max_step=max_step,
+                settle=settle, piecewise_path=piecewise_path)
+    L = scene.scale.length if scene.scale is not None else 1.0
+    Tp = scene.scale.T_p if scene.scale is not None else 1.0
+    angle = math.nan if math.isnan(sol.peak_angle) else _wrapped(sol.peak_angle + theta)
+    return dataclasses.replace(sol, pi1=lam * sol.pi1, u_max=lam * sol.pi1 * L,
+                               pi1_residual=lam * sol.pi1_residual, u_residual=lam * sol.pi1_residual * L,
+                               t_peak=sol.tau_peak * Tp, peak_angle=angle)
+
+
+def _wrapped(angle: float) -> float:
+    """``angle`` in ``(-pi, pi]``."""
+    a = math.atan2(math.sin(angle), math.cos(angle))
+    return math.pi if a == -math.pi else a
+
+
+def along_line(scene: Scene) -> tuple:
+    """The 1-D scene of an excitation along one line, with the line's amplitude and direction.
+
+    The ground moves along the direction ``theta`` (:attr:`isoslide.Scene.direction`) with the
+    peak acceleration ``lam a_p`` (:attr:`isoslide.Scene.line_amplitude`).  The building and the
+    contents are isotropic, so the contents slide along that line as the 1-D model does under the
+    main pulse scaled by ``lam``: with ``lam a_p`` as the pulse amplitude, the groups holding
+    ``a_p`` become ``Pi2 / lam``, ``Pi6 lam``, ``Pi9 / lam``, ``Pi10 / lam`` and ``Pi1 = lam Pi1'``.
+
+    Returns
+    -------
+    (Scene, float, float)
+        The 1-D scene (main pulse along x, no scale), ``lam`` and ``theta`` (radians).
+    """
+    theta = scene.direction
+    if theta is None:
+        raise ValueError(f"the excitation of {scene} is not along one line (pulse_y {scene.pulse_y.name!r} "
+                         f"with pi15 = {scene.pi15!r}, pi16 = {scene.pi16!r}); allowed: no pulse_y, or pulse_y "
+                         "equal to pulse with pi15 = 1 and pi16 = 0")
+    lam = scene.line_amplitude
+    line = dataclasses.replace(scene, pulse_y=None, pi14=1.0, pi15=1.0, pi16=0.0, angle=0.0, pi2=scene.pi2 / lam,
+                               pi6=scene.pi6 * lam, pi9=scene.pi9 / lam, pi10=scene.pi10 / lam, scale=None)
+    return line, lam, theta
+
+
+def excitation(scene: Scene) -> tuple:
+    """The planar kernel's excitation ``(code, params, code_y, params_y, G)`` of a scene."""
+    has_y = scene.pulse_y is not None
+    py = scene.pulse_y if has_y else scene.pulse
+    G = np.array([scene.pi14, scene.pi15, scene.pi16, math.cos(scene.angle), math.sin(scene.angle),
+                  1.0 if has_y else 0.0])
+    return (scene.pulse.code, scene.pulse.param_array, py.code, py.param_array, G)
+
+
+def _breakpoints(scene: Scene) -> np.ndarray:
+    """Every component's breakpoints on the main pulse's time axis (the second pulse's mapped)."""
+    b = scene.pulse.breakpoint_array
+    if scene.pulse_y is not None:
+        py = scene.pulse_y
+        b = np.union1d(b, scene.pi16 + scene.pi15 * np.append(py.breakpoint_array, py.tau_start))
+    if scene.vertical:
+        b = np.union1d(b, scene.pulse_z.breakpoint_array)
+    return b[b > scene.span[0]]
+
+
+def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
+                  settle: bool, state: tuple | None = None) -> Solution:
+    """:func:`solve` in the plane: :func:`isoslide.engine.planar_kernel.run` with the general building's parameters.
+
+    ``state``, when given, is ``(y0, bm0)``: the initial state and mode (see the kernel).
+    """
+    if scene.pi9 > 0.0:
+        raise ValueError(f"pi9 = {scene.pi9!r}: planar sliding runs on a fixed base or a linear isolator; "
+                         "allowed: pi9 = 0 with two horizontal ground components or an angle")
+    if not (math.isfinite(horizon) and horizon > 0):
+        raise ValueError(f"horizon = {horizon!r} is out of range; allowed range: 0 < horizon < inf")
+    coulomb = scene.rate_independent and model == "auto"
+    P = building.parameters(scene, pi8=scene.pi8, coulomb=coulomb)
+    modal = building.modal_data(scene, P)
+    n = int(P[building_kernel.P_N])
+    start, _ = scene.span
+    hist_cap = 200_000 if history else 0
+    stop = _horizon(scene, horizon)
+    budget = step_budget(scene, horizon)
+    h_free = min(building.free_step(scene), max_step)
+    ex = excitation(scene)
+    bps = _breakpoints(scene)
+    y0, bm0 = (np.zeros(planar_kernel.state_size(n)), 0.0) if state is None else state
+
+    def run(irtol, many=False):
+        res = planar_kernel.run(P, ex, bps, start, _tau_end(scene), stop, min(H_MAX_PULSE, max_step), h_free, irtol,
+                                base_atol(scene, irtol, many), hist_cap, min(H_RESTART, max_step), settle, budget,
+                                *modal, np.asarray(y0, dtype=float), float(bm0))
+        return _checked(Run.of(planar_kernel, res), scene, horizon, budget, "Runge-Kutta steps", rtol)
+
+    out = _refined(run(integrator_rtol(scene, rtol, horizon)), run, scene, rtol, horizon, demand_integrated=True)
+    facets = dataclasses.replace(scene_facets(scene, friction="coulomb" if coulomb else "stribeck",
+                                              oneway=scene.pi8 == 0.0 or scene.fixed_base and not scene.flexible),
+                                 contact="plane")
+    sol = _solution(scene, out, facets)
+    if history:
+        sol = dataclasses.replace(sol, history=_planar_history(out.hist, n, scene))
+    return sol
+
+
+def _planar_history(h: np.ndarray, n: int, scene: Scene) -> History:
+    """The planar kernel's rows as a :class:`History` whose ``x, xd, u, ud`` have two columns (x, y)."""
+    c = planar_kernel.history_columns(n)
+    nb = planar_kernel.axis_size(n)
+
+    def pair(k):
+        return np.column_stack([h[:, c["x"] + k], h[:, c["y"] + k]])
+
+    xs = np.stack([h[:, c["x"] + 2:c["x"] + 2 + n], h[:, c["y"] + 2:c["y"] + 2 + n]], axis=1)
+    xsd = np.stack([h[:, c["x"] + 2 + n:c["x"] + nb], h[:, c["y"] + 2 + n:c["y"] + nb]], axis=1)
+    return History(tau=h[:, c["tau"]].copy(), x=pair(0), xd=pair(1), u=h[:, c["u"]:c["u"] + 2].copy(),
+                   ud=h[:, c["w"]:c["w"] + 2].copy(), phase=h[:, c["phase"]].astype(np.int8),
+                   xs=xs if scene.flexible else None, xsd=xsd if scene.flexible else None)
+
+
 def _building_history(h: np.ndarray, scene: Scene) -> History:
     """The general kernel's history rows as a :class:`History` (building states included)."""
     n = scene.storeys if scene.flexible else 1
@@ -608,10 +755,16 @@ def _solution(scene, run: Run, facets: Facets, hist=None) -> Solution:
     tpk = run.floats["tpeak"]
     L = scene.scale.length if scene.scale is not None else 1.0
     Tp = scene.scale.T_p if scene.scale is not None else 1.0
+    if not pi1 > 0.0:
+        angle = math.nan
+    elif "angle" in run.floats:
+        angle = run.floats["angle"]
+    else:
+        angle = 0.0 if run.floats["upeak"] > 0.0 else math.pi
     return Solution(pi1=pi1, u_max=pi1 * L, pi1_residual=res, u_residual=res * L, tau_peak=tpk,
                     t_peak=tpk * Tp, settled=bool(run.ints["settled"]), model=facets.label(pi1 > 0.0),
                     tau_end=run.floats["tend"], n_steps=run.ints["steps"], n_events=run.ints["events"],
-                    history=hist, facets=facets)
+                    history=hist, facets=facets, peak_angle=angle)
 
 
 def _from_peer(scene: Scene, res: PeerResult) -> Solution:
@@ -716,4 +869,5 @@ def warm_up(records: bool = False, building: bool = False) -> None:
         peak_stuck_demand(sc)
     if building:
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi9=0.05, pi11=0.5, pi12=0.2, floor="roof"))
+        solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse_y="antisymmetric_ricker", pi14=0.5))
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.7, pi6=1e3, pi9=0.05, pi10=0.01))

@@ -109,9 +109,9 @@ INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "iso_events", "i
 """The integer results of :func:`run`, in order (their indices are ``R_*``)."""
 (R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_ISO_EVENTS, R_ISO_MOVED, R_REJECTED) = range(8)
 N_R = len(INT_RESULTS)
-FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "xmax", "vmax")
+FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "xmax", "vmax", "upeak")
 """The float results of :func:`run`, in order (their indices are ``F_*``)."""
-F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX = range(6)
+F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX, F_UPEAK = range(7)
 N_F = len(FLOAT_RESULTS)
 # history columns: [tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im] (see history_columns)
 H_TAU, H_X, H_XD, H_XS = range(4)
@@ -805,6 +805,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     i_just = False
     umax = 0.0
     tpeak = tau_start
+    upeak = 0.0
     xmax = 0.0
     vmax = 0.0
     steps = 0
@@ -963,7 +964,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 y[Y_UD] = 0.0
                 events += 1
                 if abs(y[Y_U]) > umax:
-                    umax, tpeak = abs(y[Y_U]), tau
+                    umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
                 free_i = kind == KIND_SLIDING and im == 0.0
                 bm, ni_ = _select_modes(bm, im, True, free_i, tau, y, P, code, params)
                 b_just = bm != 0.0
@@ -1009,10 +1010,10 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         h = hnext
         nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
     if not settled and bm != 0.0 and abs(y[Y_U]) > umax:
-        umax, tpeak = abs(y[Y_U]), tau
+        umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
     ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh, iso_events,
                      1 if moved else 0, rejected], dtype=np.int64)
-    floats = np.array([umax, tpeak, y[Y_U], tau, xmax, vmax])
+    floats = np.array([umax, tpeak, y[Y_U], tau, xmax, vmax, upeak])
     return ints, floats, hist[:nh]
 
 

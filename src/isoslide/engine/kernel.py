@@ -68,9 +68,9 @@ INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "loc_stick", "lo
 R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_LOC_STICK, R_LOC_SLIP, R_LOC_PEAK, R_REJECTED = range(9)
 N_R = len(INT_RESULTS)
 """Length of the integer results."""
-FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "amax", "vmax")
+FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "amax", "vmax", "upeak")
 """The float results of :func:`run`, in order (their indices are ``F_*``)."""
-F_UMAX, F_TPEAK, F_URES, F_TEND, F_AMAX, F_VMAX = range(6)
+F_UMAX, F_TPEAK, F_URES, F_TEND, F_AMAX, F_VMAX, F_UPEAK = range(7)
 N_F = len(FLOAT_RESULTS)
 """Length of the float results."""
 # columns of the history returned by :func:`run`
@@ -177,11 +177,11 @@ def _break_away(demand, events):
 
 
 @njit(cache=True, inline="always")
-def _update_peak(u, tau, umax, tpeak):
-    """Largest ``|u|`` so far and its time: ``(umax, tpeak)`` updated with ``u`` at ``tau``."""
+def _update_peak(u, tau, umax, tpeak, upeak):
+    """Largest ``|u|`` so far, its time and ``u`` there: ``(umax, tpeak, upeak)`` updated with ``u`` at ``tau``."""
     if abs(u) > umax:
-        return abs(u), tau
-    return umax, tpeak
+        return abs(u), tau, u
+    return umax, tpeak, upeak
 
 
 @njit(cache=True, inline="always")
@@ -685,6 +685,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     just_started = False
     umax = 0.0
     tpeak = tau_start
+    upeak = 0.0
     steps = 0
     events = 0
     settled = False
@@ -801,7 +802,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 _copy_state(y, ye)
                 y[3] = 0.0
                 events += 1
-                umax, tpeak = _update_peak(y[2], tau, umax, tpeak)
+                umax, tpeak, upeak = _update_peak(y[2], tau, umax, tpeak, upeak)
                 ar = a_req(tau, y, m, code, params)
                 if abs(ar) <= thr:
                     stick = True
@@ -825,11 +826,11 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         h = hnext
         nh = _record(hist, nh, hist_cap, tau, y, s)
     if not settled and not stick:
-        umax, tpeak = _update_peak(y[2], tau, umax, tpeak)
+        umax, tpeak, upeak = _update_peak(y[2], tau, umax, tpeak, upeak)
     ints = np.array([steps + cnt[EV_DEMAND] + cnt[EV_SPEED] + cnt[EV_PEAK], events, 1 if settled else 0,
                      1 if slipped else 0, nh, cnt[EV_DEMAND], cnt[EV_SPEED], cnt[EV_PEAK],
                      cnt[CNT_REJECTED]], dtype=np.int64)
-    floats = np.array([umax, tpeak, y[2], tau, amax, vmax])
+    floats = np.array([umax, tpeak, y[2], tau, amax, vmax, upeak])
     return ints, floats, hist[:nh]
 
 

@@ -48,7 +48,7 @@ from numba import njit
 
 from .. import jit_cache
 from . import kernel
-from .kernel import (F_AMAX, F_TEND, F_TPEAK, F_UMAX, F_URES, F_VMAX, M_CW, M_FIXED, M_P8, M_THR, M_W2, N_F, N_H,
+from .kernel import (F_AMAX, F_TEND, F_TPEAK, F_UMAX, F_UPEAK, F_URES, F_VMAX, M_CW, M_FIXED, M_P8, M_THR, M_W2, N_F, N_H,
                      N_R, R_EVENTS, R_HIST, R_LOC_PEAK, R_LOC_SLIP, R_LOC_STICK, R_REJECTED, R_SETTLED, R_SLIPPED,
                      R_STEPS, _break_away, _demand_bound, _hermite_max, _record)
 
@@ -307,6 +307,7 @@ def run(m, params, tau_start, tau_end, tau_stop, track_max, hist_cap, settle, ma
     settled = False
     umax = 0.0
     tpeak = tau_start
+    upeak = 0.0
     amax = 0.0
     vmax = 0.0
     steps = 0
@@ -488,6 +489,7 @@ def run(m, params, tau_start, tau_end, tau_stop, track_max, hist_cap, settle, ma
                     if abs(y[2]) > umax:
                         umax = abs(y[2])
                         tpeak = t
+                        upeak = y[2]
                     ar = _demand(y[0], y[1], p_t + jj * te, m)
                     if abs(ar) <= thr:
                         stick = True
@@ -523,6 +525,7 @@ def run(m, params, tau_start, tau_end, tau_stop, track_max, hist_cap, settle, ma
         if abs(y[2]) > umax:
             umax = abs(y[2])
             tpeak = t
+            upeak = y[2]
     ints = np.zeros(N_R, dtype=np.int64)
     ints[R_STEPS] = steps
     ints[R_EVENTS] = events
@@ -540,6 +543,7 @@ def run(m, params, tau_start, tau_end, tau_stop, track_max, hist_cap, settle, ma
     floats[F_TEND] = t
     floats[F_AMAX] = amax
     floats[F_VMAX] = vmax
+    floats[F_UPEAK] = upeak
     return ints, floats, hist[:nh]
 
 
