@@ -13,8 +13,8 @@ import xarray as xr
 
 import isoslide
 from isoslide import datasets
-from isoslide.models import (BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, VERTICAL_LABELS,
-                             Facets, label)
+from isoslide.models import (BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, PLANAR_LABELS,
+                             VERTICAL_LABELS, Facets, label)
 from isoslide.pulses import sampled
 
 CODES_FILE = Path(__file__).parent / "data" / "facet_codes.json"
@@ -75,15 +75,17 @@ def building_scene(name: str) -> isoslide.Scene:
         kw.update(storeys=2, floor=1)
     if "vertical" in parts:
         kw.update(pi17=0.2, pulse_z="ricker")
+    if "planar" in parts:
+        kw.update(pulse_y="antisymmetric_ricker", pi14=0.8)
     return isoslide.Scene(**kw)
 
 
-PATHS += [(building_scene(name), {}) for name in BUILDING_LABELS + VERTICAL_LABELS]
+PATHS += [(building_scene(name), {}) for name in BUILDING_LABELS + VERTICAL_LABELS + PLANAR_LABELS]
 
 
 def test_building_labels_name_their_scenes():
-    """Each general-building label is the label of the scene built from its parts (vertical motion too)."""
-    for name in BUILDING_LABELS + VERTICAL_LABELS:
+    """Each general-building label is the label of the scene built from its parts (vertical motion, the plane)."""
+    for name in BUILDING_LABELS + VERTICAL_LABELS + PLANAR_LABELS:
         assert isoslide.solve(building_scene(name)).model == name
 
 
