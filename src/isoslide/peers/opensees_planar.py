@@ -21,9 +21,18 @@ directions are the global ``X`` and ``Y``.
   by an elastic spring whose elastic displacement is at most the *stick displacement*
   ``mu N / kInit = Pi2 / K`` (units ``a_p T_p^2``).  As ``K`` grows, the elastic part of the relative
   displacement and the time the spring takes to load up at a stop or a breakaway (a quarter of its
-  period ``2 pi / sqrt(K)``) both vanish, so the regularised response tends to the stick-slip one;
-  the error of ``Pi1`` falls roughly like ``1 / K`` (see
-  :mod:`isoslide.studies.opensees_planar_convergence`).
+  period ``2 pi / sqrt(K)``) both vanish, so the regularised response tends to the stick-slip one.
+  At a fixed, small step the error of ``Pi1`` falls like ``1 / K`` where the contents stop before
+  they slide again (measured on planar scenes, e.g. ``6 / K`` on a fixed base), and like
+  ``1 / sqrt(K)`` where they reverse along a line without stopping (the spring must swap its force
+  across twice the stick displacement; the 1-D case of :mod:`isoslide.peers.opensees`).
+* Time error: the element's radial return puts the friction force of a step along that step's
+  plastic displacement increment, i.e. along the mean sliding velocity of the step, and the
+  trapezoidal rule averages it with the previous step's: where the sliding direction turns, the
+  force lags it by half a step, an error of order ``dt`` (about ``1.0 dt`` relative in ``Pi1`` on
+  the fixed-base scenes measured; none along a line).  The default step is therefore tied to the
+  stick period (:data:`STEPS_PER_PERIOD` steps per period), and the whole error falls as ``K`` grows
+  (:mod:`isoslide.studies.opensees_planar_convergence`).
 * The normal force is the gravity load ``m g`` on the contents node, carried by the element's
   axial material, an elastic spring ``VERTICAL_RATIO kInit`` (stiff: its static compression is
   ``g / (VERTICAL_RATIO K)``), applied by a static analysis before the ground moves so that the
@@ -64,8 +73,9 @@ __all__ = ["PlanarModel", "planar_model", "solve_opensees_planar"]
 VERTICAL_RATIO = 100.0
 """Axial (vertical) stiffness of the friction element over its shear stiffness ``kInit``."""
 
-STEPS_PER_PERIOD = 10
-"""Default time steps per period of the stick spring (the shortest period of the model)."""
+STEPS_PER_PERIOD = 50
+"""Default time steps per period of the stick spring (the shortest period of the model): the
+time error, ``~ dt`` in the plane (see the module docstring), then falls like ``1 / sqrt(K)``."""
 
 MAX_DTAU = 1e-3
 """Largest default time step, units ``T_p``."""
@@ -267,10 +277,11 @@ def solve_opensees_planar(scene: Scene, stiffness: float = 1e4, dt: float | None
         Stick stiffness ``K T_p^2 / m`` (dimensionless), > 0: the element's ``kInit = K m``, its
         stick displacement ``Pi2 / K`` (units ``a_p T_p^2``).
     dt : float or None
-        Time step, units ``T_p``; default ``min(1e-3, T_K / 10)``, ``T_K = 2 pi / sqrt(K (1 + m))``
-        the period of the contents on the stick spring (``2 pi / sqrt(K)`` on a fixed base), so
-        that the step shrinks with the stick's period and the time error falls with the stick
-        error (the default the 1-D :func:`~isoslide.peers.opensees.solve_opensees` also uses).
+        Time step, units ``T_p``; default ``min(1e-3, T_K / 50)`` (:data:`MAX_DTAU`,
+        :data:`STEPS_PER_PERIOD`), ``T_K = 2 pi / sqrt(K (1 + m))`` the period of the contents on
+        the stick spring (``2 pi / sqrt(K)`` on a fixed base): the step shrinks with the stick's
+        period, so the time error (order ``dt`` where the sliding direction turns) falls with
+        the stick error as ``K`` grows.
     t_end : float or None
         End time, units ``T_p``: the run goes exactly there.  None: the run stops once the ground
         is still, the floor's motion can no longer make the contents slide (its acceleration bound
