@@ -686,7 +686,7 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
     def run(irtol, many=False):
         res = planar_kernel.run(P, ex, bps, start, _tau_end(scene), stop, min(H_MAX_PULSE, max_step), h_free, irtol,
                                 base_atol(scene, irtol, many), hist_cap, min(H_RESTART, max_step), settle, budget,
-                                *modal, np.asarray(y0, dtype=float), float(bm0))
+                                *modal, np.asarray(y0, dtype=float), float(bm0), planar_kernel.slaved_speed(irtol))
         return _checked(Run.of(planar_kernel, res), scene, horizon, budget, "Runge-Kutta steps", rtol)
 
     out = _refined(run(integrator_rtol(scene, rtol, horizon)), run, scene, rtol, horizon, demand_integrated=True)

@@ -82,8 +82,24 @@ EV_DEMAND, EV_RATE, EV_PEAK, EV_STOP = range(4)
 
 STOP_FRACTION = 0.9
 """Fraction of the predicted time to a stop that one step may take."""
-SLAVED_SPEED = 1e-5
-"""Speed (units of ``a_p T_p``) below which a starting slide keeps the slaved direction (mode 2)."""
+STOP_TIME = 1e-13
+"""A free slide whose predicted stop is this close (relative to ``max(1, |tau|)``) ends in one step."""
+ALIGNED = 1e-3
+"""A slow free slide joins the slaved line when its velocity is within this angle (radians) of it."""
+SLAVED_FACTOR = 0.01
+"""The slaved line holds slides below the speed ``SLAVED_FACTOR rtol^(2/3)`` (units of ``a_p T_p``;
+:func:`slaved_speed`)."""
+
+
+def slaved_speed(rtol: float) -> float:
+    """Speed (units of ``a_p T_p``) below which a slide keeps the slaved line, for the local tolerance ``rtol``.
+
+    A slide on the slaved line lags its true direction by ``alpha ~ s theta' / |D|`` (``theta'`` the
+    turning rate of the drive ``D``); the error it leaves in ``Pi1`` was measured to grow as the
+    1.5th power of the speed limit (about 1e-6 relative at 1e-5 on a two-way coupled isolated
+    base), so the limit falls with the tolerance as ``rtol^(2/3)``.
+    """
+    return SLAVED_FACTOR * rtol ** (2.0 / 3.0)
 
 
 def state_size(n: int) -> int:
@@ -188,7 +204,7 @@ def deriv(bm, e0, e1, tau, y, P, ex, out):
     """Right-hand side at ``(tau, y)`` in the mode ``bm``, written into ``out``; returns ``(A_Fx, A_Fy)``.
 
     Modes: 0 stuck; 1 sliding with friction along ``-w/|w|``; ``+-2`` sliding slowly along the
-    slaved line (below :data:`SLAVED_SPEED`): ``w = sigma d`` with ``d = -A/|A|`` (``A`` the
+    slaved line (below the speed of :func:`slaved_speed`): ``w = sigma d`` with ``d = -A/|A|`` (``A`` the
     floor's acceleration were the block stuck), friction ``-sg nz phi(|sigma|) d`` on the block
     (``sg = bm / 2``, the sign of ``sigma`` in the phase), ``sigma' = -A_F . d - sg nz phi`` and
     ``w' = sigma' d + sigma d'``.  ``(e0, e1)`` is the direction used where it is undefined (a
@@ -556,11 +572,12 @@ def _slow_stop(bm, e0, e1, tau, y, y1, h, t_end, just, check, P, ex, atol, rtol,
 
 @njit(cache=True)
 def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol, hist_cap,
-        h_restart, settle, max_steps, Wm, Cm, Wh, Ch, y0, bm0):
+        h_restart, settle, max_steps, Wm, Cm, Wh, Ch, y0, bm0, slaved):
     """Integrate one planar scene from the state ``y0`` (mode ``bm0``, see :func:`deriv`) at ``tau_start``.
 
     Arguments as :func:`isoslide.engine.building_kernel.run`, with the excitation ``ex`` (see the
-    module docstring) instead of the pulse's code and parameters.
+    module docstring) instead of the pulse's code and parameters; slides slower than ``slaved``
+    keep the slaved line (:func:`slaved_speed`).
 
     Returns
     -------
@@ -635,7 +652,31 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             deriv(bm, e0, e1, tau, y, P, ex, work)
             rate = (y[U + 2] * work[U + 2] + y[U + 3] * work[U + 3]) / s0
             if rate < 0.0:
-                h = min(h, STOP_FRACTION * s0 / -rate)
+                d_stop = s0 / -rate
+                if d_stop <= STOP_TIME * max(1.0, abs(tau)):
+                    # the slide ends within round-off of the time: one step to the stop
+                    rk_step(bm, e0, e1, tau, y, d_stop, P, ex, atol, rtol, K, y1)
+                    steps += 1
+                    tau += d_stop
+                    _copy(y, y1)
+                    y[U + 2] = 0.0
+                    y[U + 3] = 0.0
+                    events += 1
+                    um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
+                    if um > umax:
+                        umax, tpeak, angle = um, tau, math.atan2(y[U + 1], y[U])
+                    AFx, AFy, lim = _stuck_floor(tau, y, P, ex, work)
+                    mag = math.sqrt(AFx * AFx + AFy * AFy)
+                    if mag > lim:
+                        e0, e1 = -AFx / mag, -AFy / mag
+                        bm, just = 2.0, True
+                        events += 1
+                    else:
+                        bm = 0.0
+                    h = h_restart
+                    nh = _record(hist, nh, hist_cap, tau, y, bm)
+                    continue
+                h = min(h, STOP_FRACTION * d_stop)
         target = tau_stop
         if ib < nb and breakpoints[ib] < target:
             target = breakpoints[ib]
@@ -740,13 +781,14 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             y[U + 3] = 0.0
         else:
             s1 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
-            if bm == 1.0 and s1 < SLAVED_SPEED:
+            if bm == 1.0 and s1 < slaved:
                 dx, dy = _slaved_direction(tau, y, P, ex, e0, e1)
-                sg = 1.0 if y[U + 2] * dx + y[U + 3] * dy >= 0.0 else -1.0
-                bm = 2.0 * sg
-                y[U + 2] = sg * s1 * dx
-                y[U + 3] = sg * s1 * dy
-            elif bm != 1.0 and s1 >= 2.0 * SLAVED_SPEED:
+                if abs(y[U + 2] * dy - y[U + 3] * dx) < ALIGNED * s1:
+                    sg = 1.0 if y[U + 2] * dx + y[U + 3] * dy >= 0.0 else -1.0
+                    bm = 2.0 * sg
+                    y[U + 2] = sg * s1 * dx
+                    y[U + 3] = sg * s1 * dy
+            elif bm != 1.0 and s1 >= 2.0 * slaved:
                 bm = 1.0
             if s1 > 0.0:
                 e0, e1 = y[U + 2] / s1, y[U + 3] / s1
