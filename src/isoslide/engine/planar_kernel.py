@@ -86,7 +86,7 @@ STOP_TIME = 1e-13
 """A free slide whose predicted stop is this close (relative to ``max(1, |tau|)``) ends in one step."""
 ALIGNED = 1e-3
 """A slow free slide joins the slaved line when its velocity is within this angle (radians) of it."""
-SLAVED_FACTOR = 0.01
+SLAVED_FACTOR = 0.1
 """The slaved line holds slides below the speed ``SLAVED_FACTOR rtol^(2/3)`` (units of ``a_p T_p``;
 :func:`slaved_speed`)."""
 
@@ -200,7 +200,25 @@ def _stuck_accels(y, gx, gy, P, A):
 
 
 @njit(cache=True)
-def deriv(bm, e0, e1, tau, y, P, ex, out):
+def _axis_rates(o, stuck, r, p, y, P, out):
+    """One axis's state rates into ``out`` (see :func:`_axis`); returns the floor's acceleration ``A_F``."""
+    n = int(P[P_N])
+    A = out[o + 2 + n:o + 2 + 2 * n]
+    Ab, AF = _axis(o, stuck, r, p, y, P, A)
+    if P[P_KIND] == KIND_FIXED:
+        out[o] = 0.0
+        out[o + 1] = 0.0
+    else:
+        out[o] = y[o + 1]
+        out[o + 1] = Ab - p
+    for j in range(n):
+        out[o + 2 + j] = y[o + 2 + n + j]
+        out[o + 2 + n + j] = A[j] - Ab
+    return AF
+
+
+@njit(cache=True)
+def deriv(bm, e0, e1, tau, y, P, ex, out, tmp):
     """Right-hand side at ``(tau, y)`` in the mode ``bm``, written into ``out``; returns ``(A_Fx, A_Fy)``.
 
     Modes: 0 stuck; 1 sliding with friction along ``-w/|w|``; ``+-2`` sliding slowly along the
@@ -208,7 +226,7 @@ def deriv(bm, e0, e1, tau, y, P, ex, out):
     floor's acceleration were the block stuck), friction ``-sg nz phi(|sigma|) d`` on the block
     (``sg = bm / 2``, the sign of ``sigma`` in the phase), ``sigma' = -A_F . d - sg nz phi`` and
     ``w' = sigma' d + sigma d'``.  ``(e0, e1)`` is the direction used where it is undefined (a
-    speed or a demand exactly zero).
+    speed or a demand exactly zero).  ``tmp`` is scratch space of at least ``n`` entries.
     """
     n = int(P[P_N])
     nb = 2 + 2 * n
@@ -223,7 +241,7 @@ def deriv(bm, e0, e1, tau, y, P, ex, out):
     fy = 0.0
     ph = 0.0
     sigma = 0.0
-    As = np.empty(n)
+    As = tmp
     ax = 0.0
     ay = 0.0
     amag = 0.0
@@ -249,29 +267,15 @@ def deriv(bm, e0, e1, tau, y, P, ex, out):
             fx = dx
             fy = dy
     m = P[P_M]
-    fixed = P[P_KIND] == KIND_FIXED
-    AF = np.empty(2)
-    for a in range(2):
-        o = a * nb
-        p = gx if a == 0 else gy
-        A = out[o + 2 + n:o + 2 + 2 * n]
-        Ab, AF[a] = _axis(o, stuck, m * ph * (fx if a == 0 else fy), p, y, P, A)
-        if fixed:
-            out[o] = 0.0
-            out[o + 1] = 0.0
-        else:
-            out[o] = y[o + 1]
-            out[o + 1] = Ab - p
-        for j in range(n):
-            out[o + 2 + j] = y[o + 2 + n + j]
-            out[o + 2 + n + j] = A[j] - Ab
+    AFx = _axis_rates(0, stuck, m * ph * fx, gx, y, P, out)
+    AFy = _axis_rates(nb, stuck, m * ph * fy, gy, y, P, out)
     out[U] = y[U + 2]
     out[U + 1] = y[U + 3]
     if stuck:
         out[U + 2] = 0.0
         out[U + 3] = 0.0
     elif slaved:
-        sd = -AF[0] * dx - AF[1] * dy - 0.5 * bm * ph
+        sd = -AFx * dx - AFy * dy - 0.5 * bm * ph
         ddx = 0.0
         ddy = 0.0
         if amag > 0.0:
@@ -283,9 +287,9 @@ def deriv(bm, e0, e1, tau, y, P, ex, out):
         out[U + 2] = sd * dx + sigma * ddx
         out[U + 3] = sd * dy + sigma * ddy
     else:
-        out[U + 2] = -AF[0] - ph * fx
-        out[U + 3] = -AF[1] - ph * fy
-    return AF[0], AF[1]
+        out[U + 2] = -AFx - ph * fx
+        out[U + 3] = -AFy - ph * fy
+    return AFx, AFy
 
 
 @njit(cache=True)
@@ -296,12 +300,17 @@ def _error_scale(i, U, a, b, atol, rtol):
 
 @njit(cache=True)
 def rk_step(bm, e0, e1, tau, y, h, P, ex, atol, rtol, K, ynew):
-    """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm."""
+    """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
+
+    ``K`` (``(NS + 3, len(y))``) receives the stages (row ``NS`` the right-hand side at the step
+    end; the last two rows are scratch space).
+    """
     t_left = _left_limit(tau + h)
     ny = y.shape[0]
     U = ny - 4
-    ys = np.empty(ny)
-    deriv(bm, e0, e1, tau, y, P, ex, K[0])
+    ys = K[NS + 1]
+    tmp = K[NS + 2]
+    deriv(bm, e0, e1, tau, y, P, ex, K[0], tmp)
     for st in range(1, NS):
         for i in range(ny):
             acc = 0.0
@@ -309,13 +318,13 @@ def rk_step(bm, e0, e1, tau, y, h, P, ex, atol, rtol, K, ynew):
                 acc += A[st, j] * K[j, i]
             ys[i] = y[i] + h * acc
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
-        deriv(bm, e0, e1, ts, ys, P, ex, K[st])
+        deriv(bm, e0, e1, ts, ys, P, ex, K[st], tmp)
     for i in range(ny):
         acc = 0.0
         for j in range(NS):
             acc += B[j] * K[j, i]
         ynew[i] = y[i] + h * acc
-    deriv(bm, e0, e1, t_left, ynew, P, ex, K[NS])
+    deriv(bm, e0, e1, t_left, ynew, P, ex, K[NS], tmp)
     e5 = 0.0
     e3 = 0.0
     for i in range(ny):
@@ -349,23 +358,27 @@ def verify(bm, e0, e1, tau, y, h, ycand, P, ex, atol, rtol, K):
 
 @njit(cache=True)
 def _event(kind, bm, e0, e1, tau, y, P, ex, work):
-    """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)`` (rate NaN: not given)."""
+    """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)`` (rate NaN: not given).
+
+    ``work`` (twice the state's length) receives the state's rates, then scratch space.
+    """
     ny = y.shape[0]
     U = ny - 4
-    AFx, AFy = deriv(bm, e0, e1, tau, y, P, ex, work)
+    ny2 = y.shape[0]
+    AFx, AFy = deriv(bm, e0, e1, tau, y, P, ex, work[:ny2], work[ny2:])
     if kind == EV_PEAK:
         g = y[U] * y[U + 2] + y[U + 1] * y[U + 3]
         dg = (y[U + 2] * y[U + 2] + y[U + 3] * y[U + 3] + y[U] * work[U + 2] + y[U + 1] * work[U + 3])
         return g, dg
     if kind == EV_STOP:
-        dx, dy = _slaved_direction(tau, y, P, ex, e0, e1)
+        dx, dy = _slaved_direction(tau, y, P, ex, e0, e1, work[ny2:])
         sg = 0.5 * bm
         return sg * (y[U + 2] * dx + y[U + 3] * dy), sg * (work[U + 2] * dx + work[U + 3] * dy)
     n = int(P[P_N])
     nb = 2 + 2 * n
     nz, dnz = normal(tau, P)
     jx, jy = ground_rate(tau, ex)
-    A = np.empty(n)
+    A = work[ny2:]
     dAx = _axis(0, True, 0.0, jx, work, P, A)[1]
     dAy = _axis(nb, True, 0.0, jy, work, P, A)[1]
     mag = math.sqrt(AFx * AFx + AFy * AFy)
@@ -461,10 +474,10 @@ def _breakaway(tau, y, y1, h, t_end, P, ex, atol, rtol, check, K, ye, work, cnt)
 
 
 @njit(cache=True)
-def _slaved_direction(tau, y, P, ex, e0, e1):
+def _slaved_direction(tau, y, P, ex, e0, e1, tmp):
     """The slaved direction ``d = -A/|A|`` (``A`` the floor's acceleration were the block stuck), or ``(e0, e1)``."""
     gx, gy = ground(tau, ex)
-    ax, ay = _stuck_accels(y, gx, gy, P, np.empty(int(P[P_N])))
+    ax, ay = _stuck_accels(y, gx, gy, P, tmp)
     amag = math.sqrt(ax * ax + ay * ay)
     if amag > 0.0:
         return -ax / amag, -ay / amag
@@ -474,7 +487,8 @@ def _slaved_direction(tau, y, P, ex, e0, e1):
 @njit(cache=True)
 def _stuck_floor(tau, y, P, ex, work):
     """The floor's acceleration ``(A_Fx, A_Fy)`` with the block stuck, and the stick limit ``thr nz``."""
-    AFx, AFy = deriv(0.0, 1.0, 0.0, tau, y, P, ex, work)
+    ny = y.shape[0]
+    AFx, AFy = deriv(0.0, 1.0, 0.0, tau, y, P, ex, work[:ny], work[ny:])
     return AFx, AFy, P[P_THR] * normal(tau, P)[0]
 
 
@@ -596,8 +610,8 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     y = y0.copy()
     y1 = np.empty(ny)
     ye = np.empty(ny)
-    K = np.empty((NS + 1, ny))
-    work = np.empty(ny)
+    K = np.empty((NS + 3, ny))
+    work = np.empty(2 * ny)
     cnt = np.zeros(1, dtype=np.int64)
     hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 2))
     tau = tau_start
@@ -649,7 +663,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         if bm == 1.0:
             # a decelerating slide approaches its stop geometrically (never crossing it)
             s0 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
-            deriv(bm, e0, e1, tau, y, P, ex, work)
+            deriv(bm, e0, e1, tau, y, P, ex, work[:ny], work[ny:])
             rate = (y[U + 2] * work[U + 2] + y[U + 3] * work[U + 3]) / s0
             if rate < 0.0:
                 d_stop = s0 / -rate
@@ -677,6 +691,14 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                     nh = _record(hist, nh, hist_cap, tau, y, bm)
                     continue
                 h = min(h, STOP_FRACTION * d_stop)
+        elif bm != 0.0:
+            # a slow slide leaves the slaved line near the speed it was set for, not far above it
+            deriv(bm, e0, e1, tau, y, P, ex, work[:ny], work[ny:])
+            dx, dy = _slaved_direction(tau, y, P, ex, e0, e1, work[ny:])
+            rate = 0.5 * bm * (work[U + 2] * dx + work[U + 3] * dy)
+            if rate > 0.0:
+                sig = 0.5 * bm * (y[U + 2] * dx + y[U + 3] * dy)
+                h = min(h, max(2.0 * slaved - sig, 0.5 * slaved) / rate)
         target = tau_stop
         if ib < nb and breakpoints[ib] < target:
             target = breakpoints[ib]
@@ -782,7 +804,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         else:
             s1 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
             if bm == 1.0 and s1 < slaved:
-                dx, dy = _slaved_direction(tau, y, P, ex, e0, e1)
+                dx, dy = _slaved_direction(tau, y, P, ex, e0, e1, work[ny:])
                 if abs(y[U + 2] * dy - y[U + 3] * dx) < ALIGNED * s1:
                     sg = 1.0 if y[U + 2] * dx + y[U + 3] * dy >= 0.0 else -1.0
                     bm = 2.0 * sg
