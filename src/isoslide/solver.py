@@ -153,6 +153,7 @@ class Batch:
     n_steps: np.ndarray
     n_events: np.ndarray
     facets: np.ndarray | None = None
+    peak_angle: np.ndarray | None = None
 
     def __len__(self):
         return self.pi1.shape[0]
@@ -824,6 +825,7 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
     tend = np.zeros(n)
     nsteps = np.zeros(n, dtype=np.int64)
     nev = np.zeros(n, dtype=np.int64)
+    angle = np.full(n, np.nan)
     demand: dict = {}
     progress = Progress(log, "solve_many", n)
     for i, sc in enumerate(scenes):
@@ -847,9 +849,10 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
         pi1[i], res[i], tpk[i], settled[i] = s.pi1, s.pi1_residual, s.tau_peak, s.settled
         models[i], tend[i], nsteps[i], nev[i] = s.model, s.tau_end, s.n_steps, s.n_events
         facets[i] = s.facets
+        angle[i] = s.peak_angle
     progress.finish(n)
     return Batch(pi1=pi1, pi1_residual=res, tau_peak=tpk, settled=settled, model=models.astype(str),
-                 tau_end=tend, n_steps=nsteps, n_events=nev, facets=facets)
+                 tau_end=tend, n_steps=nsteps, n_events=nev, facets=facets, peak_angle=angle)
 
 
 def warm_up(records: bool = False, building: bool = False) -> None:
