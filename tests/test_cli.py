@@ -231,6 +231,34 @@ def test_every_damaged_record_file_gives_a_result_or_one_line_naming_it(capsys, 
     (["records", "/no/such/folder"], "suite = '/no/such/folder': no such folder or file"),
     (["records", "{bad_manifest}"], "m.csv, line 1: expected a header naming the columns name, x, y"),
     (["fit", "{huge_csv}"], "huge.csv, line 3: expected a finite acceleration within |a| <= 100 g"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--pulse-y", "cosine"], "argument --pulse-y: invalid choice: 'cosine'"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--pulse-y", "ricker", "--angle", "abc"],
+     "argument --angle: invalid float value: 'abc'"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--pulse-y", "ricker", "--angle", "100"],
+     "angle = 100.0 is out of range"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--angle", "nan"], "angle = nan is invalid; allowed: a finite number"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--pulse-y", "ricker", "--pi15", "0"], "pi15 = 0.0 is out of range"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--pi14", "0.5"],
+     "pi14 = 0.5 shapes a second horizontal component, and there is none"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--record-y", "PAC-175"], "record_y = 'PAC-175' without --record"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--record", "TAK-090", "--record-y", "nope"],
+     "record_y = 'nope' is not a .at2/.csv file or a bundled sample"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--record", "TAK-090", "--record-y", "missing.AT2"],
+     "record_y = 'missing.AT2': no such file"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--record", "TAK-090", "--record-y", "{huge_csv}"],
+     "huge.csv, line 3: expected a finite acceleration"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--record", "TAK-090", "--record-y", "PAC-175", "--pulse-y", "ricker"],
+     "pulse_y = 'ricker' and record_y = 'PAC-175' exclude each other"),
+    (["solve", "--pi2", "0.2", "--pi3", "1", "--pulse-y", "antisymmetric_ricker", "--history", "h.csv"],
+     "history = 'h.csv' is not available for a scene sliding in the plane"),
+    (["solve-physical", "--a-p", "6", "--T-p", "1.2", *PHYSICAL, "--a-py", "3"],
+     "a_py = 3.0 shapes a second horizontal component, and there is none"),
+    (["solve-physical", "--a-p", "6", "--T-p", "1.2", *PHYSICAL, "--pulse-y", "ricker", "--a-py", "-3"],
+     "a_py = -3.0 is out of range"),
+    (["solve-physical", "--a-p", "6", "--T-p", "1.2", *PHYSICAL, "--pulse-y", "ricker", "--T-py", "0"],
+     "T_py = 0.0 is out of range"),
+    (["solve-physical", "--a-p", "6", "--T-p", "1.2", *PHYSICAL, "--pulse-y", "ricker", "--t-y", "x"],
+     "argument --t-y: invalid float value: 'x'"),
 ])
 def test_bad_input_gives_one_line_naming_parameter_and_value_exit_2(capsys, tmp_path, args, words):
     bad_at2 = Path(__file__).parent / "data" / "records" / "truncated.AT2"
@@ -270,3 +298,75 @@ def test_solve_with_vertical_motion_matches_the_library(capsys):
     assert out["scene"]["pi17"] == 0.3 and out["scene"]["pulse_z"] == "ricker"
     assert main(["solve", "--pi2", "0.2", "--pi3", "1", "--pi17", "3", "--pulse-z", "ricker"]) == 2
     assert "pi17 = 3.0 lifts the contents off" in capsys.readouterr().err
+
+
+# ----------------------------------------------------------------------------- planar sliding on the command line
+
+PLANAR = ["--pi2", "0.2", "--pi3", "1", "--pi4", "0.1", "--pulse-y", "antisymmetric_ricker", "--pi14", "0.7",
+          "--pi15", "1.2", "--pi16", "0.1", "--angle", "0.5"]
+
+
+def test_solve_in_the_plane_matches_the_library(capsys):
+    """--pulse-y with --pi14/--pi15/--pi16 and --angle: the library's planar scene, its peak and direction."""
+    assert main(["solve", *PLANAR, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    scene = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse_y="antisymmetric_ricker", pi14=0.7, pi15=1.2,
+                           pi16=0.1, angle=0.5)
+    sol = isoslide.solve(scene)
+    assert scene.planar and out["scene"]["planar"] is True
+    assert out["pi1"] == sol.pi1 and out["pi1_residual"] == sol.pi1_residual
+    assert out["peak_angle"] == sol.peak_angle and out["peak_angle_deg"] == pytest.approx(np.degrees(sol.peak_angle))
+    assert out["model"] == sol.model and out["model"].endswith("+planar") and out["contact"] == "plane"
+    assert out["scene"]["pulse_y"] == "antisymmetric_ricker" and out["scene"]["angle"] == 0.5
+    assert (out["scene"]["pi14"], out["scene"]["pi15"], out["scene"]["pi16"]) == (0.7, 1.2, 0.1)
+    assert main(["solve", *PLANAR]) == 0
+    text = capsys.readouterr().out
+    assert f"pi1: {sol.pi1}\n" in text and "model: coulomb+planar" in text and "contact: plane" in text
+    assert f"peak_angle: {sol.peak_angle} rad ({np.degrees(sol.peak_angle):.6g} deg)" in text
+
+
+def test_a_scene_along_one_line_reports_its_direction_or_no_slide(capsys):
+    """1-D scenes: the angle along x (0 or pi) in the line contact; a scene that never slides: none (null)."""
+    assert main(["solve", "--pi2", "0.2", "--pi3", "1", "--pi4", "0.1", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["peak_angle"] in (0.0, np.pi) and out["contact"] == "line" and out["scene"]["planar"] is False
+    assert main(["solve", "--pi2", "1.5", "--pi3", "0", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["pi1"] == 0.0 and out["peak_angle"] is None and out["peak_angle_deg"] is None
+    assert main(["solve", "--pi2", "1.5", "--pi3", "0"]) == 0
+    assert "peak_angle: none (no slide)" in capsys.readouterr().out
+
+
+def test_solve_physical_in_the_plane_matches_the_library(capsys):
+    """--a-py/--T-py/--t-y in SI units: the same scene as Scene.from_physical, the peak in metres."""
+    assert main(["solve-physical", "--a-p", "6", "--T-p", "1.2", *PHYSICAL, "--pulse-y", "ricker",
+                 "--a-py", "3", "--T-py", "0.8", "--t-y", "0.3", "--angle", "1", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    scene = isoslide.Scene.from_physical(6.0, 1.2, 8e5, 2.4, 0.1, 800.0, 0.25, 0.2, pulse_y="ricker", a_py=3.0,
+                                         T_py=0.8, t_y=0.3, angle=1.0)
+    sol = isoslide.solve(scene)
+    assert scene.planar and out["u_max_m"] == sol.u_max and out["peak_angle"] == sol.peak_angle
+    assert out["scene"]["pi14"] == 0.5 and out["scene"]["pi15"] == pytest.approx(0.8 / 1.2)
+    assert out["scene"]["pi16"] == pytest.approx(0.25) and out["model"].endswith("+planar")
+
+
+def test_a_recorded_pair_runs_as_recorded_on_the_first_records_scales(capsys):
+    """--record with --record-y: the library's recorded pair (both on the --record record's fitted a_p, T_p),
+    in Pi-groups and in SI units; both records are reported."""
+    x, y = isoslide.records.sample("Kobe_1995_TAK-090"), isoslide.records.sample("Northridge_1994_PAC-175")
+    assert main(["solve", "--pi2", "0.2", "--pi3", "2", "--pi4", "0.1", "--record", "TAK-090", "--record-y",
+                 "PAC-175", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    sol = isoslide.solve(isoslide.Scene(pi2=0.2, pi3=2.0, pi4=0.1, pulse=x, pulse_y=y))
+    assert out["pi1"] == sol.pi1 and out["peak_angle"] == sol.peak_angle and out["model"] == sol.model
+    assert out["record"]["station"] == "Takatori" and out["record_y"]["name"] == "Northridge_1994_PAC-175"
+    assert out["fitted_pulse"]["T_p"] == x.fit().T_p and out["scene"]["planar"] is True
+    assert main(["solve-physical", "--record", "TAK-090", "--record-y", "PAC-175", *PHYSICAL, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    fit = x.fit()
+    scene = isoslide.Scene.from_physical(fit.a_p, fit.T_p, 8e5, 2.4, 0.1, 800.0, 0.25, 0.2, pulse=x, pulse_y=y)
+    sol = isoslide.solve(scene)
+    assert out["u_max_m"] == sol.u_max and out["peak_angle"] == sol.peak_angle
+    assert main(["solve", "--pi2", "0.2", "--pi3", "2", "--pi4", "0.1", "--record", "TAK-090", "--record-y",
+                 "PAC-175"]) == 0
+    assert "record_y: Northridge_1994_PAC-175 (Northridge 1994, PAC 175), as recorded" in capsys.readouterr().out

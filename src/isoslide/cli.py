@@ -10,6 +10,8 @@ Examples
         --m-ec 800 --mu-s 0.25 --mu-k 0.2 --beta 200 --gamma 0.05 --json
     isoslide solve-physical --record TAK-090 --M-b 8e5 --T-b 2.4 --xi-b 0.1 \
         --m-ec 800 --mu-s 0.25 --mu-k 0.2 --history kobe.h5 --plot kobe.png
+    isoslide solve --pi2 0.2 --pi3 1 --pi4 0.1 --pulse-y antisymmetric_ricker --pi14 0.7 --angle 0.5
+    isoslide solve --pi2 0.2 --pi3 2 --pi4 0.1 --record pair_x.AT2 --record-y pair_y.AT2
     isoslide fit Kobe_1995_TAK-090 --shape mp --plot fit.png
     isoslide records
     isoslide records fema-p695-near-field-pulse
@@ -18,7 +20,15 @@ A record (``--record``, ``fit``) is a PEER ``.AT2`` file, a two-column
 ``.csv`` file (time in s, acceleration in g) or the name of a bundled sample
 (``isoslide records pyslammer``).  It runs as recorded (its own sign and time axis);
 its fitted Ricker pulse supplies the scales ``a_p`` and ``T_p`` that are not
-given.  Bad input prints one line naming the parameter and its value, and
+given.  ``--record-y`` adds the pair's second horizontal component, run as
+recorded on the same time axis with the first one's scales.
+
+A second horizontal component (``--pulse-y`` or ``--record-y``) not along the
+first one's line makes the contents slide in the plane: ``pi1`` is then the
+peak of ``|u|`` and ``peak_angle`` its direction in the building's axes
+(``--angle`` turns the excitation's axes against the building's).
+
+Bad input prints one line naming the parameter and its value, and
 exits with code 2.
 """
 
@@ -40,6 +50,10 @@ from .solver import DEFAULT_RTOL, solve
 
 EXIT_USAGE = 2
 """Exit code for bad input (as argparse uses)."""
+_Y_GROUPS = ("pi14", "pi15", "pi16")
+"""Groups of the second horizontal component (read only with one)."""
+_Y_DEFAULTS = {**{g.name: g.default for g in INPUTS if g.name in _Y_GROUPS}, "t_y": 0.0}
+"""Values of the second component's options that mean 'not given'."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -55,6 +69,13 @@ def _floor(text: str):
 
 
 def _common(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--pulse-y", default=None, choices=PULSE_NAMES,
+                   help="shape of the second horizontal ground acceleration, shaped by --pi14/--pi15/--pi16 "
+                        "(solve) or --a-py/--T-py/--t-y (solve-physical); none by default: the ground moves "
+                        "along the excitation's x axis")
+    p.add_argument("--angle", type=float, default=0.0, metavar="RAD",
+                   help="angle (radians, counter-clockwise) from the building's x axis to the excitation's "
+                        "(default 0)")
     p.add_argument("--pulse-z", default=None, choices=PULSE_NAMES,
                    help="shape of the vertical ground acceleration (with --pi17 or --a-pz; none by default)")
     p.add_argument("--pulse", default=None, choices=PULSE_NAMES,
@@ -62,6 +83,9 @@ def _common(p: argparse.ArgumentParser) -> None:
     p.add_argument("--record", metavar="PATH|SAMPLE",
                    help="excite with a real record: .AT2 or .csv file (time s, acceleration g) or a bundled "
                         "sample name (isoslide records pyslammer); runs as recorded, scaled by its fitted Ricker pulse")
+    p.add_argument("--record-y", metavar="PATH|SAMPLE",
+                   help="second horizontal component of a recorded pair (with --record; not with --pulse-y): "
+                        "runs as recorded on the same time axis, scaled by the --record record's fitted pulse")
     p.add_argument("--rtol", type=float, default=DEFAULT_RTOL,
                    help=f"target relative error of Pi1 (default {DEFAULT_RTOL:g})")
     p.add_argument("--history", metavar="FILE",
@@ -102,8 +126,14 @@ def _parser() -> argparse.ArgumentParser:
                                 ("xi-s", "-, superstructure damping ratio", 0.0),
                                 ("R", "m, friction pendulum radius: sets T_b and, with --mu-b, Q_d", None),
                                 ("mu-b", "-, friction pendulum's friction coefficient", None),
-                                ("a-pz", "m/s^2, vertical ground acceleration amplitude (with --pulse-z)", 0.0)]:
-        required = default is None and name not in ("a-p", "T-p", "T-b", "R", "mu-b")
+                                ("a-pz", "m/s^2, vertical ground acceleration amplitude (with --pulse-z)", 0.0),
+                                ("a-py", "m/s^2, second horizontal component's amplitude (with --pulse-y); "
+                                         "default a_p", None),
+                                ("T-py", "s, second horizontal component's period (with --pulse-y); default T_p",
+                                 None),
+                                ("t-y", "s, time by which the second horizontal component lags the first "
+                                        "(with --pulse-y or --record-y)", 0.0)]:
+        required = default is None and name not in ("a-p", "T-p", "T-b", "R", "mu-b", "a-py", "T-py")
         q.add_argument(f"--{name}", type=float, required=required, default=default,
                        help=f"{name.replace('-', '_')} [{unit}]")
     _common(q)
@@ -146,17 +176,49 @@ def _check_outputs(args) -> None:
         check_plot_path(args.plot)
 
 
+def _load_record_y(spec):
+    """The pair's second component (``--record-y``); errors name ``record_y``."""
+    try:
+        return load_record(spec)
+    except ValueError as exc:
+        msg = str(exc)
+        raise ValueError(f"record_y = {msg[len('record = '):]}" if msg.startswith("record = ")
+                         else f"record_y = {spec!r}: {msg}") from None
+
+
+def _second_component(args):
+    """The second horizontal component (shape name, record or None); refuses contradictory options."""
+    if args.record_y is not None and args.pulse_y is not None:
+        raise ValueError(f"pulse_y = {args.pulse_y!r} and record_y = {args.record_y!r} exclude each other; "
+                         "allowed: one of --pulse-y, --record-y")
+    if args.record_y is not None and args.record is None:
+        raise ValueError(f"record_y = {args.record_y!r} without --record; allowed: --record-y with --record "
+                         "(the pair's first component), or --pulse-y")
+    if args.record_y is not None:
+        return _load_record_y(args.record_y)
+    if args.pulse_y is None:
+        names = _Y_GROUPS if args.command == "solve" else ("a_py", "T_py", "t_y")
+        for name, value in ((n, getattr(args, n)) for n in names):
+            if value is not None and value != _Y_DEFAULTS.get(name):
+                raise ValueError(f"{name} = {value!r} shapes a second horizontal component, and there is none; "
+                                 "allowed: --pulse-y or --record-y with it")
+    return args.pulse_y
+
+
 def _scene(args):
-    """The scene of ``solve`` / ``solve-physical`` and the record's description (or None)."""
+    """The scene of ``solve`` / ``solve-physical`` and the records' description (or None)."""
     if args.record is not None and args.pulse is not None:
         raise ValueError(f"pulse = {args.pulse!r} and record = {args.record!r} exclude each other; "
                          "allowed: one of --pulse, --record")
     rec = load_record(args.record) if args.record is not None else None
+    second = _second_component(args)
     excitation = rec if rec is not None else (args.pulse or "ricker")
     info = None if rec is None else {"record": _record_dict(rec)}
+    if second is not None and not isinstance(second, str):
+        info["record_y"] = _record_dict(second)
     if args.command == "solve":
         scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=excitation, floor=args.floor,
-                      storeys=args.storeys, pulse_z=args.pulse_z)
+                      storeys=args.storeys, pulse_z=args.pulse_z, pulse_y=second, angle=args.angle)
         if rec is not None:
             info["fitted_pulse"] = _fit_dict(rec.fit())
         return scene, info
@@ -184,7 +246,8 @@ def _scene(args):
     scene = Scene.from_physical(a_p, T_p, args.M_b, T_b, args.xi_b, args.m_ec, args.mu_s, args.mu_k,
                                 args.beta, args.gamma, args.g, excitation, Q_d=Q_d, D_y=D_y, m_st=args.m_st,
                                 T_s=args.T_s, xi_s=args.xi_s, floor=args.floor, storeys=args.storeys,
-                                a_pz=args.a_pz, pulse_z=args.pulse_z)
+                                a_pz=args.a_pz, pulse_z=args.pulse_z, pulse_y=second, a_py=args.a_py,
+                                T_py=args.T_py, t_y=args.t_y, angle=args.angle)
     return scene, info
 
 
@@ -199,10 +262,21 @@ def _solve(args) -> int:
     _check_outputs(args)
     scene, info = _scene(args)
     want_history = bool(args.history or args.plot)
+    if want_history and scene.planar:
+        which = "history" if args.history else "plot"
+        raise ValueError(f"{which} = {getattr(args, which)!r} is not available for a scene sliding in the plane "
+                         "(the history table holds one horizontal line); allowed: --history/--plot without a "
+                         "second horizontal component, or one proportional to the first")
     sol = solve(scene, rtol=args.rtol, history=want_history)
+    slid = math.isfinite(sol.peak_angle)
     out = {"pi1": sol.pi1, "pi1_residual": sol.pi1_residual, "tau_peak": sol.tau_peak,
-           "settled": sol.settled, "model": sol.model, "n_steps": sol.n_steps, "n_events": sol.n_events,
+           "peak_angle": sol.peak_angle if slid else None,
+           "peak_angle_deg": math.degrees(sol.peak_angle) if slid else None,
+           "settled": sol.settled, "model": sol.model, "contact": sol.facets.contact,
+           "n_steps": sol.n_steps, "n_events": sol.n_events,
            "scene": {**scene.pis(), "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name,
+                     "pulse_y": None if scene.pulse_y is None else scene.pulse_y.name, "angle": scene.angle,
+                     "planar": scene.planar,
                      "pulse_z": None if scene.pulse_z is None else scene.pulse_z.name}}
     if scene.scale is not None:
         out.update({"u_max_m": sol.u_max, "u_residual_m": sol.u_residual, "t_peak_s": sol.t_peak})
@@ -225,12 +299,18 @@ def _solve(args) -> int:
         print(json.dumps(out, indent=1))
         return 0
     for k, v in out.items():
-        if k in ("scene", "record", "fitted_pulse"):
+        if k in ("scene", "record", "record_y", "fitted_pulse", "peak_angle_deg"):
             continue
+        if k == "peak_angle":
+            v = "none (no slide)" if v is None else f"{v} rad ({out['peak_angle_deg']:.6g} deg)"
         print(f"{k:>13s}: {v}")
     if info:
         r = info["record"]
         print(f"{'record':>13s}: {r['name']} ({r['event']}, {r['station']} {r['component']}), as recorded")
+        if "record_y" in info:
+            r = info["record_y"]
+            print(f"{'record_y':>13s}: {r['name']} ({r['event']}, {r['station']} {r['component']}), as "
+                  "recorded, on the record's scales")
         if "fitted_pulse" in info:
             print(f"{'fitted pulse':>13s}: ", end="")
             _print_fit(info["fitted_pulse"])
