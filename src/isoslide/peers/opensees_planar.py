@@ -27,12 +27,15 @@ directions are the global ``X`` and ``Y``.
   ``1 / sqrt(K)`` where they reverse along a line without stopping (the spring must swap its force
   across twice the stick displacement; the 1-D case of :mod:`isoslide.peers.opensees`).
 * Time error: the element's radial return puts the friction force of a step along that step's
-  plastic displacement increment, i.e. along the mean sliding velocity of the step, and the
+  plastic displacement increment, i.e. along the mean sliding velocity of the step, and Newmark's
   trapezoidal rule averages it with the previous step's: where the sliding direction turns, the
-  force lags it by half a step, an error of order ``dt`` (about ``1.0 dt`` relative in ``Pi1`` on
-  the fixed-base scenes measured; none along a line).  The default step is therefore tied to the
-  stick period (:data:`STEPS_PER_PERIOD` steps per period), and the whole error falls as ``K`` grows
-  (:mod:`isoslide.studies.opensees_planar_convergence`).
+  force lags it by half a step, an error of order ``dt`` (about ``dt`` relative in ``Pi1`` on the
+  scenes measured; none along a line).  The default step is therefore tied to the stick period
+  (:data:`STEPS_PER_PERIOD` steps per period), and the whole error falls as ``K`` grows
+  (:mod:`isoslide.studies.opensees_planar_convergence`).  ``integrator="GeneralizedAlpha"``
+  balances the step at its midpoint displacement instead, where the element's force acts along
+  the step's mean sliding velocity as it should: the lag and its error of order ``dt`` vanish and
+  what is left is the regularisation's ``1 / K``.
 * The normal force is the gravity load ``m g`` on the contents node, carried by the element's
   axial material, an elastic spring ``VERTICAL_RATIO kInit`` (stiff: its static compression is
   ``g / (VERTICAL_RATIO K)``), applied by a static analysis before the ground moves so that the
@@ -47,8 +50,9 @@ directions are the global ``X`` and ``Y``.
 
 The ground accelerations ``scene.ground(tau)`` (building axes) and ``Pi17 g p_z(tau)`` are sampled
 every time step into ``Path`` series and applied by ``UniformExcitation`` patterns in directions 1,
-2 and 3, so node displacements are relative to the ground; average-acceleration Newmark with
-Newton iterations (retried as :func:`isoslide.peers.opensees.solve_opensees` does).
+2 and 3, so node displacements are relative to the ground; Newton iterations (retried as
+:func:`isoslide.peers.opensees.solve_opensees` does) in each step of the time integrator
+(:data:`INTEGRATORS`: average-acceleration Newmark by default).
 
 Units: dimensionless, time ``T_p``, length ``a_p T_p^2``, acceleration ``a_p``, mass ``M_b`` (the
 contents' mass is ``Pi8``, at least ``1e-6`` so that its node has one; on a fixed base it only
@@ -66,9 +70,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..scene import Scene
+from .opensees import _opensees, _step
 from .result import PeerResult
 
-__all__ = ["PlanarModel", "planar_model", "solve_opensees_planar"]
+__all__ = ["INTEGRATORS", "PlanarModel", "ground_window", "planar_model", "solve_opensees_planar"]
 
 VERTICAL_RATIO = 100.0
 """Axial (vertical) stiffness of the friction element over its shear stiffness ``kInit``."""
@@ -86,6 +91,12 @@ HORIZON = 50.0
 SETTLE = 9.0
 """The run stops when further sliding can add at most ``SETTLE`` stick displacements (see
 :func:`solve_opensees_planar`)."""
+
+INTEGRATORS = {"Newmark": ("Newmark", 0.5, 0.25), "GeneralizedAlpha": ("GeneralizedAlpha", 1.0, 0.5)}
+"""OpenSees integrators by name: average-acceleration Newmark (``gamma = 1/2``, ``beta = 1/4``),
+and the generalized-alpha method with ``alpha_M = 1``, ``alpha_F = 1/2`` (``gamma = 1``,
+``beta = 9/16``: second order, unconditionally stable; the internal forces, the damping and the
+ground's load at the step's midpoint, the inertia at its end)."""
 
 GROUND, BASE, CONTENTS = 1, 2, 3
 """Node tags: the ground (fixed), the isolated base, the contents."""
@@ -259,7 +270,7 @@ def _settle_level(M: PlanarModel, x, xd, vc) -> float:
 
 
 def solve_opensees_planar(scene: Scene, stiffness: float = 1e4, dt: float | None = None,
-                          t_end: float | None = None) -> PeerResult:
+                          t_end: float | None = None, integrator: str = "Newmark") -> PeerResult:
     """Peak planar sliding of the contents with OpenSees (``flatSliderBearing``, Newmark).
 
     See the module docstring for the model.  The contents start at rest (relative to the floor,
@@ -288,6 +299,9 @@ def solve_opensees_planar(scene: Scene, stiffness: float = 1e4, dt: float | None
         of :func:`_settle_level` is at most ``Pi2 / 2``) and the contents' relative speed ``s``
         can add at most ``s^2 / Pi2 <= SETTLE Pi2 / K`` to the sliding; at the latest
         ``HORIZON max(1, Pi3)`` after the ground stops.
+    integrator : {"Newmark", "GeneralizedAlpha"}
+        Time integrator (:data:`INTEGRATORS`); ``"GeneralizedAlpha"`` has no time error of order
+        ``dt`` where the sliding direction turns (see the module docstring).
 
     Returns
     -------
@@ -295,12 +309,12 @@ def solve_opensees_planar(scene: Scene, stiffness: float = 1e4, dt: float | None
         ``method = "opensees"``, ``pi1`` the peak of ``|u|`` (Euclidean norm of the contents'
         displacement relative to the floor, units ``a_p T_p^2``), ``peak_angle = atan2(u_y, u_x)``
         at the peak (building axes, radians; nan when the peak is 0), ``tau_peak`` (units ``T_p``),
-        ``stiffness = K``, ``n_steps`` Newmark steps run, ``integrator = "Newmark"``, ``settled``
+        ``stiffness = K``, ``n_steps`` time steps run, ``integrator`` as given, ``settled``
         True when the run stopped by the settling test, ``tau_end`` its last time;
         ``pi1_residual`` is nan (the final displacement is a vector).
     """
-    from .opensees import _opensees, _step
-
+    if integrator not in INTEGRATORS:
+        raise ValueError(f"integrator = {integrator!r} is invalid; allowed: {', '.join(map(repr, INTEGRATORS))}")
     M = planar_model(scene, stiffness)
     dtau = min(MAX_DTAU, M.stick_period / STEPS_PER_PERIOD) if dt is None else _positive("dt", dt)
     tau0, tau_g = ground_window(scene)
@@ -329,7 +343,7 @@ def solve_opensees_planar(scene: Scene, stiffness: float = 1e4, dt: float | None
     ops.system("FullGeneral")
     ops.test("NormDispIncr", 1e-14, 50)
     ops.algorithm("Newton")
-    ops.integrator("Newmark", 0.5, 0.25)
+    ops.integrator(*INTEGRATORS[integrator])
     ops.analysis("Transient")
     umax, angle, tau_peak = 0.0, math.nan, tau0
     zero = (0.0, 0.0)
@@ -357,5 +371,5 @@ def solve_opensees_planar(scene: Scene, stiffness: float = 1e4, dt: float | None
                 break
     ops.wipe()
     return PeerResult(method="opensees", pi1=umax, tau_peak=float(tau_peak), settled=settled,
-                      tau_end=float(tau0 + n * dtau), n_steps=n, stiffness=M.stiffness, integrator="Newmark",
+                      tau_end=float(tau0 + n * dtau), n_steps=n, stiffness=M.stiffness, integrator=integrator,
                       peak_angle=angle)
