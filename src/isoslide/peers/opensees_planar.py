@@ -22,10 +22,10 @@ directions are the global ``X`` and ``Y``.
   ``mu N / kInit = Pi2 / K`` (units ``a_p T_p^2``).  As ``K`` grows, the elastic part of the relative
   displacement and the time the spring takes to load up at a stop or a breakaway (a quarter of its
   period ``2 pi / sqrt(K)``) both vanish, so the regularised response tends to the stick-slip one.
-  At a fixed, small step the error of ``Pi1`` falls like ``1 / K`` where the contents stop before
-  they slide again (measured on planar scenes, e.g. ``6 / K`` on a fixed base), and like
-  ``1 / sqrt(K)`` where they reverse along a line without stopping (the spring must swap its force
-  across twice the stick displacement; the 1-D case of :mod:`isoslide.peers.opensees`).
+  At a fixed, small step the error of ``Pi1`` falls like ``1 / K`` on the planar scenes measured
+  (:mod:`isoslide.studies.opensees_planar_convergence`), and like ``1 / sqrt(K)`` where the
+  contents reverse along a line without stopping (the spring must swap its force across twice the
+  stick displacement; the 1-D case of :mod:`isoslide.peers.opensees`).
 * Time error: the element's radial return puts the friction force of a step along that step's
   plastic displacement increment, i.e. along the mean sliding velocity of the step, and Newmark's
   trapezoidal rule averages it with the previous step's: where the sliding direction turns, the
@@ -40,8 +40,9 @@ directions are the global ``X`` and ``Y``.
   axial material, an elastic spring ``VERTICAL_RATIO kInit`` (stiff: its static compression is
   ``g / (VERTICAL_RATIO K)``), applied by a static analysis before the ground moves so that the
   contents start at rest; with a vertical ground motion (``Pi17 > 0``) the contents' vertical
-  inertia changes ``N`` (and the friction) by ``1 + Pi17 p_z(tau)``.  The rotations of both nodes
-  are fixed, so the element's moment and torsion materials and its P-Delta moments carry nothing.
+  inertia changes ``N`` (and the friction) by the factor ``1 + Pi17 p_z(tau)``.  The rotations of
+  both nodes are fixed: the element's moment and torsion materials never deform, and its P-Delta
+  and V-Delta moments go into the supports, not into the sliding.
 * Fixed base (``Pi3 = 0``): the floor node is the ground.  Linear isolator: a base node of mass
   ``M_b`` (vertical and rotations fixed) on the ground through a ``zeroLength`` element with an
   ``Elastic`` material of stiffness ``k_b = (2 pi / Pi3)^2 M_b`` and damping tangent
