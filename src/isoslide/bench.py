@@ -21,7 +21,15 @@ the solve before the piecewise path) and as ``solve(..., model="full")`` runs it
 largest over the records), the total time for all records and each path's error against the
 integrator at ``rtol = 1e-12`` (:func:`run_records`, :func:`report_records`).  It prints the medians, the ratios of per-scene costs on the same scenes, the target
 check (median <= 0.1 ms per scene at <= 1e-6 relative error) and where the time goes (steps
-per scene by scene class).  Timings are wall-clock on whatever else the machine is running:
+per scene by scene class).
+
+A planar section (``--planar-only`` alone; :func:`run_planar`, :func:`run_pairs`) times, with the
+compiled kernels readied first, planar scenes of a few building classes beside the same scenes
+without their second horizontal component (the goal: planar at most 3x the 1-D cost), then
+recorded pairs of :data:`PAIR_SUITE` run as recorded, per analysis and per sample of the x
+component (the goal: at most 1 us per sample on median), beside the x component alone.
+
+Timings are wall-clock on whatever else the machine is running:
 read ratios, which are measured side by side, rather than absolute figures.
 """
 
@@ -38,7 +46,7 @@ import numpy as np
 
 from . import accuracy, records
 from .scene import Scene
-from .solver import DEFAULT_RTOL, solve
+from .solver import DEFAULT_RTOL, solve, warm_up
 
 TARGET_MS = 0.1
 TARGET_ERROR = 1e-6
@@ -349,6 +357,206 @@ def report_buildings(res: dict, file=sys.stdout) -> dict:
     return summ
 
 
+PLANAR_POINTS = [dict(pi2=pi2, pi3=pi3, pi4=0.1) for pi2 in (0.1, 0.2, 0.3) for pi3 in (1.0, 2.0)]
+"""Pi points of the planar section: every building of :data:`PLANAR_BUILDINGS` at each."""
+PLANAR_EXCITATION = dict(pulse="ricker", pulse_y="antisymmetric_ricker", pi14=0.7)
+"""The planar scenes' excitation: a Ricker pulse along x, an antisymmetric Ricker of 0.7 a_p along y."""
+PLANAR_BUILDINGS = {
+    "fixed base": dict(pi3=0.0),
+    "linear isolator, two-way coupling (pi8 = 0.2)": dict(pi8=0.2),
+    "Stribeck contents (pi5 = 0.7, pi6 = 20)": dict(pi5=0.7, pi6=20.0),
+    "3 storeys, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, storeys=3, floor="roof"),
+}
+"""Buildings of the planar section (keyword arguments of :class:`isoslide.Scene` over each point)."""
+TARGET_PLANAR_RATIO = 3.0
+"""Goal: a planar scene costs at most this many times the same scene without its second component."""
+PAIR_SUITE = "fema-p695-near-field-pulse"
+"""Suite whose recorded pairs the planar section times."""
+PAIR_POINTS = {"isolated": dict(pi2=0.2, pi3=2.0, pi4=0.1), "fixed base": dict(pi2=0.2, pi3=0.0, pi4=0.1)}
+"""Pi points at which each recorded pair runs as recorded."""
+PAIR_LAG = 0.25
+"""Lag (units of T_p) of a bundled record paired with itself when :data:`PAIR_SUITE` is unavailable."""
+TARGET_PAIR_US_PER_SAMPLE = 1.0
+"""Goal: a recorded pair costs at most this many microseconds per sample of its x component, on median."""
+
+
+def run_planar(repeats: int = 7) -> dict:
+    """Time every planar scene beside the same scene along x alone (no ``pulse_y``), interleaved.
+
+    Parameters
+    ----------
+    repeats : int
+        Timed runs of each scene (the median is kept); the planar scene and its 1-D twin run one
+        after the other, point after point and building after building, in every repeat.
+
+    Returns
+    -------
+    dict
+        ``rows``: per building the planar and 1-D times per point, Pi1, the models and the planar
+        scenes' Pi1 at ``rtol = 1e-12``; ``points``, ``repeats``.
+    """
+    scenes = {name: [(Scene(**{**pt, **kw}), Scene(**{**pt, **kw}, **PLANAR_EXCITATION)) for pt in PLANAR_POINTS]
+              for name, kw in PLANAR_BUILDINGS.items()}
+    for pairs in scenes.values():   # compile or load every path before timing
+        for one, planar in pairs:
+            solve(one)
+            solve(planar)
+    out = {}
+    for name, pairs in scenes.items():
+        n = len(pairs)
+        out[name] = {"conv": [solve(planar, rtol=1e-12).pi1 for _, planar in pairs],
+                     "t_1d": [[] for _ in range(n)], "t_planar": [[] for _ in range(n)], "pi1": [0.0] * n,
+                     "pi1_1d": [0.0] * n, "models": [""] * n, "models_1d": [""] * n, "steps": [0] * n,
+                     "steps_1d": [0] * n}
+    for r in range(repeats):
+        for k in range(len(PLANAR_POINTS)):
+            for name, pairs in scenes.items():
+                row = out[name]
+                order = (("1d", 0), ("planar", 1)) if r % 2 == 0 else (("planar", 1), ("1d", 0))
+                for which, j in order:
+                    t0 = time.perf_counter()
+                    sol = solve(pairs[k][j])
+                    row[f"t_{which}"][k].append(time.perf_counter() - t0)
+                    tail = "" if which == "planar" else "_1d"
+                    row[f"pi1{tail}"][k], row[f"models{tail}"][k], row[f"steps{tail}"][k] = \
+                        sol.pi1, sol.model, sol.n_steps
+    return {"rows": out, "points": PLANAR_POINTS, "repeats": repeats}
+
+
+def report_planar(res: dict, file=sys.stdout) -> dict:
+    """Print the planar scenes' cost beside their 1-D twins and the goal check; return the summary."""
+    p = lambda *a: print(*a, file=file)  # noqa: E731
+    rows = res["rows"]
+    p(f"planar: {len(res['points'])} Pi points (pi2 0.1-0.3, pi3 1-2, pi4 0.1) per building, "
+      f"pulse='ricker' with pulse_y='antisymmetric_ricker', pi14=0.7, beside the same scene without pulse_y; "
+      f"median of {res['repeats']} interleaved runs; errors of the planar scene relative to solve(rtol=1e-12)")
+    hdr = (f"{'building':48s} {'us 1-D':>8s} {'us planar':>10s} {'planar/1-D':>10s} {'steps 1-D':>9s} "
+           f"{'steps planar':>12s} {'med err':>9s} {'max err':>9s}  goal")
+    p(hdr)
+    p("-" * len(hdr))
+    summ = {}
+    for name, r in rows.items():
+        t1 = np.array([_median(x) for x in r["t_1d"]])
+        tp = np.array([_median(x) for x in r["t_planar"]])
+        err = np.array([_rel(a, c) for a, c in zip(r["pi1"], r["conv"], strict=True)])
+        ratio = float(np.median(tp / t1))
+        met = ratio <= TARGET_PLANAR_RATIO
+        summ[name] = {"us_1d": float(1e6 * np.median(t1)), "us_planar": float(1e6 * np.median(tp)),
+                      "ratio": ratio, "err_median": float(np.median(err)), "err_max": float(err.max()),
+                      "met": bool(met), "models": sorted(set(r["models"]))}
+        p(f"{name:48s} {1e6 * np.median(t1):8.1f} {1e6 * np.median(tp):10.1f} {ratio:10.2f} "
+          f"{np.median(r['steps_1d']):9.0f} {np.median(r['steps']):12.0f} "
+          f"{np.median(err):9.1e} {err.max():9.1e}  {'met' if met else 'NOT MET'}")
+    worst = max(v["ratio"] for v in summ.values())
+    p(f"goal: planar/1-D <= {TARGET_PLANAR_RATIO:g}x (median over the points of each building's per-scene "
+      f"ratio) -> {'MET' if worst <= TARGET_PLANAR_RATIO else 'NOT MET'} (largest {worst:.2f}x; "
+      f"{sum(v['met'] for v in summ.values())} of {len(summ)} buildings meet it)")
+    return summ
+
+
+def _pairs(n: int, suite_name: str = PAIR_SUITE) -> tuple:
+    """``(source, [(name, x, y, lag), ...])``: the suite's first ``n`` pairs, or bundled records lagged.
+
+    When the suite cannot be read, each of the first ``n`` bundled samples is paired with itself
+    lagged by :data:`PAIR_LAG` of its fitted period (a planar excitation of one record).
+    """
+    try:
+        motions = records.suite(suite_name)
+    except (ValueError, ImportError, OSError) as exc:
+        names = records.samples()[:n]
+        return (f"bundled samples paired with themselves lagged by {PAIR_LAG:g} T_p ({suite_name} unavailable: "
+                f"{' '.join(str(exc).split())})",
+                [(nm, records.sample(nm), records.sample(nm), PAIR_LAG) for nm in names])
+    return suite_name, [(gm.name, gm.x, gm.y, 0.0) for gm in motions[:n]]
+
+
+def run_pairs(n: int = 4, repeats: int = 5, suite_name: str = PAIR_SUITE) -> dict:
+    """Time recorded pairs as recorded, beside their x component alone, at each of :data:`PAIR_POINTS`.
+
+    Parameters
+    ----------
+    n : int
+        Number of pairs (the suite's first ``n``).
+    repeats : int
+        Timed runs of each scene (the median is kept), interleaved: every pair and point, planar
+        then 1-D, in every repeat.
+    suite_name : str
+        Suite of the pairs (default :data:`PAIR_SUITE`); bundled samples when it is unavailable.
+
+    Returns
+    -------
+    dict
+        ``rows``: per pair and point the samples of the x component, the median planar and 1-D
+        times, Pi1 and the models; ``source``, ``repeats``.
+    """
+    source, pairs = _pairs(n, suite_name)
+    cases = []
+    for name, x, y, lag in pairs:
+        for where, pt in PAIR_POINTS.items():
+            planar = Scene(**pt, pulse=x, pulse_y=y, pi16=lag)
+            cases.append({"pair": name, "point": where, "samples": int(x.npts), "planar": planar,
+                          "one": Scene(**pt, pulse=x), "t_planar": [], "t_1d": []})
+    for c in cases:   # compile or load every path before timing
+        solve(c["planar"])
+        solve(c["one"])
+    for _ in range(repeats):
+        for c in cases:
+            t0 = time.perf_counter()
+            sp = solve(c["planar"])
+            t1 = time.perf_counter()
+            s1 = solve(c["one"])
+            c["t_planar"].append(t1 - t0)
+            c["t_1d"].append(time.perf_counter() - t1)
+            c.update(pi1=sp.pi1, model=sp.model, steps=sp.n_steps, pi1_1d=s1.pi1, model_1d=s1.model)
+    rows = [{k: v for k, v in c.items() if k not in ("planar", "one", "t_planar", "t_1d")}
+            | {"planar_s": _median(c["t_planar"]), "one_s": _median(c["t_1d"])} for c in cases]
+    return {"rows": rows, "source": source, "repeats": repeats, "points": PAIR_POINTS}
+
+
+def report_pairs(res: dict, file=sys.stdout) -> dict:
+    """Print the recorded pairs' cost per analysis and per sample, the 1-D cost and the goal check."""
+    p = lambda *a: print(*a, file=file)  # noqa: E731
+    rows = res["rows"]
+    pts = "; ".join(f"{k}: " + ", ".join(f"{g}={v:g}" for g, v in pt.items()) for k, pt in res["points"].items())
+    p(f"recorded pairs: {len({r['pair'] for r in rows})} pairs of {res['source']}, as recorded ({pts}); "
+      f"median of {res['repeats']} interleaved runs; per sample = per analysis / samples of the x component")
+    hdr = (f"{'pair':24s} {'base':10s} {'samples':>7s} {'steps':>7s} {'ms planar':>9s} {'us/sample':>9s} "
+           f"{'1-D us/sample':>13s} {'planar/1-D':>10s}  models (planar | 1-D)")
+    p(hdr)
+    p("-" * len(hdr))
+    for r in rows:
+        p(f"{r['pair'][:24]:24s} {r['point']:10s} {r['samples']:7d} {r['steps']:7d} {1e3 * r['planar_s']:9.2f} "
+          f"{1e6 * r['planar_s'] / r['samples']:9.3f} {1e6 * r['one_s'] / r['samples']:13.3f} "
+          f"{r['planar_s'] / r['one_s']:10.1f}  {r['model']} | {r['model_1d']}")
+    summ = {}
+    for where in res["points"]:
+        rs = [r for r in rows if r["point"] == where]
+        per = np.array([r["planar_s"] / r["samples"] for r in rs])
+        one = np.array([r["one_s"] / r["samples"] for r in rs])
+        summ[where] = {"ms_median": float(1e3 * np.median([r["planar_s"] for r in rs])),
+                       "us_per_sample_median": float(1e6 * np.median(per)), "us_per_sample_max": float(1e6 * per.max()),
+                       "us_per_sample_1d_median": float(1e6 * np.median(one))}
+        p(f"{'median':24s} {where:10s} {'':7s} {'':7s} {summ[where]['ms_median']:9.2f} "
+          f"{summ[where]['us_per_sample_median']:9.3f} {summ[where]['us_per_sample_1d_median']:13.3f}")
+    per = np.array([r["planar_s"] / r["samples"] for r in rows])
+    med = float(1e6 * np.median(per))
+    summ["us_per_sample_median"] = med
+    summ["met"] = bool(med <= TARGET_PAIR_US_PER_SAMPLE)
+    p(f"goal: a recorded pair <= {TARGET_PAIR_US_PER_SAMPLE:g} us per sample on median -> "
+      f"{'MET' if summ['met'] else 'NOT MET'} (median {med:.3f} us per sample over every pair and base; "
+      f"the x component alone {1e6 * np.median([r['one_s'] / r['samples'] for r in rows]):.3f} us per sample)")
+    return summ
+
+
+def run_report_planar(quick: bool = False, file=sys.stdout) -> dict:
+    """The planar section: compiled kernels readied, planar scenes beside 1-D, then recorded pairs."""
+    warm_up(records=True, building=True)
+    out = {"scenes": report_planar(run_planar(repeats=3 if quick else 7), file=file)}
+    print("", file=file)
+    out["pairs"] = report_pairs(run_pairs(n=2 if quick else 4, repeats=3 if quick else 5), file=file)
+    return out
+
+
 def main(argv=None) -> int:
     """Command line: measure, then print the report (or JSON); returns the exit status."""
     ap = argparse.ArgumentParser(prog="python -m isoslide.bench", description=__doc__.split("\n\n")[0])
@@ -372,7 +580,17 @@ def main(argv=None) -> int:
     ap.add_argument("--buildings-only", action="store_true",
                     help="only the buildings section (bearings and flexible superstructures beside the paper "
                          "model, about 20 s)")
+    ap.add_argument("--planar-only", action="store_true",
+                    help="only the planar section (planar scenes beside their 1-D twins, recorded pairs per "
+                         "sample, about 30 s)")
+    ap.add_argument("--no-planar", action="store_true", help="leave out the planar section")
     a = ap.parse_args(argv)
+    if a.planar_only:
+        out = {"planar": run_report_planar(quick=a.quick)}
+        if a.json:
+            with open(a.json, "w") as f:
+                json.dump(out, f, indent=1, default=float)
+        return 0
     if a.buildings_only:
         out = {"buildings": report_buildings(run_buildings(repeats=3 if a.quick else 7))}
         if a.json:
@@ -401,6 +619,9 @@ def main(argv=None) -> int:
     report(res, summ)
     print("")
     out["buildings"] = report_buildings(run_buildings(repeats=3 if a.quick else 7))
+    if not a.no_planar:
+        print("")
+        out["planar"] = run_report_planar(quick=a.quick)
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"result": res, "summary": summ, **out}, f, indent=1, default=float)
