@@ -582,7 +582,7 @@ def main(argv=None) -> int:
                          "model, about 20 s)")
     ap.add_argument("--planar-only", action="store_true",
                     help="only the planar section (planar scenes beside their 1-D twins, recorded pairs per "
-                         "sample, about 30 s)")
+                         "sample, about 10 s)")
     ap.add_argument("--no-planar", action="store_true", help="leave out the planar section")
     a = ap.parse_args(argv)
     if a.planar_only:
