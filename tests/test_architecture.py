@@ -117,7 +117,7 @@ def test_scene_errors_quote_the_registry_range():
 
 DUMMY = """
 import isoslide.groups as g
-dummy = g.Group("pi14", "Q / (M_b a_p)", "dummy strength", r"\\Pi_{14}", r"Q/(M_b a_p)", "Π₁₄", default=0.5,
+dummy = g.Group("pi18", "Q / (M_b a_p)", "dummy strength", r"\\Pi_{18}", r"Q/(M_b a_p)", "Π₁₈", default=0.5,
                 comment="a group added for the test")
 g.INPUTS = g.INPUTS + (dummy,)
 g.GROUPS = {x.name: x for x in (g.RESULT, *g.INPUTS)}
@@ -128,12 +128,12 @@ help_text = io.StringIO()
 with contextlib.redirect_stdout(help_text), contextlib.suppress(SystemExit):
     cli.main(["solve", "--help"])
 print(json.dumps({
-    "attrs": datasets.pi_attrs("pi14"),
-    "label": figures.LABELS["pi14"],
-    "definition": list(similarity.DEFINITIONS["pi14"]),
-    "sweep": "pi14" in sweep.PI_NAMES and "pi14" in sweep.SWEEPABLE,
-    "range": list(scene.PI_RANGES["pi14"]),
-    "cli": "--pi14" in help_text.getvalue() and "dummy strength" in help_text.getvalue(),
+    "attrs": datasets.pi_attrs("pi18"),
+    "label": figures.LABELS["pi18"],
+    "definition": list(similarity.DEFINITIONS["pi18"]),
+    "sweep": "pi18" in sweep.PI_NAMES and "pi18" in sweep.SWEEPABLE,
+    "range": list(scene.PI_RANGES["pi18"]),
+    "cli": "--pi18" in help_text.getvalue() and "dummy strength" in help_text.getvalue(),
 }))
 """
 
@@ -145,9 +145,9 @@ def test_a_group_added_to_the_registry_appears_everywhere():
 
     out = subprocess.run([sys.executable, "-c", DUMMY], capture_output=True, text=True, check=True)
     got = json.loads(out.stdout.strip().splitlines()[-1])
-    assert got["attrs"]["long_name"] == "Pi14 = Q / (M_b a_p): dummy strength"
+    assert got["attrs"]["long_name"] == "Pi18 = Q / (M_b a_p): dummy strength"
     assert got["attrs"]["units"] == "1" and got["attrs"]["comment"] == "a group added for the test"
-    assert got["label"] == r"$\Pi_{14} = Q/(M_b a_p)$"
+    assert got["label"] == r"$\Pi_{18} = Q/(M_b a_p)$"
     assert got["definition"] == ["Q / (M_b a_p)", "Q / (M_b a_p)"]
     assert got["sweep"] and got["cli"]
     assert got["range"][:2] == [0.0, float("inf")]

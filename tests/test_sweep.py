@@ -35,14 +35,15 @@ def test_defaults_filled_and_beta_turned_into_pi6():
     assert spec["dims"]["pi6"] == pytest.approx([98.0665, 9806.65])
     assert spec["beta"] == [10.0, 1000.0]
     assert spec["fixed"] == {"pi5": 0.5, "pi3": 0.0, "pi4": 0.1, "pi7": 0.0, "pi8": 1e-5,
-                             "pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "pi17": 0.0}
+                             "pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "pi14": 1.0,
+                             "pi15": 1.0, "pi16": 0.0, "pi17": 0.0}
     assert spec["pulse"] == "ricker"
 
 
 @pytest.mark.parametrize("study, key", [
     ({"dims": {"pi5": [0.5, 1.5]}}, "studies.s.dims.pi5[1]"),
     ({"dims": {"pi3": [1, 1]}}, "studies.s.dims.pi3"),
-    ({"dims": {"pi14": [1]}}, "pi14"),
+    ({"dims": {"pi18": [1]}}, "pi18"),
     ({"dims": {"pi12": [0.2]}}, "pi11"),
     ({"fixed": {"pi8": -1}}, "studies.s.fixed.pi8"),
     ({"pulse": "sine"}, "studies.s.pulse"),

@@ -63,7 +63,7 @@ from .engine import building, building_kernel, kernel, piecewise, planar_kernel
 from .store.history import History
 from .model.parts import building_of
 from .models import BEARING_REDUCTIONS, Facets
-from .peers import SCENE_SOLVERS, PeerResult
+from .peers import SCENE_SOLVERS, PeerResult, solve_reference_planar
 from .pulses import SAMPLED, sampled
 from .store.progress import Progress
 from .scene import Scene
@@ -587,8 +587,6 @@ def _solve_horizontal(scene: Scene, rtol, history: bool, method: str, horizon: f
     """
     if method != "exact":
         if method == "reference":
-            from .peers.reference_planar import solve_reference_planar
-
             return _from_peer(scene, solve_reference_planar(scene, history=history, **options))
         raise ValueError(f"method = {method!r} does not model two horizontal ground components or an angle "
                          f"(pulse_y = {getattr(scene.pulse_y, 'name', None)!r}, angle = {scene.angle!r}); allowed: "

@@ -27,6 +27,9 @@ DOMAIN = {
     "pi11": (0.01, 0.95, "0.01 (light superstructure) to 0.95 (nearly all the isolated mass)"),
     "pi12": (0.0, 10.0, "0 (rigid superstructure), 0.01 (very stiff) to 10 (very flexible)"),
     "pi13": (0.0, 1.0, "0 (undamped superstructure) to 1 (critically damped)"),
+    "pi14": (0.0, 2.0, "0 (no second component) to 2 (a transverse pulse twice the main one)"),
+    "pi15": (0.25, 4.0, "0.25 (a transverse pulse four times shorter) to 4 (four times longer)"),
+    "pi16": (-1.0, 1.0, "the transverse pulse one main period ahead to one behind"),
     "pi17": (0.0, 2.0, "0 (no vertical motion) to 2 (a vertical Ricker pulse of twice g: the normal force "
                        "falls to 11 % of its static value)"),
 }
@@ -40,9 +43,11 @@ MAP_BASE = {"pi2": 0.1, "pi3": 1.0, "pi4": 0.1, "pi5": 0.7, "pi6": 1000.0, "pi7"
 model: ``pi11`` is read only with a flexible superstructure)."""
 
 MAP_COMPANIONS = {"pi10": {"pi9": 0.1}, "pi11": {"pi12": 0.2, "pi13": 0.02},
-                  "pi12": {"pi13": 0.02}, "pi13": {"pi12": 0.2}, "pi17": {"pulse_z": "ricker"}}
+                  "pi12": {"pi13": 0.02}, "pi13": {"pi12": 0.2}, "pi17": {"pulse_z": "ricker"},
+                  **{g: {"pulse_y": "antisymmetric_ricker", "pi14": 0.7} for g in ("pi14", "pi15", "pi16")}}
 """Groups (and the vertical pulse) set beside a swept one so that it acts: a bearing for ``pi10``,
-a flexible superstructure for ``pi11`` and ``pi13``, a vertical Ricker pulse for ``pi17``."""
+a flexible superstructure for ``pi11`` and ``pi13``, a vertical Ricker pulse for ``pi17``, a transverse
+antisymmetric Ricker pulse (the contents slide in the plane) for ``pi14`` to ``pi16``."""
 
 
 def map_values(group: str, npts: int = 9) -> np.ndarray:
@@ -56,6 +61,8 @@ def map_values(group: str, npts: int = 9) -> np.ndarray:
         return np.concatenate([[0.0], np.logspace(-3, 2, npts - 1)])
     if group == "pi12":
         return np.concatenate([[0.0], np.logspace(-2, 1, npts - 1)])
+    if group == "pi16":
+        return np.linspace(lo, hi, npts)
     if lo == 0.0:
         return np.concatenate([[0.0], np.logspace(-3 if group != "pi6" else -1, math.log10(hi), npts - 1)])
     return np.logspace(math.log10(lo), math.log10(hi), npts)

@@ -7,7 +7,9 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.store.history
     Plain SciPy event-driven solver (DOP853 with events); ``solve(scene, method="reference")``.
     A general building (bearings, a flexible superstructure of one or more storeys, contents on
     any floor, vertical ground motion through the normal forces) goes to
-    :func:`~.reference_building.solve_reference_building` (:mod:`.reference_building`).
+    :func:`~.reference_building.solve_reference_building` (:mod:`.reference_building`), and
+    contents sliding in the plane (two horizontal ground components, or an angle) to
+    :func:`~.reference_planar.solve_reference_planar` (:mod:`.reference_planar`).
 :func:`solve_regularized` (:mod:`.regularized`)
     The paper's method: the signum replaced by a stiff elastic-plastic spring, SciPy
     Radau; ``solve(scene, method="regularized", stiffness=...)``.
@@ -21,6 +23,7 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.store.history
 
 from .opensees import opensees_available, solve_opensees
 from .reference import solve_reference
+from .reference_planar import solve_reference_planar
 from .regularized import solve_regularized
 from .result import PeerResult, WorkLimitError
 from .si import simulate_si
@@ -29,4 +32,4 @@ SCENE_SOLVERS = {"reference": solve_reference, "regularized": solve_regularized}
 """The peers :func:`isoslide.solve` runs for ``method=...`` (they take a :class:`isoslide.Scene`)."""
 
 __all__ = ["PeerResult", "SCENE_SOLVERS", "WorkLimitError", "opensees_available", "simulate_si",
-           "solve_opensees", "solve_reference", "solve_regularized"]
+           "solve_opensees", "solve_reference", "solve_reference_planar", "solve_regularized"]
