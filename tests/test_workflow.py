@@ -37,7 +37,7 @@ TEST_CONFIG = ["--configfile", "config/test.yaml"]
 STUDIES = sorted(yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["studies"])
 ISOLATION_STUDIES = ["iso_fp", "iso_lrb", "iso_flex_base", "iso_flex_roof"]
 ISOLATION_RULES = {"isolation_rigid", "isolation_design", "isolation_figure"}
-REPORTS = ["accuracy", "figures", "fragility", "isolation", "records", "similarity"]
+REPORTS = ["accuracy", "figures", "fragility", "isolation", "planar", "records", "similarity"]
 LAUNCHERS = ("snakemake", "papermill", "jupyter", "jupyter-nbconvert")
 
 

@@ -177,6 +177,9 @@ PAPER_FIGURES = tuple(f"fig{n}" for n in range(1, 9))
 ISOLATION_FIGURES = ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design")
 """The isolation studies' figures (:data:`isoslide.reports.isolation_plot.FIGURES`)."""
 
+PLANAR_FIGURES = ("planar", "planar_ratio", "planar_vertical", "planar_pi5")
+"""The planar study's figures (:data:`isoslide.reports.planar_plot.FIGURES`)."""
+
 PIPELINE = Study(
     name="pipeline",
     sections=(),
@@ -288,6 +291,23 @@ STUDIES: tuple[Study, ...] = (
         },
         rule_files=("storeys.smk",),
         groups={"storeys_dataset": "merge", "storeys_figure": "figures"},
+    ),
+    Study(
+        name="planar",
+        sections=("planar", "defaults", "solver"),
+        datasets=("planar", "planar_pi5"),
+        figures=PLANAR_FIGURES,
+        reports=(Report("planar", data={"planar_path": dataset_path("planar"),
+                                        "pi5_path": dataset_path("planar_pi5")},
+                        parameters={"figure_dir": FIGURE_DIR},
+                        needs=tuple(figure_path(f) for f in PLANAR_FIGURES), code="planar"),),
+        code={
+            # planar_dataset; the notebook's imports (datasets, studies.planar) have the same closure
+            "planar": ("budget", "datasets", "store.provenance", "solver", "studies.planar"),
+            "planar_plot": ("budget", "datasets", "store.provenance", "reports.planar_plot"),
+        },
+        rule_files=("planar.smk",),
+        groups={"planar_dataset": "merge", "planar_figure": "figures"},
     ),
 )
 """Every study of the pipeline, in the order of ``rule all``, the reports and the index page."""
