@@ -51,35 +51,55 @@ relative to their floor, friction level ``phi(s) = thr sech(Pi6 s) + Pi2 (1 - se
   points that way, ``(|A_F| (M_kk + m) - thr nz (M_kk + m)) / M_kk > 0`` on the floor ``k``);
 * ``Pi1 = max |u|``, ``peak_angle = atan2(u_y, u_x)`` there, ``tau_peak`` its time.
 
-Segments and stops
-------------------
-A sliding segment carries a fixed reference direction ``e`` (the direction of ``w`` at its start,
-or ``-A_F/|A_F|`` when it starts from rest) and uses the friction direction
-``n = sgn(w . e) w/|w|``, which is ``w/|w|`` while ``w`` stays within 90 degrees of ``e``.  The
-segment ends at the first of:
+Slips
+-----
+A slip from rest is stiff: the direction of ``w`` relaxes towards ``-A_F/|A_F|`` at the rate
+``|A_F|/|w|`` (in polar form ``|w| psi' = -|A_F| sin psi``, ``psi`` the angle of ``w`` from
+``-A_F/|A_F|``), so an explicit integrator needs steps of about ``|w|/|A_F|``; after a breakaway
+``|w|`` grows like ``(tau - tau_0)**2``, and following that from ``|w| = 0`` would take without
+bound many steps.  So a slip runs in two kinds of segment.
 
-* *turn*: ``w . e = cos(30 deg) |w|`` (``w`` has turned 30 degrees away from ``e``): a new segment
-  starts at once with ``e = w/|w|``; nothing else changes (not a transition);
-* *stop*: ``w . e = 0``.  Before it ``w . e >= cos(30 deg) |w|``, so ``w . e = 0`` implies
-  ``|w| = 0``: the root is the stop itself.  It is a simple, transversal root of a continuous
-  function: as ``|w| -> 0`` the direction ``w/|w|`` tends to ``-A_F/|A_F|`` (in polar form
-  ``|w|' = |A_F| cos psi - f``, ``|w| psi' = -|A_F| sin psi``, ``psi`` the angle from
-  ``-A_F/|A_F|``, ``f = nz phi``: ``psi`` shrinks like ``|w|**(|A_F|/(f - |A_F|))``), and past the
-  root the extension ``n = sgn(w . e) w/|w|`` keeps ``n`` continuous (``w`` comes back along
-  ``+A_F/|A_F|``, ``n`` stays ``-A_F/|A_F|``), exactly as the one-dimensional reference keeps the
-  sign ``s`` of a slip past its stop; ``(w . e)' = (f - |A_F|) (-A_F/|A_F|) . e < 0`` there.  So
-  ``solve_ivp`` brackets the root between accepted steps of the error-controlled solution and
-  Brent's method refines it on the dense output to about 4 ulp: the stop time, ``u`` and the
-  building's state are exact to the integration tolerances.  (The direction ``w/|w|`` is only
-  Hoelder continuous in time at a stop, so the error control takes small steps there; with a
-  one-dimensional excitation ``w`` stays on one line and everything is smooth.)  At a stop
-  ``w = 0`` and the block sticks if ``|A_F| <= thr nz``, else it slides on along ``-A_F/|A_F|``.
-  Where ``|w|`` is within round-off of zero its direction is noise, so a turn located at
-  ``|w| <= atol`` (the velocity's absolute tolerance, which bounds the error already) is taken
-  as the stop: the remaining slide is at most ``atol**2 / (2 (f - |A_F|))`` long.
-  A slip that starts from rest uses ``(w . e)/(tau - tau_0)`` and
-  ``(w . e - cos(30 deg) |w|)/(tau - tau_0)`` instead (same sign, without the trivial root at
-  its start ``tau_0``).
+*Start* (from rest until the speed reaches :data:`START_SPEED`): the direction is the one the
+relaxation tends to, ``n = -A_S/|A_S|`` with ``A_S`` the floor's acceleration were the block
+stuck (``A_S = f_k/(M_kk + m)``, ``f_k = -(K_k d + C_k d')`` the floor's other forces; ``A_S = g``
+on a floor that moves with the ground), and the speed ``r`` is a state::
+
+    r' = -A_F . n - nz phi(r),   u' = r n,   R = m nz phi(r) n
+
+(on a moving floor ``r' = (M_kk + m)/M_kk (|A_S| - nz phi(r))``).  The true direction lags this
+one by about ``r Omega/|A_F|`` (``Omega`` the turning rate of ``A_S``): below ``START_SPEED =
+1e-8 a_p T_p`` the friction force's direction is off by ~1e-7 at most, for the ~1e-4 ``T_p`` the
+start lasts, a change of the building's momentum ~1e-11 ``m a_p T_p`` and of ``u`` ~1e-16
+``a_p T_p**2``.  Under a one-dimensional excitation ``A_S`` keeps its line and the start is
+exact.  A start whose speed returns to zero ends in a stop, the root of ``r`` (of
+``r/(tau - tau_0)`` from rest, which has the sign of ``r`` without the trivial root at
+``tau_0``; ``r`` is smooth and crosses zero with ``r' < 0``).
+
+*Sliding* (from ``r = START_SPEED`` on, with ``w = r n``): the exact equations with a fixed
+reference direction ``e`` (the direction of ``w`` at the segment's start) and the friction
+direction ``n = sgn(w . e) w/|w|``, which is ``w/|w|`` while ``w`` stays within 90 degrees of
+``e``.  The segment ends at the first of:
+
+* *turn*: ``w . e = cos(30 deg) |w| - atol`` (``w`` has turned 30 degrees away from ``e``; the
+  velocity's absolute tolerance ``atol`` keeps round-off in the direction of a ``w`` within
+  ``atol`` of zero from starting segments): a new segment starts at once with ``e = w/|w|``;
+  nothing else changes (not a transition);
+* *stop*: ``w . e = 0``.  Before it ``w . e >= cos(30 deg) |w| - atol``, so there
+  ``|w| <= atol/cos(30 deg)``: the root is the stop, to the velocity's tolerance.  It is a
+  simple, transversal root of a continuous function: as ``|w| -> 0`` the direction ``w/|w|``
+  tends to ``-A_F/|A_F|`` (``|w|' = |A_F| cos psi - f`` and ``psi`` shrinks like
+  ``|w|**(|A_F|/(f - |A_F|))``, ``f = nz phi``), and past the root the extension
+  ``n = sgn(w . e) w/|w|`` keeps ``n`` continuous (``w`` comes back along ``+A_F/|A_F|``, ``n``
+  stays ``-A_F/|A_F|``), exactly as the one-dimensional reference keeps the sign ``s`` of a slip
+  past its stop; there ``(w . e)' = (f - |A_F|) (-A_F/|A_F|) . e < 0``.  ``solve_ivp`` brackets
+  the root between accepted steps of the error-controlled solution and Brent's method refines it
+  on the dense output to about 4 ulp: the stop time, ``u`` and the building's state are exact to
+  the integration tolerances.  (The direction ``w/|w|`` is only Hoelder continuous in time at a
+  stop, so the error control takes small steps there; under a one-dimensional excitation ``w``
+  stays on one line and everything is smooth.)
+
+At a stop ``w = 0`` and the block sticks if ``|A_F| <= thr nz``, else it starts again along
+``-A_F/|A_F|``.
 
 Inside a slip ``|u|`` peaks where ``(|u|**2)'/2 = u . w`` goes from positive to negative (a
 non-terminal event); ``|u|`` is also taken at every stop and at the end of every segment, so the
@@ -118,12 +138,16 @@ from ..scene import Scene
 from .reference_building import shear_building
 from .result import PeerResult, counted
 
-__all__ = ["PlanarBuilding", "PlanarRun", "TURN_ANGLE", "planar_building", "planar_excitation",
+__all__ = ["PlanarBuilding", "PlanarRun", "START_SPEED", "TURN_ANGLE", "planar_building", "planar_excitation",
            "run_planar", "solve_reference_planar"]
 
 TURN_ANGLE = math.pi / 6.0
 """Largest angle (radians) the sliding velocity turns within one segment before a new segment
 starts with a new reference direction (see the module docstring)."""
+
+START_SPEED = 1e-8
+"""Speed (units ``a_p T_p``) up to which a slip from rest slides along the slaved direction
+``-A_S/|A_S|`` before the exact equations take over (module docstring)."""
 
 _COS_TURN = math.cos(TURN_ANGLE)
 _ULP4 = 4e-15      # relative slack of the stick limit, as in isoslide.peers.reference
@@ -455,9 +479,9 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
 
     tau = ex.tau_start
     y = np.zeros(4 * B.nd + 4)
-    sliding = from_rest = False
-    e = np.zeros(2)
-    forced = None            # direction of a breakaway just located: the next segment slides along it
+    mode = _STUCK
+    from_rest = False
+    e = np.array([1.0, 0.0])     # a sliding segment's reference direction
     peak, tau_peak, angle_peak = 0.0, math.nan, math.nan
     n_events = nfev = zero_len = segments = ib = 0
     used = [0]
@@ -478,28 +502,26 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
         t_end = bps[ib] if ib < len(bps) else t_stop
         ground, nz = ex.window(tau, max(t_end, tau))
         # ---- the mode at the segment start --------------------------------------------------
-        if not sliding:
+        if mode == _STUCK:
             y[i_w:i_w + 2] = 0.0
-            if forced is not None:
-                sliding, e, from_rest = True, forced, True
-            else:
-                af = _stuck_af(B, y, ground(tau))
-                a = math.hypot(af[0], af[1])
-                if a > lim * nz(tau):
-                    sliding, e, from_rest = True, np.array([-af[0] / a, -af[1] / a]), True
-                    n_events += 1
-            forced = None
-        free = not sliding and tau >= tau_end
+            af = _stuck_af(B, y, ground(tau))
+            if math.hypot(af[0], af[1]) > lim * nz(tau):
+                mode, from_rest = _START, True
+                n_events += 1
+        free = mode == _STUCK and tau >= tau_end
         if free and (settle_g is None or settle_g(tau, y) >= 0.0):
             settled = True
             break
         if tau >= t_stop:
             break
         # ---- this segment -------------------------------------------------------------------
-        if sliding:
-            rhs, specs = _sliding_segment(B, ground, nz, e, tau, y, from_rest, atol)
+        if mode == _START:
+            seg = _start_segment(B, ground, nz, e, tau, y, from_rest)
+        elif mode == _SLIDING:
+            seg = _sliding_segment(B, ground, nz, e, atol)
         else:
-            rhs, specs = _stuck_segment(B, ground, nz, lim, settle_g if free else None)
+            seg = _stuck_segment(B, ground, nz, lim, settle_g if free else None)
+        rhs, specs = seg.rhs, seg.events
         sol = solve_ivp(counted(rhs, max_work, "reference", used), (tau, t_end), y, method="DOP853", rtol=rtol,
                         atol=atol, events=[s[0] for s in specs], max_step=hmax_pulse if tau < tau_end else hmax_free,
                         dense_output=sample_t is not None)
@@ -510,8 +532,10 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
             lo = rec_t[-1][-1] if rec_t else -math.inf
             ts = sample_t[(sample_t >= tau) & (sample_t <= sol.t[-1]) & (sample_t > lo)]
             if ts.size:
+                ys = np.asarray(sol.sol(ts)).reshape(y.size, -1)
                 rec_t.append(ts)
-                rec_y.append(np.asarray(sol.sol(ts))[i_u:i_u + 4].reshape(4, -1))
+                rec_y.append(np.vstack([ys[i_u:i_u + 2], np.array([seg.velocity(t, c) for t, c in
+                                                                   zip(ts, ys.T, strict=True)]).T]))
         for (_, _kind, terminal), te, ye in zip(specs, sol.t_events, sol.y_events, strict=True):
             if not terminal:            # the peaks of |u| inside a slip
                 for t_, y_ in zip(te, ye, strict=True):
@@ -520,9 +544,9 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
             tau = t_end
             y = np.array(sol.y[:, -1], dtype=float)
             note(tau, y)
-            if sliding:
+            if mode == _SLIDING:
                 e = _unit(y[i_w:i_w + 2], e)
-                from_rest = y[i_w] == 0.0 and y[i_w + 1] == 0.0
+            from_rest = False
             continue
         te, ye, kind = min(((te[0], ye[0], s[1]) for te, ye, s in zip(sol.t_events, sol.y_events, specs, strict=True)
                             if s[2] and len(te)), key=lambda h: h[0])
@@ -532,21 +556,24 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
         tau = float(te)
         y = np.array(ye, dtype=float)
         note(tau, y)
+        from_rest = False
         if kind == "settle":
             settled = True
             break
-        if kind == "break":
-            af = _stuck_af(B, y, ground(tau))
-            a = math.hypot(af[0], af[1])
-            forced = np.array([-af[0] / a, -af[1] / a])
+        if kind == "break":             # slides from rest along -A_F/|A_F| (the start's direction)
+            mode, from_rest = _START, True
             n_events += 1
         elif kind == "stop":
             y[i_w:i_w + 2] = 0.0
-            sliding = False
+            mode = _STUCK
             n_events += 1
+        elif kind == "fast":            # the start's speed reached START_SPEED: the exact equations
+            w = seg.velocity(tau, y)
+            y[i_w:i_w + 2] = w
+            e = _unit(w, e)
+            mode = _SLIDING
         else:                           # "turn": a new reference direction, nothing else changes
             e = _unit(y[i_w:i_w + 2], e)
-            from_rest = False
 
     note(tau, y)
     res = PeerResult(method="reference", pi1=float(peak), pi1_residual=float(math.hypot(y[i_u], y[i_u + 1])),
@@ -557,6 +584,29 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
     else:
         tt, yy = np.zeros(0), np.zeros((4, 0))
     return PlanarRun(result=res, tau=tt, u=yy[:2], w=yy[2:])
+
+
+_STUCK, _START, _SLIDING = 0, 1, 2
+"""The block's modes: stuck, starting to slide (slaved direction), sliding (module docstring)."""
+
+
+@dataclass(frozen=True)
+class _Segment:
+    """What one segment integrates.
+
+    ``rhs(t, y)``, its events ``(function, kind, terminal)`` and ``velocity(t, y)``, the sliding
+    velocity ``w`` (units ``a_p T_p``) that the state stands for.
+    """
+
+    rhs: object
+    events: list
+    velocity: object
+
+
+def _forces(B: PlanarBuilding, yy):
+    """``-(C d' + K d)`` (shape ``(nd, 2)``, units ``M_b a_p``): every floor's spring and damper forces."""
+    nd = B.nd
+    return -(B.C @ yy[2 * nd:4 * nd].reshape(nd, 2) + B.K @ yy[:2 * nd].reshape(nd, 2))
 
 
 def _stuck_af(B: PlanarBuilding, y, g) -> tuple:
@@ -571,20 +621,19 @@ def _stuck_af(B: PlanarBuilding, y, g) -> tuple:
     return float(a[0]), float(a[1])
 
 
-def _stuck_segment(B: PlanarBuilding, ground, nz, lim: float, settle_g):
-    """Right-hand side and events ``(function, kind, terminal)`` of a segment with the block stuck.
+def _stuck_segment(B: PlanarBuilding, ground, nz, lim: float, settle_g) -> _Segment:
+    """A segment with the block stuck.
 
     Events: ``"break"`` (``|A_F|`` reaches ``lim nz``) and, when ``settle_g`` is given, ``"settle"``.
     """
     nd = B.nd
     Mst = B.stuck_masses
-    K, C = B.K, B.C
 
     def rhs(t, yy):
         d = np.zeros(yy.size)
         if nd:
             gx, gy = ground(t)
-            acc = -(C @ yy[2 * nd:4 * nd].reshape(nd, 2) + K @ yy[:2 * nd].reshape(nd, 2)) / Mst[:, None]
+            acc = _forces(B, yy) / Mst[:, None]
             acc[:, 0] -= gx
             acc[:, 1] -= gy
             d[:2 * nd] = yy[2 * nd:4 * nd]
@@ -596,24 +645,94 @@ def _stuck_segment(B: PlanarBuilding, ground, nz, lim: float, settle_g):
         return lim * nz(t) - math.hypot(af[0], af[1])
 
     g_break.terminal, g_break.direction = True, -1.0
-    specs = [(g_break, "break", True)]
+    events = [(g_break, "break", True)]
     if settle_g is not None:
         settle_g.terminal, settle_g.direction = True, 1.0
-        specs.append((settle_g, "settle", True))
-    return rhs, specs
+        events.append((settle_g, "settle", True))
+    return _Segment(rhs, events, lambda t, yy: np.zeros(2))
 
 
-def _sliding_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: bool, slack: float):
-    """Right-hand side and events ``(function, kind, terminal)`` of a sliding segment.
+def _start_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: bool) -> _Segment:
+    """A slip's start: the speed ``r`` (held in ``y[w_x]``) along ``n = -A_S/|A_S|`` (module docstring).
 
-    The friction direction is ``sgn(w . e) w/|w|`` (``e`` where ``w = 0``).  Events: ``"stop"``
-    (``w . e`` to zero; divided by ``tau - t0`` in a segment that starts from rest,
-    ``from_rest``), ``"turn"`` (``w . e - cos(30 deg) |w| + slack`` to zero: ``w`` 30 degrees from
-    ``e``, ``slack`` the velocity's absolute tolerance), both terminal, and ``"peak"`` (``u . w``
-    from positive to negative); see the module docstring.
+    Events: ``"stop"`` (``r`` to zero; ``r/(tau - t0)`` from rest) and ``"fast"`` (``r`` up to
+    :data:`START_SPEED`), terminal, and ``"peak"`` (``u . n`` from positive to negative).  ``e``
+    is the direction where ``A_S = 0``.
     """
     nd, k, m = B.nd, B.k, B.m
-    M, K, C = B.masses, B.K, B.C
+    M = B.masses
+    i_u, i_w = 4 * nd, 4 * nd + 2
+    ex_, ey_ = float(e[0]), float(e[1])
+    phi = B.phi
+
+    def parts(t, yy):
+        """``(n, A_F, f, friction level)``: direction, floor acceleration, floor forces (or None)."""
+        g = ground(t)
+        fr = nz(t) * phi(abs(yy[i_w]))
+        if k >= 0:
+            f = _forces(B, yy)
+            ax, ay = f[k]
+        else:
+            f = None
+            ax, ay = g
+        a = math.hypot(ax, ay)
+        nx, ny = (-ax / a, -ay / a) if a > 0.0 else (ex_, ey_)
+        if k >= 0:
+            f[k, 0] += m * fr * nx
+            f[k, 1] += m * fr * ny
+            afx, afy = f[k, 0] / M[k], f[k, 1] / M[k]
+        else:
+            afx, afy = ax, ay
+        return nx, ny, afx, afy, f, fr, g
+
+    def rhs(t, yy):
+        nx, ny, afx, afy, f, fr, g = parts(t, yy)
+        r = yy[i_w]
+        d = np.zeros(yy.size)
+        if k >= 0:
+            acc = f / M[:, None]
+            acc[:, 0] -= g[0]
+            acc[:, 1] -= g[1]
+            d[:2 * nd] = yy[2 * nd:4 * nd]
+            d[2 * nd:4 * nd] = acc.ravel()
+        d[i_u], d[i_u + 1] = r * nx, r * ny
+        d[i_w] = -(afx * nx + afy * ny) - fr
+        return d
+
+    r0 = float(rhs(t0, np.asarray(y0, dtype=float))[i_w]) if from_rest else float(y0[i_w])
+
+    def g_stop(t, yy):
+        dt = t - t0
+        if not from_rest:
+            return yy[i_w]
+        return yy[i_w] / dt if dt > 0.0 else r0
+
+    def g_fast(t, yy):
+        return yy[i_w] - START_SPEED
+
+    def g_peak(t, yy):
+        nx, ny = parts(t, yy)[:2]
+        return yy[i_w] * (yy[i_u] * nx + yy[i_u + 1] * ny)
+
+    def velocity(t, yy):
+        nx, ny = parts(t, yy)[:2]
+        return np.array([yy[i_w] * nx, yy[i_w] * ny])
+
+    for fn, terminal, direction in ((g_stop, True, -1.0), (g_fast, True, 1.0), (g_peak, False, -1.0)):
+        fn.terminal, fn.direction = terminal, direction
+    return _Segment(rhs, [(g_stop, "stop", True), (g_fast, "fast", True), (g_peak, "peak", False)], velocity)
+
+
+def _sliding_segment(B: PlanarBuilding, ground, nz, e, slack: float) -> _Segment:
+    """A sliding segment with the reference direction ``e`` (module docstring).
+
+    The friction direction is ``sgn(w . e) w/|w|`` (``e`` where ``w = 0``).  Events: ``"stop"``
+    (``w . e`` to zero) and ``"turn"`` (``w . e - cos(30 deg) |w| + slack`` to zero: ``w`` 30
+    degrees from ``e``, ``slack`` the velocity's absolute tolerance), terminal, and ``"peak"``
+    (``u . w`` from positive to negative).
+    """
+    nd, k, m = B.nd, B.k, B.m
+    M = B.masses
     i_u, i_w = 4 * nd, 4 * nd + 2
     ex_, ey_ = float(e[0]), float(e[1])
     phi = B.phi
@@ -630,7 +749,7 @@ def _sliding_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest:
         fr = nz(t) * phi(s)
         d = np.empty(yy.size)
         if k >= 0:
-            f = -(C @ yy[2 * nd:4 * nd].reshape(nd, 2) + K @ yy[:2 * nd].reshape(nd, 2))
+            f = _forces(B, yy)
             f[k, 0] += m * fr * nx
             f[k, 1] += m * fr * ny
             acc = f / M[:, None]
@@ -645,29 +764,19 @@ def _sliding_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest:
         d[i_w], d[i_w + 1] = -afx - fr * nx, -afy - fr * ny
         return d
 
-    def along(yy):
+    def g_stop(t, yy):
         return yy[i_w] * ex_ + yy[i_w + 1] * ey_
 
     def g_turn(t, yy):
         return yy[i_w] * ex_ + yy[i_w + 1] * ey_ - _COS_TURN * math.hypot(yy[i_w], yy[i_w + 1]) + slack
-
-    if from_rest:
-        d0 = rhs(t0, np.asarray(y0, dtype=float))
-        a0 = float(d0[i_w] * ex_ + d0[i_w + 1] * ey_)
-
-        def g_stop(t, yy):
-            dt = t - t0
-            return along(yy) / dt if dt > 0.0 else a0
-    else:
-        def g_stop(t, yy):
-            return along(yy)
 
     def g_peak(t, yy):
         return yy[i_u] * yy[i_w] + yy[i_u + 1] * yy[i_w + 1]
 
     for fn, terminal in ((g_stop, True), (g_turn, True), (g_peak, False)):
         fn.terminal, fn.direction = terminal, -1.0
-    return rhs, [(g_stop, "stop", True), (g_turn, "turn", True), (g_peak, "peak", False)]
+    return _Segment(rhs, [(g_stop, "stop", True), (g_turn, "turn", True), (g_peak, "peak", False)],
+                    lambda t, yy: np.array(yy[i_w:i_w + 2]))
 
 
 def _unit(v, fallback) -> np.ndarray:
