@@ -142,6 +142,10 @@ def test_pi5_slice_and_its_spread(datasets):
     assert rel == pytest.approx(spread / pi1.max())
     assert bool(ds5["similar"].sel(pi3=1.0, pi14=1.0)) == (rel <= ds5.attrs["spread_tolerance"])
     assert (ds5["pi1"] > 0).any() and (ds5["settled"] == 1).all()
+    for row in planar.spread_summary(ds5):
+        there = ds5["pi1"].sel(pi3=row["pi3"], pi14=row["pi14"], pi2=row["pi2_at"]).values
+        assert row["at_end"] == (there.min() == 0.0 < there.max())
+        assert row["relative_spread"] == float(ds5["relative_spread"].sel(pi3=row["pi3"], pi14=row["pi14"]))
 
 
 def test_findings_state_the_dataset_s_numbers(datasets):

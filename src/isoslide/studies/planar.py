@@ -586,12 +586,25 @@ def vertical_summary(ds: xr.Dataset) -> list:
 
 
 def spread_summary(ds5: xr.Dataset) -> list:
-    """Per building and Pi14 of the Pi5 slice: ``pi3, pi14, relative_spread, pi2_at, similar``."""
-    return [{"pi3": float(pi3), "pi14": float(pi14),
-             "relative_spread": float(ds5["relative_spread"].sel(pi3=pi3, pi14=pi14)),
-             "pi2_at": float(ds5["pi2_at"].sel(pi3=pi3, pi14=pi14)),
-             "similar": bool(ds5["similar"].sel(pi3=pi3, pi14=pi14))}
-            for pi3 in ds5["pi3"].values for pi14 in ds5["pi14"].values]
+    """Per building and Pi14 of the Pi5 slice: where the Pi5 curves part most.
+
+    Returns
+    -------
+    list of dict
+        ``pi3, pi14, relative_spread, pi2_at, similar`` (see :func:`pi5_study`) and ``at_end``: at
+        ``pi2_at`` some Pi5 curve has stopped sliding while another still slides (the curves end at
+        different Pi2).
+    """
+    rows = []
+    for pi3 in ds5["pi3"].values:
+        for pi14 in ds5["pi14"].values:
+            at = float(ds5["pi2_at"].sel(pi3=pi3, pi14=pi14))
+            there = ds5["pi1"].sel(pi3=pi3, pi14=pi14, pi2=at).values
+            rows.append({"pi3": float(pi3), "pi14": float(pi14),
+                         "relative_spread": float(ds5["relative_spread"].sel(pi3=pi3, pi14=pi14)),
+                         "pi2_at": at, "similar": bool(ds5["similar"].sel(pi3=pi3, pi14=pi14)),
+                         "at_end": bool(there.min() == 0.0 < there.max())})
+    return rows
 
 
 def _x(v: float) -> str:
@@ -656,15 +669,16 @@ def findings(ds: xr.Dataset, ds5: xr.Dataset | None = None) -> list:
     lines = []
     for r in vrows:
         verdict = "matters" if r["matters"] else "does not matter"
+        size = "n/a" if not np.isfinite(r["median_abs"]) else f"{100.0 * r['median_abs']:.0f}%"
         lines.append(f"Π₁₇ = {r['pi17']:g}, {_building(r['pi3'])}: Π₁ changes by a median {_pct(r['median'])} "
-                     f"({_pct(r['low'])} to {_pct(r['high'])} over {r['n']} sliding scenes), the curves' peaks by a "
-                     f"median {_pct(r['peak_change'])}"
+                     f"(median size {size}, from {_pct(r['low'])} to {_pct(r['high'])} over {r['n']} sliding scenes), "
+                     f"the curves' peaks by a median {_pct(r['peak_change'])}"
                      + (f", {r['only_vertical']} scenes slide only with it" if r["only_vertical"] else "")
                      + f": it {verdict}")
     out.append(("The vertical component on the isolated and on the fixed floor",
                 f"A vertical pulse {ds.attrs['pulse_z']} of amplitude Π₁₇ g on the main pulse's time axis, with both "
-                f"horizontal components (every Π₁₅, Π₁₄, Π₂); it matters where the median change of Π₁ exceeds "
-                f"{tol:.0%}: " + "; ".join(lines) + "."))
+                f"horizontal components (every Π₁₅, Π₁₄, Π₂); it matters where the median size of the change of Π₁ "
+                f"exceeds {tol:.0%}: " + "; ".join(lines) + "."))
 
     if ds5 is not None:
         srows = spread_summary(ds5)
@@ -675,8 +689,12 @@ def findings(ds: xr.Dataset, ds5: xr.Dataset | None = None) -> list:
             held = sum(r["similar"] for r in rs)
             label = "the 1-D model (Π₁₄ = 0)" if pi14 == 0.0 else f"the plane (Π₁₄ = {pi14:g})"
             lines.append(f"{label}: relative spread " + ", ".join(
-                f"{r['relative_spread']:.3f} at Π₃ = {r['pi3']:g}" for r in rs)
-                + f", complete similarity holds at {held} of {len(rs)}")
+                f"{r['relative_spread']:.3f} at Π₃ = {r['pi3']:g}" + (" (largest at Π₂ = "
+                                                                     f"{r['pi2_at']:.2f}, where one Π₅ curve has "
+                                                                     "stopped sliding and another still slides)"
+                                                                     if r["at_end"] else "")
+                for r in rs)
+                + f"; complete similarity holds at {held} of {len(rs)}")
         out.append(("Complete similarity in Π₅ in the plane",
                     f"The paper finds Π₁ almost independent of Π₅ = μ_k/μ_s over {float(ds5['pi5'].min()):g} to "
                     f"{float(ds5['pi5'].max()):g} (Stribeck friction, Π₆ = {float(ds5['pi6']):g}). The largest spread "
