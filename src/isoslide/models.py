@@ -231,13 +231,14 @@ VERTICAL_LABELS = tuple(f"{n}+vertical" for n in _exact_labels() + _building_lab
                         if "static-kinetic" not in n)
 """Labels of the general building under vertical ground motion (every reduction is off there)."""
 MODEL_LABELS = MODEL_LABELS + VERTICAL_LABELS
-PLANAR_ISOLATORS = ("linear", "fixed-base")
-"""Isolators of a building in the plane."""
+PLANAR_ISOLATORS = ("linear", "fixed-base", "sliding-bearing")
+"""Isolators of a building in the plane (a bilinear bearing's circular yield surface is not modelled)."""
 PLANAR_LABELS = tuple(f"{n}+planar{v}" for v in ("", "+vertical")
                       for n in _exact_labels() + _building_labels(("base", "roof", "intermediate"))
-                      if "static-kinetic" not in n and n.split("+")[0] not in ISOLATOR_PARTS[1:3])
+                      if "static-kinetic" not in n and n.split("+")[0] in PLANAR_ISOLATORS + ("no-slide", "coulomb",
+                                                                                            "stribeck"))
 """Labels of planar sliding (two horizontal ground components not along one line), with and without
-vertical motion: a fixed base or a linear isolator (:data:`PLANAR_ISOLATORS`)."""
+vertical motion: a fixed base, a linear isolator or a sliding bearing (:data:`PLANAR_ISOLATORS`)."""
 MODEL_LABELS = MODEL_LABELS + PLANAR_LABELS
 """Every label :func:`isoslide.solve` can produce."""
 

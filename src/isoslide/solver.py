@@ -662,11 +662,13 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
                   settle: bool, state: tuple | None = None) -> Solution:
     """:func:`solve` in the plane: :func:`isoslide.engine.planar_kernel.run` with the general building's parameters.
 
-    ``state``, when given, is ``(y0, bm0)``: the initial state and mode (see the kernel).
+    ``state``, when given, is ``(y0, md0)``: the initial state and modes (see the kernel's
+    :func:`~isoslide.engine.planar_kernel.deriv`).
     """
-    if scene.pi9 > 0.0:
-        raise ValueError(f"pi9 = {scene.pi9!r}: planar sliding runs on a fixed base or a linear isolator; "
-                         "allowed: pi9 = 0 with two horizontal ground components or an angle")
+    if scene.pi9 > 0.0 and scene.pi10 > 0.0 and not scene.fixed_base:
+        raise ValueError(f"pi10 = {scene.pi10!r} (a bilinear bearing): planar sliding runs on a fixed base, a linear "
+                         "isolator or a sliding bearing; allowed: pi10 = 0 (or pi9 = 0) with two horizontal ground "
+                         "components or an angle")
     if not (math.isfinite(horizon) and horizon > 0):
         raise ValueError(f"horizon = {horizon!r} is out of range; allowed range: 0 < horizon < inf")
     coulomb = scene.rate_independent and model == "auto"
@@ -680,12 +682,14 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
     h_free = min(building.free_step(scene), max_step)
     ex = excitation(scene)
     bps = _breakpoints(scene)
-    y0, bm0 = (np.zeros(planar_kernel.state_size(n)), 0.0) if state is None else state
+    y0, md0 = (np.zeros(planar_kernel.state_size(n)), np.array([0.0, 1.0, 0.0, 0.0, 1.0, 0.0])) \
+        if state is None else state
 
     def run(irtol, many=False):
         res = planar_kernel.run(P, ex, bps, start, _tau_end(scene), stop, min(H_MAX_PULSE, max_step), h_free, irtol,
                                 base_atol(scene, irtol, many), hist_cap, min(H_RESTART, max_step), settle, budget,
-                                *modal, np.asarray(y0, dtype=float), float(bm0), planar_kernel.slaved_speed(irtol))
+                                *modal, np.asarray(y0, dtype=float), np.asarray(md0, dtype=float),
+                                planar_kernel.slaved_speed(irtol))
         return _checked(Run.of(planar_kernel, res), scene, horizon, budget, "Runge-Kutta steps", rtol)
 
     out = _refined(run(integrator_rtol(scene, rtol, horizon)), run, scene, rtol, horizon, demand_integrated=True)
@@ -708,9 +712,11 @@ def _planar_history(h: np.ndarray, n: int, scene: Scene) -> History:
 
     xs = np.stack([h[:, c["x"] + 2:c["x"] + 2 + n], h[:, c["y"] + 2:c["y"] + 2 + n]], axis=1)
     xsd = np.stack([h[:, c["x"] + 2 + n:c["x"] + nb], h[:, c["y"] + 2 + n:c["y"] + nb]], axis=1)
+    bearing = scene.pi9 > 0.0 and not scene.fixed_base
     return History(tau=h[:, c["tau"]].copy(), x=pair(0), xd=pair(1), u=h[:, c["u"]:c["u"] + 2].copy(),
                    ud=h[:, c["w"]:c["w"] + 2].copy(), phase=h[:, c["phase"]].astype(np.int8),
-                   xs=xs if scene.flexible else None, xsd=xsd if scene.flexible else None)
+                   xs=xs if scene.flexible else None, xsd=xsd if scene.flexible else None,
+                   iso_phase=h[:, c["iso_phase"]].astype(np.int8) if bearing else None)
 
 
 def _building_history(h: np.ndarray, scene: Scene) -> History:

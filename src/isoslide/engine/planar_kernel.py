@@ -63,22 +63,26 @@ from numba import njit
 
 from .. import jit_cache
 from ..pulses import accel_at, jerk_at
-from .building_kernel import (KIND_FIXED, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR, P_KD, P_KIND, P_M, P_MB,
-                              P_N, P_PI2, P_PI6, P_ROOF, P_THR, _storey_force, friction, normal)
+from .building_kernel import (KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR, P_KD, P_KIND, P_M,
+                              P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness, _storey_force, friction, normal)
 from .kernel import ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step, _step_factor, hermite_root
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
 
-INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "rejected")
-"""The integer results of :func:`run`, in order."""
-FLOAT_RESULTS = ("umax", "tpeak", "angle", "ures", "tend", "vmax", "ux", "uy")
-"""The float results of :func:`run`, in order: peak ``|u|``, its time and direction, the final ``|u|``,
-the end time, the largest speed, the final ``u``."""
+M_BM, M_E0, M_E1, M_IM, M_I0, M_I1 = range(6)
+"""Indices of the modes array ``md``: the block's mode and fallback direction, the bearing's."""
 
-EV_DEMAND, EV_RATE, EV_PEAK, EV_STOP = range(4)
+INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "rejected", "iso_events", "iso_moved")
+"""The integer results of :func:`run`, in order."""
+FLOAT_RESULTS = ("umax", "tpeak", "angle", "ures", "tend", "vmax", "ux", "uy", "xmax")
+"""The float results of :func:`run`, in order: peak ``|u|``, its time and direction, the final ``|u|``,
+the end time, the largest speed, the final ``u``, the largest slab displacement ``|x|``."""
+
+EV_DEMAND, EV_RATE, EV_PEAK, EV_STOP, EV_BDEMAND, EV_BRATE, EV_BSTOP = range(7)
 """Event kinds: a stuck block's demand ``|A_F| - thr nz``, its rate, ``u . w`` (the rate of
-``|u|^2 / 2``) and the signed speed ``sg sigma`` of a slow slide (mode ``+-2``)."""
+``|u|^2 / 2``), the signed speed ``sg sigma`` of a slow slide (mode ``+-2``); a held sliding
+bearing's demand ``|f_need| - q nz``, its rate, and its slow slide's signed speed."""
 
 STOP_FRACTION = 0.9
 """Fraction of the predicted time to a stop that one step may take."""
@@ -89,6 +93,8 @@ ALIGNED = 1e-3
 SLAVED_FACTOR = 0.1
 """The slaved line holds slides below the speed ``SLAVED_FACTOR rtol^(2/3)`` (units of ``a_p T_p``;
 :func:`slaved_speed`)."""
+FD_STEP = 1e-6
+"""Relative step of the central differences that give the rates of a sliding bearing's events."""
 
 
 def slaved_speed(rtol: float) -> float:
@@ -113,9 +119,10 @@ def axis_size(n: int) -> int:
 
 
 def history_columns(n: int) -> dict:
-    """Column of each quantity in a history row: ``tau``, the axes' first columns, ``u``, ``w``, ``phase``."""
+    """Column of each quantity in a history row: ``tau``, the axes' first columns, ``u``, ``w``, the phases."""
     nb = axis_size(n)
-    return {"tau": 0, "x": 1, "y": 1 + nb, "u": 1 + 2 * nb, "w": 3 + 2 * nb, "phase": 5 + 2 * nb}
+    return {"tau": 0, "x": 1, "y": 1 + nb, "u": 1 + 2 * nb, "w": 3 + 2 * nb, "phase": 5 + 2 * nb,
+            "iso_phase": 6 + 2 * nb}
 
 
 @njit(cache=True)
@@ -145,12 +152,27 @@ def ground_rate(tau, ex):
 
 
 @njit(cache=True)
-def _axis(o, stuck, r, p, y, P, A):
+def _sliding_bearing(P):
+    """True for a sliding bearing (friction pendulum): a second planar friction interface."""
+    return P[P_KIND] == KIND_SLIDING
+
+
+@njit(cache=True)
+def _held(im, P):
+    """True while the slab is held to the ground (a fixed base, or a stuck sliding bearing)."""
+    return P[P_KIND] == KIND_FIXED or (P[P_KIND] == KIND_SLIDING and im == 0.0)
+
+
+@njit(cache=True)
+def _axis(o, stuck, r, p, y, P, A, held, rb, nz):
     """Absolute accelerations of one axis: ``(Ab, A_F)``, the floors' into ``A``.
 
     ``o`` is the axis's first state, ``r`` the component of the sliding block's friction force on
-    its floor, ``p`` the ground acceleration.  Linear and homogeneous in ``(y, p, r)``: given the
-    states' rates and ``p'`` it returns the rates.
+    its floor, ``p`` the ground acceleration, ``held`` whether the slab is held to the ground,
+    ``rb`` the component of a sliding bearing's friction force on the slab and ``nz`` the
+    normal-force factor (a friction pendulum's stiffness scales with it).  Without a sliding
+    bearing, linear and homogeneous in ``(y, p, r)``: given the states' rates and ``p'`` it returns
+    the rates.
     """
     n = int(P[P_N])
     m = P[P_M]
@@ -170,10 +192,10 @@ def _axis(o, stuck, r, p, y, P, A):
                 A[j] = -G / (mj + m) if stuck else (-G + r) / mj
             else:
                 A[j] = -G / mj
-    if P[P_KIND] == KIND_FIXED:
+    if held:
         Ab = p
     else:
-        F = P[P_KD] * y[o] + P[P_CB] * y[o + 1]
+        F = _stiffness(nz, P) * y[o] + P[P_CB] * y[o + 1] + rb
         if roof:
             Ab = (-F + S) / mb
         else:
@@ -193,19 +215,107 @@ def _level(s, nz, P):
 
 
 @njit(cache=True)
-def _stuck_accels(y, gx, gy, P, A):
-    """The floor's acceleration ``(A_Fx, A_Fy)`` with the block stuck on it (``A`` scratch space)."""
-    nb = 2 + 2 * int(P[P_N])
-    return _axis(0, True, 0.0, gx, y, P, A)[1], _axis(nb, True, 0.0, gy, y, P, A)[1]
+def _unit(x, y, f0, f1):
+    """``(x, y) / |(x, y)|``, or ``(f0, f1)`` for a zero vector."""
+    r = math.sqrt(x * x + y * y)
+    if r > 0.0:
+        return x / r, y / r
+    return f0, f1
 
 
 @njit(cache=True)
-def _axis_rates(o, stuck, r, p, y, P, out):
+def _stuck_accels(y, gx, gy, P, A, held, rbx, rby, nz):
+    """The floor's acceleration ``(A_Fx, A_Fy)`` with the block stuck on it (``A`` scratch space)."""
+    nb = 2 + 2 * int(P[P_N])
+    return (_axis(0, True, 0.0, gx, y, P, A, held, rbx, nz)[1],
+            _axis(nb, True, 0.0, gy, y, P, A, held, rby, nz)[1])
+
+
+@njit(cache=True)
+def _block_force(md, y, gx, gy, P, nz, tmp, held, rbx, rby):
+    """The sliding block's friction force on its floor over its mass (per unit ``m``), and its level.
+
+    Returns ``(fx, fy, ph, dx, dy, ax, ay, amag)``: the friction's direction on the floor, the level
+    ``nz phi``, the slaved direction ``d`` (mode ``+-2``) and the stuck floor acceleration it comes
+    from (zero outside mode ``+-2``).  Zero force for a stuck block.
+    """
+    bm = md[M_BM]
+    U = y.shape[0] - 4
+    if bm == 0.0:
+        return 0.0, 0.0, 0.0, md[M_E0], md[M_E1], 0.0, 0.0, 0.0
+    wx = y[U + 2]
+    wy = y[U + 3]
+    if bm == 1.0:
+        dx, dy = _unit(wx, wy, md[M_E0], md[M_E1])
+        return dx, dy, _level(math.sqrt(wx * wx + wy * wy), nz, P), dx, dy, 0.0, 0.0, 0.0
+    ax, ay = _stuck_accels(y, gx, gy, P, tmp, held, rbx, rby, nz)
+    amag = math.sqrt(ax * ax + ay * ay)
+    dx, dy = _unit(-ax, -ay, md[M_E0], md[M_E1])
+    sg = 0.5 * bm
+    sigma = wx * dx + wy * dy
+    return sg * dx, sg * dy, _level(abs(sigma), nz, P), dx, dy, ax, ay, amag
+
+
+@njit(cache=True)
+def _bearing_need(md, y, gx, gy, P, nz, tmp):
+    """Force ``(f_x, f_y)`` (units of ``M_b a_p``) a held sliding bearing must supply to hold the slab.
+
+    ``-m_b p - k_d nz x + S + R`` with ``S`` the superstructure's force on the slab and ``R`` the
+    block's force on it when it sits on the slab (stuck: ``-m p``; sliding: its friction, in its
+    mode with the slab held).
+    """
+    n = int(P[P_N])
+    nb = 2 + 2 * n
+    mb = P[P_MB]
+    kd = _stiffness(nz, P)
+    rx = 0.0
+    ry = 0.0
+    if P[P_ROOF] == 0.0:
+        if md[M_BM] == 0.0:
+            rx = -P[P_M] * gx
+            ry = -P[P_M] * gy
+        else:
+            fx, fy, ph, _, _, _, _, _ = _block_force(md, y, gx, gy, P, nz, tmp, True, 0.0, 0.0)
+            rx = P[P_M] * ph * fx
+            ry = P[P_M] * ph * fy
+    Sx = 0.0
+    Sy = 0.0
+    if P[P_FLEX] != 0.0:
+        for j in range(n):
+            Sx += _storey_force(j, y[2:2 + n], y[2 + n:2 + 2 * n], P)
+            Sy += _storey_force(j, y[nb + 2:nb + 2 + n], y[nb + 2 + n:nb + 2 + 2 * n], P)
+    return -mb * gx - kd * y[0] + Sx + rx, -mb * gy - kd * y[nb] + Sy + ry
+
+
+@njit(cache=True)
+def _bearing_force(md, tau, y, P, ex, nz, tmp):
+    """A sliding bearing's friction force on the slab ``(rb_x, rb_y)`` and its slaved direction.
+
+    Returns ``(rbx, rby, dx, dy)``: ``q nz`` along the slab's velocity (mode 1) or along
+    ``sg d_b`` (mode ``+-2``, ``d_b`` the held need's direction); zero while held.
+    """
+    im = md[M_IM]
+    if im == 0.0 or not _sliding_bearing(P):
+        return 0.0, 0.0, md[M_I0], md[M_I1]
+    nb = 2 + 2 * int(P[P_N])
+    qn = P[P_Q] * nz
+    if im == 1.0:
+        dx, dy = _unit(y[1], y[nb + 1], md[M_I0], md[M_I1])
+        return qn * dx, qn * dy, dx, dy
+    gx, gy = ground(tau, ex)
+    fx, fy = _bearing_need(md, y, gx, gy, P, nz, tmp)
+    dx, dy = _unit(fx, fy, md[M_I0], md[M_I1])
+    sg = 0.5 * im
+    return qn * sg * dx, qn * sg * dy, dx, dy
+
+
+@njit(cache=True)
+def _axis_rates(o, stuck, r, p, y, P, out, held, rb, nz):
     """One axis's state rates into ``out`` (see :func:`_axis`); returns the floor's acceleration ``A_F``."""
     n = int(P[P_N])
     A = out[o + 2 + n:o + 2 + 2 * n]
-    Ab, AF = _axis(o, stuck, r, p, y, P, A)
-    if P[P_KIND] == KIND_FIXED:
+    Ab, AF = _axis(o, stuck, r, p, y, P, A, held, rb, nz)
+    if held:
         out[o] = 0.0
         out[o + 1] = 0.0
     else:
@@ -218,78 +328,109 @@ def _axis_rates(o, stuck, r, p, y, P, out):
 
 
 @njit(cache=True)
-def deriv(bm, e0, e1, tau, y, P, ex, out, tmp):
-    """Right-hand side at ``(tau, y)`` in the mode ``bm``, written into ``out``; returns ``(A_Fx, A_Fy)``.
-
-    Modes: 0 stuck; 1 sliding with friction along ``-w/|w|``; ``+-2`` sliding slowly along the
-    slaved line (below the speed of :func:`slaved_speed`): ``w = sigma d`` with ``d = -A/|A|`` (``A`` the
-    floor's acceleration were the block stuck), friction ``-sg nz phi(|sigma|) d`` on the block
-    (``sg = bm / 2``, the sign of ``sigma`` in the phase), ``sigma' = -A_F . d - sg nz phi`` and
-    ``w' = sigma' d + sigma d'``.  ``(e0, e1)`` is the direction used where it is undefined (a
-    speed or a demand exactly zero).  ``tmp`` is scratch space of at least ``n`` entries.
-    """
+def _rates(md, tau, y, P, ex, out, tmp):
+    """The state's rates in the modes ``md`` without the slaved lines' turning terms; ``(A_Fx, A_Fy)``."""
     n = int(P[P_N])
     nb = 2 + 2 * n
     U = 2 * nb
     gx, gy = ground(tau, ex)
     nz, _ = normal(tau, P)
-    stuck = bm == 0.0
-    slaved = bm == 2.0 or bm == -2.0
-    dx = e0
-    dy = e1
-    fx = 0.0
-    fy = 0.0
-    ph = 0.0
-    sigma = 0.0
-    As = tmp
-    ax = 0.0
-    ay = 0.0
-    amag = 0.0
-    if not stuck:
-        wx = y[U + 2]
-        wy = y[U + 3]
-        if slaved:
-            ax, ay = _stuck_accels(y, gx, gy, P, As)
-            amag = math.sqrt(ax * ax + ay * ay)
-            if amag > 0.0:
-                dx = -ax / amag
-                dy = -ay / amag
-            sigma = wx * dx + wy * dy
-            ph = _level(abs(sigma), nz, P)
-            fx = 0.5 * bm * dx
-            fy = 0.5 * bm * dy
-        else:
-            s = math.sqrt(wx * wx + wy * wy)
-            if s > 0.0:
-                dx = wx / s
-                dy = wy / s
-            ph = _level(s, nz, P)
-            fx = dx
-            fy = dy
+    held = _held(md[M_IM], P)
+    rbx, rby, _, _ = _bearing_force(md, tau, y, P, ex, nz, tmp)
+    fx, fy, ph, dx, dy, _, _, _ = _block_force(md, y, gx, gy, P, nz, tmp, held, rbx, rby)
+    stuck = md[M_BM] == 0.0
     m = P[P_M]
-    AFx = _axis_rates(0, stuck, m * ph * fx, gx, y, P, out)
-    AFy = _axis_rates(nb, stuck, m * ph * fy, gy, y, P, out)
+    AFx = _axis_rates(0, stuck, m * ph * fx, gx, y, P, out, held, rbx, nz)
+    AFy = _axis_rates(nb, stuck, m * ph * fy, gy, y, P, out, held, rby, nz)
     out[U] = y[U + 2]
     out[U + 1] = y[U + 3]
     if stuck:
         out[U + 2] = 0.0
         out[U + 3] = 0.0
-    elif slaved:
-        sd = -AFx * dx - AFy * dy - 0.5 * bm * ph
-        ddx = 0.0
-        ddy = 0.0
-        if amag > 0.0:
-            jx, jy = ground_rate(tau, ex)
-            rx, ry = _stuck_accels(out, jx, jy, P, As)
-            along = (rx * ax + ry * ay) / amag
-            ddx = -(rx - along * ax / amag) / amag
-            ddy = -(ry - along * ay / amag) / amag
-        out[U + 2] = sd * dx + sigma * ddx
-        out[U + 3] = sd * dy + sigma * ddy
     else:
         out[U + 2] = -AFx - ph * fx
         out[U + 3] = -AFy - ph * fy
     return AFx, AFy
+
+
+@njit(cache=True)
+def deriv(md, tau, y, P, ex, out, tmp):
+    """Right-hand side at ``(tau, y)`` in the modes ``md``, written into ``out``; returns ``(A_Fx, A_Fy)``.
+
+    The block's mode ``md[0]``: 0 stuck; 1 sliding with friction along ``-w/|w|``; ``+-2`` sliding
+    slowly along the slaved line (below :func:`slaved_speed`): ``w = sigma d`` with ``d = -A/|A|``
+    (``A`` the floor's acceleration were the block stuck), friction ``-sg nz phi(|sigma|) d`` on
+    the block (``sg = md[0] / 2``), ``sigma' = -A_F . d - sg nz phi`` and ``w' = sigma' d + sigma d'``.
+    A sliding bearing's mode ``md[3]`` likewise for the slab's velocity ``x'``: 0 held, 1 sliding
+    with friction ``q nz x'/|x'|``, ``+-2`` on its slaved line along the held need ``f/|f|``.
+    ``md[1:3]``, ``md[4:6]`` are the directions used where one is undefined (a zero speed or
+    demand).  ``tmp`` is scratch space of at least ``n`` entries.
+    """
+    n = int(P[P_N])
+    nb = 2 + 2 * n
+    U = 2 * nb
+    AFx, AFy = _rates(md, tau, y, P, ex, out, tmp)
+    bm = md[M_BM]
+    im = md[M_IM]
+    if bm == 2.0 or bm == -2.0:
+        gx, gy = ground(tau, ex)
+        nz, _ = normal(tau, P)
+        held = _held(im, P)
+        rbx, rby, _, _ = _bearing_force(md, tau, y, P, ex, nz, tmp)
+        _, _, ph, dx, dy, ax, ay, amag = _block_force(md, y, gx, gy, P, nz, tmp, held, rbx, rby)
+        sigma = y[U + 2] * dx + y[U + 3] * dy
+        sd = -AFx * dx - AFy * dy - 0.5 * bm * ph
+        ddx = 0.0
+        ddy = 0.0
+        if amag > 0.0:
+            if _sliding_bearing(P):
+                ddx, ddy = _turning(0, md, tau, y, P, ex, out, tmp, dx, dy)
+            else:
+                jx, jy = ground_rate(tau, ex)
+                rx, ry = _stuck_accels(out, jx, jy, P, tmp, held, 0.0, 0.0, nz)
+                along = (rx * ax + ry * ay) / amag
+                ddx = -(rx - along * ax / amag) / amag
+                ddy = -(ry - along * ay / amag) / amag
+        out[U + 2] = sd * dx + sigma * ddx
+        out[U + 3] = sd * dy + sigma * ddy
+    if im == 2.0 or im == -2.0:
+        nz, _ = normal(tau, P)
+        _, _, dx, dy = _bearing_force(md, tau, y, P, ex, nz, tmp)
+        sigma = y[1] * dx + y[nb + 1] * dy
+        sd = out[1] * dx + out[nb + 1] * dy
+        ddx, ddy = _turning(1, md, tau, y, P, ex, out, tmp, dx, dy)
+        out[1] = sd * dx + sigma * ddx
+        out[nb + 1] = sd * dy + sigma * ddy
+    return AFx, AFy
+
+
+@njit(cache=True)
+def _slaved_dir(which, md, tau, y, P, ex, tmp):
+    """The slaved direction of the block (``which = 0``) or of a sliding bearing (1) at ``(tau, y)``."""
+    gx, gy = ground(tau, ex)
+    nz, _ = normal(tau, P)
+    if which == 1:
+        fx, fy = _bearing_need(md, y, gx, gy, P, nz, tmp)
+        return _unit(fx, fy, md[M_I0], md[M_I1])
+    held = _held(md[M_IM], P)
+    rbx, rby, _, _ = _bearing_force(md, tau, y, P, ex, nz, tmp)
+    ax, ay = _stuck_accels(y, gx, gy, P, tmp, held, rbx, rby, nz)
+    return _unit(-ax, -ay, md[M_E0], md[M_E1])
+
+
+@njit(cache=True)
+def _turning(which, md, tau, y, P, ex, rate, tmp, dx, dy):
+    """Rate ``d'`` of a slaved direction along the motion ``rate`` (central differences; see :data:`FD_STEP`)."""
+    ny = y.shape[0]
+    eps = FD_STEP * max(1.0, abs(tau))
+    yp = tmp[ny:2 * ny]
+    ym = tmp[2 * ny:3 * ny]
+    for i in range(ny):
+        yp[i] = y[i] + eps * rate[i]
+        ym[i] = y[i] - eps * rate[i]
+    px, py = _slaved_dir(which, md, tau + eps, yp, P, ex, tmp)
+    mx, my = _slaved_dir(which, md, tau - eps, ym, P, ex, tmp)
+    return (px - mx) / (2.0 * eps), (py - my) / (2.0 * eps)
 
 
 @njit(cache=True)
@@ -299,18 +440,18 @@ def _error_scale(i, U, a, b, atol, rtol):
 
 
 @njit(cache=True)
-def rk_step(bm, e0, e1, tau, y, h, P, ex, atol, rtol, K, ynew):
+def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
     """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
 
-    ``K`` (``(NS + 3, len(y))``) receives the stages (row ``NS`` the right-hand side at the step
-    end; the last two rows are scratch space).
+    ``K`` (``(NS + 5, len(y))``, C-contiguous) receives the stages (row ``NS`` the right-hand side
+    at the step end; the last four rows are scratch space).
     """
     t_left = _left_limit(tau + h)
     ny = y.shape[0]
     U = ny - 4
     ys = K[NS + 1]
-    tmp = K[NS + 2]
-    deriv(bm, e0, e1, tau, y, P, ex, K[0], tmp)
+    tmp = K.reshape(K.size)[(NS + 2) * ny:(NS + 5) * ny]
+    deriv(md, tau, y, P, ex, K[0], tmp)
     for st in range(1, NS):
         for i in range(ny):
             acc = 0.0
@@ -318,13 +459,13 @@ def rk_step(bm, e0, e1, tau, y, h, P, ex, atol, rtol, K, ynew):
                 acc += A[st, j] * K[j, i]
             ys[i] = y[i] + h * acc
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
-        deriv(bm, e0, e1, ts, ys, P, ex, K[st], tmp)
+        deriv(md, ts, ys, P, ex, K[st], tmp)
     for i in range(ny):
         acc = 0.0
         for j in range(NS):
             acc += B[j] * K[j, i]
         ynew[i] = y[i] + h * acc
-    deriv(bm, e0, e1, t_left, ynew, P, ex, K[NS], tmp)
+    deriv(md, t_left, ynew, P, ex, K[NS], tmp)
     e5 = 0.0
     e3 = 0.0
     for i in range(ny):
@@ -343,13 +484,13 @@ def rk_step(bm, e0, e1, tau, y, h, P, ex, atol, rtol, K, ynew):
 
 
 @njit(cache=True)
-def verify(bm, e0, e1, tau, y, h, ycand, P, ex, atol, rtol, K):
+def verify(md, tau, y, h, ycand, P, ex, atol, rtol, K):
     """Richardson check of one step: scaled error of ``ycand`` against two half steps."""
     ny = y.shape[0]
     ya = np.empty(ny)
     yb = np.empty(ny)
-    rk_step(bm, e0, e1, tau, y, 0.5 * h, P, ex, atol, rtol, K, ya)
-    rk_step(bm, e0, e1, tau + 0.5 * h, ya, 0.5 * h, P, ex, atol, rtol, K, yb)
+    rk_step(md, tau, y, 0.5 * h, P, ex, atol, rtol, K, ya)
+    rk_step(md, tau + 0.5 * h, ya, 0.5 * h, P, ex, atol, rtol, K, yb)
     e = 0.0
     for i in range(ny):
         e = max(e, abs(yb[i] - ycand[i]) / _error_scale(i, ny - 4, y[i], ycand[i], atol, rtol))
@@ -357,40 +498,76 @@ def verify(bm, e0, e1, tau, y, h, ycand, P, ex, atol, rtol, K):
 
 
 @njit(cache=True)
-def _event(kind, bm, e0, e1, tau, y, P, ex, work):
-    """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)`` (rate NaN: not given).
-
-    ``work`` (twice the state's length) receives the state's rates, then scratch space.
-    """
-    ny = y.shape[0]
-    U = ny - 4
-    ny2 = y.shape[0]
-    AFx, AFy = deriv(bm, e0, e1, tau, y, P, ex, work[:ny2], work[ny2:])
-    if kind == EV_PEAK:
-        g = y[U] * y[U + 2] + y[U + 1] * y[U + 3]
-        dg = (y[U + 2] * y[U + 2] + y[U + 3] * y[U + 3] + y[U] * work[U + 2] + y[U + 1] * work[U + 3])
-        return g, dg
-    if kind == EV_STOP:
-        dx, dy = _slaved_direction(tau, y, P, ex, e0, e1, work[ny2:])
-        sg = 0.5 * bm
-        return sg * (y[U + 2] * dx + y[U + 3] * dy), sg * (work[U + 2] * dx + work[U + 3] * dy)
-    n = int(P[P_N])
-    nb = 2 + 2 * n
-    nz, dnz = normal(tau, P)
-    jx, jy = ground_rate(tau, ex)
-    A = work[ny2:]
-    dAx = _axis(0, True, 0.0, jx, work, P, A)[1]
-    dAy = _axis(nb, True, 0.0, jy, work, P, A)[1]
-    mag = math.sqrt(AFx * AFx + AFy * AFy)
-    rate = (AFx * dAx + AFy * dAy) / mag if mag > 0.0 else math.sqrt(dAx * dAx + dAy * dAy)
-    rate -= P[P_THR] * dnz
-    if kind == EV_RATE:
-        return rate, math.nan
-    return mag - P[P_THR] * nz, rate
+def _demand(kind, md, tau, y, P, ex, tmp):
+    """Value of a demand event (EV_DEMAND or EV_BDEMAND) at ``(tau, y)``; ``tmp`` scratch space."""
+    gx, gy = ground(tau, ex)
+    nz, _ = normal(tau, P)
+    if kind == EV_BDEMAND:
+        fx, fy = _bearing_need(md, y, gx, gy, P, nz, tmp)
+        return math.sqrt(fx * fx + fy * fy) - P[P_Q] * nz
+    held = _held(md[M_IM], P)
+    rbx, rby, _, _ = _bearing_force(md, tau, y, P, ex, nz, tmp)
+    ax, ay = _stuck_accels(y, gx, gy, P, tmp, held, rbx, rby, nz)
+    return math.sqrt(ax * ax + ay * ay) - P[P_THR] * nz
 
 
 @njit(cache=True)
-def locate(kind, bm, e0, e1, tau, y, ha, ga, hb, gb, h0, check, P, ex, atol, rtol, K, yout, work, cnt):
+def _event(kind, md, tau, y, P, ex, work):
+    """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)`` (rate NaN: not given).
+
+    ``work`` (five times the state's length) receives the state's rates, then scratch space.
+    """
+    ny = y.shape[0]
+    U = ny - 4
+    nb = U // 2
+    rate = work[:ny]
+    tmp = work[ny:4 * ny]
+    AFx, AFy = deriv(md, tau, y, P, ex, rate, tmp)
+    if kind == EV_PEAK:
+        g = y[U] * y[U + 2] + y[U + 1] * y[U + 3]
+        dg = (y[U + 2] * y[U + 2] + y[U + 3] * y[U + 3] + y[U] * rate[U + 2] + y[U + 1] * rate[U + 3])
+        return g, dg
+    if kind == EV_STOP:
+        dx, dy = _slaved_dir(0, md, tau, y, P, ex, tmp)
+        sg = 0.5 * md[M_BM]
+        return sg * (y[U + 2] * dx + y[U + 3] * dy), sg * (rate[U + 2] * dx + rate[U + 3] * dy)
+    if kind == EV_BSTOP:
+        dx, dy = _slaved_dir(1, md, tau, y, P, ex, tmp)
+        sg = 0.5 * md[M_IM]
+        return sg * (y[1] * dx + y[nb + 1] * dy), sg * (rate[1] * dx + rate[nb + 1] * dy)
+    base = EV_DEMAND if (kind == EV_DEMAND or kind == EV_RATE) else EV_BDEMAND
+    if _sliding_bearing(P):
+        # central differences along the motion (the bearing's friction and stiffness make the
+        # demands nonlinear in the state)
+        eps = FD_STEP * max(1.0, abs(tau))
+        ys = work[4 * ny:5 * ny]
+        for i in range(ny):
+            ys[i] = y[i] + eps * rate[i]
+        gp = _demand(base, md, tau + eps, ys, P, ex, tmp)
+        for i in range(ny):
+            ys[i] = y[i] - eps * rate[i]
+        gm = _demand(base, md, tau - eps, ys, P, ex, tmp)
+        g = _demand(base, md, tau, y, P, ex, tmp)
+        dg = (gp - gm) / (2.0 * eps)
+    else:
+        n = int(P[P_N])
+        nz, dnz = normal(tau, P)
+        jx, jy = ground_rate(tau, ex)
+        A_ = work[ny:ny + n]
+        held = _held(md[M_IM], P)
+        dAx = _axis(0, True, 0.0, jx, rate, P, A_, held, 0.0, nz)[1]
+        dAy = _axis(nb, True, 0.0, jy, rate, P, A_, held, 0.0, nz)[1]
+        mag = math.sqrt(AFx * AFx + AFy * AFy)
+        dg = (AFx * dAx + AFy * dAy) / mag if mag > 0.0 else math.sqrt(dAx * dAx + dAy * dAy)
+        dg -= P[P_THR] * dnz
+        g = mag - P[P_THR] * nz
+    if kind == EV_RATE or kind == EV_BRATE:
+        return dg, math.nan
+    return g, dg
+
+
+@njit(cache=True)
+def locate(kind, md, tau, y, ha, ga, hb, gb, h0, check, P, ex, atol, rtol, K, yout, work, cnt):
     """Find ``h`` in ``(ha, hb]`` where the event ``kind`` vanishes (``ga``, ``gb`` of opposite sign).
 
     Safeguarded Newton from ``h0`` (Illinois regula falsi where the rate is not given), each trial
@@ -410,9 +587,9 @@ def locate(kind, bm, e0, e1, tau, y, ha, ga, hb, gb, h0, check, P, ex, atol, rto
     for _it in range(100):
         if not (lo < h < hi):
             h = 0.5 * (lo + hi)
-        err = rk_step(bm, e0, e1, tau, y, h, P, ex, atol, rtol, K, yout)
+        err = rk_step(md, tau, y, h, P, ex, atol, rtol, K, yout)
         cnt[0] += 1
-        g, dg = _event(kind, bm, e0, e1, tau + h, yout, P, ex, work)
+        g, dg = _event(kind, md, tau + h, yout, P, ex, work)
         if g == 0.0:
             res, on_res = h, True
             break
@@ -437,110 +614,135 @@ def locate(kind, bm, e0, e1, tau, y, ha, ga, hb, gb, h0, check, P, ex, atol, rto
         else:
             h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
     if not on_res:
-        err = rk_step(bm, e0, e1, tau, y, res, P, ex, atol, rtol, K, yout)
+        err = rk_step(md, tau, y, res, P, ex, atol, rtol, K, yout)
         cnt[0] += 1
     if check and err <= 1.0:
-        err = max(err, verify(bm, e0, e1, tau, y, res, yout, P, ex, atol, rtol, K))
+        err = max(err, verify(md, tau, y, res, yout, P, ex, atol, rtol, K))
         cnt[0] += 2
     return res, err
 
 
 @njit(cache=True)
-def _breakaway(tau, y, y1, h, t_end, P, ex, atol, rtol, check, K, ye, work, cnt):
-    """First point of the accepted stuck step where the demand reaches its limit: ``(found, hs, herr)``."""
-    thr = P[P_THR]
-    g0, r0 = _event(EV_DEMAND, 0.0, 1.0, 0.0, tau, y, P, ex, work)
-    g1, r1 = _event(EV_DEMAND, 0.0, 1.0, 0.0, t_end, y1, P, ex, work)
+def _breakaway(kind, limit, md, tau, y, y1, h, t_end, P, ex, atol, rtol, check, K, ye, work, cnt):
+    """First point of the accepted step where a held interface's demand reaches its limit: ``(found, hs, herr)``.
+
+    ``kind`` is EV_DEMAND (the block) or EV_BDEMAND (a sliding bearing); ``limit`` its static limit
+    (for the margin of the interior-peak test).
+    """
+    rate = EV_RATE if kind == EV_DEMAND else EV_BRATE
+    g0, r0 = _event(kind, md, tau, y, P, ex, work)
+    g1, r1 = _event(kind, md, t_end, y1, P, ex, work)
     if g1 > 0.0:
         if g0 >= 0.0:
-            for i in range(y.shape[0]):
-                ye[i] = y[i]
+            _copy(ye, y)
             return True, 0.0, 0.0
-        hs, herr = locate(EV_DEMAND, 0.0, 1.0, 0.0, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check,
-                          P, ex, atol, rtol, K, ye, work, cnt)
+        hs, herr = locate(kind, md, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, ex, atol,
+                          rtol, K, ye, work, cnt)
         return True, hs, herr
     if not (r0 > 0.0 and r1 < 0.0):
         return False, 0.0, 0.0
-    if _hermite_max(g0, r0, g1, r1, h) < -1e-2 * thr:
+    if _hermite_max(g0, r0, g1, r1, h) < -1e-2 * limit:
         return False, 0.0, 0.0
-    hm, herr = locate(EV_RATE, 0.0, 1.0, 0.0, tau, y, 0.0, r0, h, r1, -1.0, False, P, ex, atol, rtol, K, ye, work,
-                      cnt)
-    gm, _ = _event(EV_DEMAND, 0.0, 1.0, 0.0, tau + hm, ye, P, ex, work)
+    hm, herr = locate(rate, md, tau, y, 0.0, r0, h, r1, -1.0, False, P, ex, atol, rtol, K, ye, work, cnt)
+    gm, _ = _event(kind, md, tau + hm, ye, P, ex, work)
     if gm <= 0.0:
         return False, 0.0, 0.0
-    hs, herr = locate(EV_DEMAND, 0.0, 1.0, 0.0, tau, y, 0.0, g0, hm, gm, -1.0, check, P, ex, atol, rtol, K, ye,
-                      work, cnt)
+    hs, herr = locate(kind, md, tau, y, 0.0, g0, hm, gm, -1.0, check, P, ex, atol, rtol, K, ye, work, cnt)
     return True, hs, herr
 
 
 @njit(cache=True)
-def _slaved_direction(tau, y, P, ex, e0, e1, tmp):
-    """The slaved direction ``d = -A/|A|`` (``A`` the floor's acceleration were the block stuck), or ``(e0, e1)``."""
-    gx, gy = ground(tau, ex)
-    ax, ay = _stuck_accels(y, gx, gy, P, tmp)
-    amag = math.sqrt(ax * ax + ay * ay)
-    if amag > 0.0:
-        return -ax / amag, -ay / amag
-    return e0, e1
+def _slow_stop(kind, just, md, tau, y, y1, h, t_end, check, P, ex, atol, rtol, K, ye, work, cnt):
+    """End of a slow slide (mode ``+-2``; ``kind`` EV_STOP or EV_BSTOP) inside the accepted step.
+
+    Returns ``(found, hs, herr)``; ``ye`` holds the state there.  A slide that began at the step's
+    start (``just``) first needs an interior point of positive speed (found by halving); without
+    one it ends at once.
+    """
+    g1, r1 = _event(kind, md, t_end, y1, P, ex, work)
+    if g1 > 0.0:
+        return False, 0.0, 0.0
+    g0, r0 = _event(kind, md, tau, y, P, ex, work)
+    if just or g0 <= 0.0:
+        hp = h
+        gp = g1
+        for _k in range(200):
+            hp *= 0.5
+            rk_step(md, tau, y, hp, P, ex, atol, rtol, K, ye)
+            cnt[0] += 1
+            gp, _ = _event(kind, md, tau + hp, ye, P, ex, work)
+            if gp > 0.0 or hp < 1e-300:
+                break
+        if gp > 0.0:
+            hs, herr = locate(kind, md, tau, y, hp, gp, h, g1, -1.0, check, P, ex, atol, rtol, K, ye, work, cnt)
+            return True, hs, herr
+        _copy(ye, y)
+        return True, 0.0, 0.0
+    hs, herr = locate(kind, md, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, ex, atol, rtol, K,
+                      ye, work, cnt)
+    return True, hs, herr
 
 
 @njit(cache=True)
-def _stuck_floor(tau, y, P, ex, work):
-    """The floor's acceleration ``(A_Fx, A_Fy)`` with the block stuck, and the stick limit ``thr nz``."""
-    ny = y.shape[0]
-    AFx, AFy = deriv(0.0, 1.0, 0.0, tau, y, P, ex, work[:ny], work[ny:])
-    return AFx, AFy, P[P_THR] * normal(tau, P)[0]
-
-
-@njit(cache=True)
-def _modal_bound(W, Cm, y, o, nb):
-    """Modal bound of the stuck block's floor demand along one axis (states from ``o``, ``nb`` of them).
+def _modal_bound(W, Cm, row, y, o, nb):
+    """Modal bound of demand ``row`` of the stuck system along one axis (states from ``o``, ``nb`` of them).
 
     ``W``, ``Cm`` are the building kernel's modal data (:func:`isoslide.engine.building.modal_data`),
     whose states start with the same ``nb`` of one axis; negative when there are none.
     """
     n = W.shape[0]
-    if n == 0:
+    if n == 0 or row >= Cm.shape[0]:
         return -1.0
     bound = 0.0
     for k in range(n):
         acc = 0.0 + 0.0j
         for i in range(nb):
             acc += W[k, i] * y[o + i]
-        bound += abs(Cm[0, k] * acc)
+        bound += abs(Cm[row, k] * acc)
     return bound
 
 
 @njit(cache=True)
-def _settled(y, P, Wm, Cm, Wh, Ch):
-    """True when, after the pulses and with the block stuck, the floor demand stays within the limit."""
+def _settled(md, y, P, Wm, Cm, Wh, Ch):
+    """True when, after the pulses, with the block stuck and the slab held or elastic, nothing slides again."""
+    if md[M_BM] != 0.0 or md[M_IM] != 0.0:
+        return False
     n = int(P[P_N])
     nb = 2 + 2 * n
+    held = _held(0.0, P)
+    start = 2 if held else 0
     moving = False
-    for i in range(2 * nb):
-        if y[i] != 0.0:
-            moving = True
-            break
+    for a in range(2):
+        for i in range(start, nb):
+            if y[a * nb + i] != 0.0:
+                moving = True
+    sliding = _sliding_bearing(P)
+    static = math.sqrt((P[P_KD] * y[0]) ** 2 + (P[P_KD] * y[nb]) ** 2) if sliding else 0.0
     if not moving:
-        return True
-    held = P[P_KIND] == KIND_FIXED
+        return not sliding or static <= P[P_Q]
     W = Wh if held else Wm
     Cd = Ch if held else Cm
-    bx = _modal_bound(W, Cd, y, 0, nb)
-    by = _modal_bound(W, Cd, y, nb, nb)
-    if bx < 0.0 or by < 0.0:
+    bx = _modal_bound(W, Cd, 0, y, 0, nb)
+    by = _modal_bound(W, Cd, 0, y, nb, nb)
+    if bx < 0.0 or by < 0.0 or math.sqrt(bx * bx + by * by) > P[P_THR]:
         return False
-    return math.sqrt(bx * bx + by * by) <= P[P_THR]
+    if sliding:
+        bx = _modal_bound(W, Cd, 1, y, 0, nb)
+        by = _modal_bound(W, Cd, 1, y, nb, nb)
+        if bx < 0.0 or by < 0.0 or static + math.sqrt(bx * bx + by * by) > P[P_Q]:
+            return False
+    return True
 
 
 @njit(cache=True)
-def _record(hist, nh, hist_cap, tau, y, bm):
-    """Append ``[tau, y..., bm]`` to the history while it has room."""
+def _record(hist, nh, hist_cap, tau, y, md):
+    """Append ``[tau, y..., bm, im]`` to the history while it has room."""
     if nh < hist_cap:
         hist[nh, 0] = tau
         for i in range(y.shape[0]):
             hist[nh, 1 + i] = y[i]
-        hist[nh, 1 + y.shape[0]] = bm
+        hist[nh, 1 + y.shape[0]] = md[M_BM]
+        hist[nh, 2 + y.shape[0]] = md[M_IM]
         return nh + 1
     return nh
 
@@ -552,155 +754,228 @@ def _copy(dst, src):
 
 
 @njit(cache=True)
-def _slow_stop(bm, e0, e1, tau, y, y1, h, t_end, just, check, P, ex, atol, rtol, K, ye, work, cnt):
-    """End of a slow slide (mode ``+-2``) inside the accepted step, where ``sg sigma`` falls to zero.
+def _select(md, free_b, free_i, tau, y, P, ex, work):
+    """Modes of the interfaces at rest (``free_b``: the block, ``free_i``: a sliding bearing), set in ``md``.
 
-    Returns ``(found, hs, herr)``; ``ye`` holds the state there.  A slide that began at the step's
-    start (``just``) first needs an interior point of positive speed (found by halving); without
-    one it ends at once.
+    Candidates in the order of :func:`isoslide.engine.modes.candidates` (fewest slides first): each
+    stuck interface must need a force within its limit; each starting one slides along its slaved
+    direction (computed with the other interface in its candidate mode) and must accelerate along
+    it.  If none is consistent (round-off at a limit), each free interface slides.
     """
-    g1, r1 = _event(EV_STOP, bm, e0, e1, t_end, y1, P, ex, work)
-    if g1 > 0.0:
-        return False, 0.0, 0.0
-    g0, r0 = _event(EV_STOP, bm, e0, e1, tau, y, P, ex, work)
-    if just or g0 <= 0.0:
-        hp = h
-        gp = g1
-        for _k in range(200):
-            hp *= 0.5
-            rk_step(bm, e0, e1, tau, y, hp, P, ex, atol, rtol, K, ye)
-            cnt[0] += 1
-            gp, _ = _event(EV_STOP, bm, e0, e1, tau + hp, ye, P, ex, work)
-            if gp > 0.0 or hp < 1e-300:
-                break
-        if gp > 0.0:
-            hs, herr = locate(EV_STOP, bm, e0, e1, tau, y, hp, gp, h, g1, -1.0, check, P, ex, atol, rtol, K, ye,
-                              work, cnt)
-            return True, hs, herr
-        _copy(ye, y)
-        return True, 0.0, 0.0
-    hs, herr = locate(EV_STOP, bm, e0, e1, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, ex,
-                      atol, rtol, K, ye, work, cnt)
-    return True, hs, herr
+    ny = y.shape[0]
+    U = ny - 4
+    nb = U // 2
+    rate = work[:ny]
+    tmp = work[ny:4 * ny]
+    nz, _ = normal(tau, P)
+    trial = md.copy()
+    for c in range(4):
+        sb = (c == 2 or c == 3)
+        si = (c == 1 or c == 3)
+        if (sb and not free_b) or (si and not free_i):
+            continue
+        if free_b:
+            trial[M_BM] = 2.0 if sb else 0.0
+        if free_i:
+            trial[M_IM] = 2.0 if si else 0.0
+        for _it in range(2):
+            if free_i and si:
+                trial[M_I0], trial[M_I1] = _slaved_dir(1, trial, tau, y, P, ex, tmp)
+            if free_b and sb:
+                trial[M_E0], trial[M_E1] = _slaved_dir(0, trial, tau, y, P, ex, tmp)
+        ok = True
+        if free_b and not sb and _demand(EV_DEMAND, trial, tau, y, P, ex, tmp) > 0.0:
+            ok = False
+        if ok and free_i and not si and _demand(EV_BDEMAND, trial, tau, y, P, ex, tmp) > 0.0:
+            ok = False
+        if ok and (sb or si):
+            _rates(trial, tau, y, P, ex, rate, tmp)
+            if sb and free_b and not (rate[U + 2] * trial[M_E0] + rate[U + 3] * trial[M_E1] > 0.0):
+                ok = False
+            if si and free_i and not (rate[1] * trial[M_I0] + rate[nb + 1] * trial[M_I1] > 0.0):
+                ok = False
+        if ok:
+            _copy(md, trial)
+            return
+    if free_b:
+        md[M_BM] = 2.0
+        md[M_E0], md[M_E1] = _slaved_dir(0, md, tau, y, P, ex, tmp)
+    if free_i:
+        md[M_IM] = 2.0
+        md[M_I0], md[M_I1] = _slaved_dir(1, md, tau, y, P, ex, tmp)
+
+
+@njit(cache=True)
+def _approach(which, md, tau, y, P, ex, work):
+    """Predicted time to the stop of a free slide (mode 1) of the block (0) or the bearing (1); inf if not slowing."""
+    ny = y.shape[0]
+    U = ny - 4
+    nb = U // 2
+    deriv(md, tau, y, P, ex, work[:ny], work[ny:4 * ny])
+    if which == 0:
+        vx, vy, ax, ay = y[U + 2], y[U + 3], work[U + 2], work[U + 3]
+    else:
+        vx, vy, ax, ay = y[1], y[nb + 1], work[1], work[nb + 1]
+    s = math.sqrt(vx * vx + vy * vy)
+    if s == 0.0:
+        return 0.0
+    rate = (vx * ax + vy * ay) / s
+    return s / -rate if rate < 0.0 else math.inf
+
+
+@njit(cache=True)
+def _slow_cap(which, md, tau, y, P, ex, work, slaved):
+    """Longest step of a slow slide (mode ``+-2``) so that it leaves its slaved line near ``2 slaved``."""
+    ny = y.shape[0]
+    U = ny - 4
+    nb = U // 2
+    deriv(md, tau, y, P, ex, work[:ny], work[ny:4 * ny])
+    dx, dy = _slaved_dir(which, md, tau, y, P, ex, work[ny:4 * ny])
+    sg = 0.5 * (md[M_BM] if which == 0 else md[M_IM])
+    if which == 0:
+        rate = sg * (work[U + 2] * dx + work[U + 3] * dy)
+        sig = sg * (y[U + 2] * dx + y[U + 3] * dy)
+    else:
+        rate = sg * (work[1] * dx + work[nb + 1] * dy)
+        sig = sg * (y[1] * dx + y[nb + 1] * dy)
+    if rate > 0.0:
+        return max(2.0 * slaved - sig, 0.5 * slaved) / rate
+    return math.inf
 
 
 @njit(cache=True)
 def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol, hist_cap,
-        h_restart, settle, max_steps, Wm, Cm, Wh, Ch, y0, bm0, slaved):
-    """Integrate one planar scene from the state ``y0`` (mode ``bm0``, see :func:`deriv`) at ``tau_start``.
+        h_restart, settle, max_steps, Wm, Cm, Wh, Ch, y0, md0, slaved):
+    """Integrate one planar scene from the state ``y0`` in the modes ``md0`` (see :func:`deriv`) at ``tau_start``.
 
     Arguments as :func:`isoslide.engine.building_kernel.run`, with the excitation ``ex`` (see the
     module docstring) instead of the pulse's code and parameters; slides slower than ``slaved``
-    keep the slaved line (:func:`slaved_speed`).
+    keep their slaved line (:func:`slaved_speed`).
 
     Returns
     -------
     ints : ndarray of int64
         :data:`INT_RESULTS`: Runge-Kutta steps of every kind, block transitions, settled, slipped,
-        history rows, rejected steps.
+        history rows, rejected steps, bearing transitions, the bearing slid.
     floats : ndarray of float64
         :data:`FLOAT_RESULTS`.
-    hist : ndarray, shape (ints[4], state_size(n) + 2)
-        Rows ``[tau, y..., bm]``.
+    hist : ndarray, shape (ints[4], state_size(n) + 3)
+        Rows ``[tau, y..., bm, im]``.
     """
     nfl = int(P[P_N])
     nb_ = 2 + 2 * nfl
     ny = 2 * nb_ + 4
     U = ny - 4
+    bearing = _sliding_bearing(P)
     y = y0.copy()
+    md = md0.copy()
     y1 = np.empty(ny)
     ye = np.empty(ny)
-    K = np.empty((NS + 3, ny))
-    work = np.empty(2 * ny)
+    yb = np.empty(ny)
+    K = np.empty((NS + 5, ny))
+    work = np.empty(5 * ny)
     cnt = np.zeros(1, dtype=np.int64)
-    hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 2))
+    hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 3))
     tau = tau_start
-    bm = bm0
-    e0 = 1.0
-    e1 = 0.0
     s_now = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
     if s_now > 0.0:
-        e0, e1 = y[U + 2] / s_now, y[U + 3] / s_now
+        md[M_E0], md[M_E1] = y[U + 2] / s_now, y[U + 3] / s_now
     umax = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
     tpeak = tau_start
     angle = math.atan2(y[U + 1], y[U]) if umax > 0.0 else math.nan
     vmax = s_now
+    xmax = 0.0
     steps = 0
     rejected = 0
     events = 0
+    iso_events = 0
     settled = False
-    slipped = bm != 0.0
-    just = False
+    slipped = md[M_BM] != 0.0
+    moved = md[M_IM] != 0.0
+    just_b = False
+    just_i = False
     hold = False
     h = h_restart
     ib = 0
-    nb = breakpoints.shape[0]
-    nh = _record(hist, 0, hist_cap, tau, y, bm)
+    nbk = breakpoints.shape[0]
+    nh = _record(hist, 0, hist_cap, tau, y, md)
     zone = 0.0
     if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < P[P_THR]:
         zone = 30.0 / P[P_PI6]
     check = zone > 0.0
     while True:
-        # --- a stuck block past its limit (round-off at a transition) ---------------------
-        if bm == 0.0 and not hold:
-            AFx, AFy, lim = _stuck_floor(tau, y, P, ex, work)
-            mag = math.sqrt(AFx * AFx + AFy * AFy)
-            if mag > lim:
-                bm, slipped, just = 2.0, True, True
-                e0, e1 = -AFx / mag, -AFy / mag
-                events += 1
-        if tau >= tau_end and bm == 0.0 and _settled(y, P, Wm, Cm, Wh, Ch):
+        # --- a held interface past its limit (round-off at a transition) -----------------
+        if not hold:
+            free_b = md[M_BM] == 0.0 and _demand(EV_DEMAND, md, tau, y, P, ex, work[ny:4 * ny]) > 0.0
+            free_i = bearing and md[M_IM] == 0.0 and _demand(EV_BDEMAND, md, tau, y, P, ex, work[ny:4 * ny]) > 0.0
+            if free_b or free_i:
+                bm0, im0 = md[M_BM], md[M_IM]
+                _select(md, md[M_BM] == 0.0, bearing and md[M_IM] == 0.0, tau, y, P, ex, work)
+                if md[M_BM] != bm0:
+                    events += 1
+                    slipped, just_b = True, True
+                if md[M_IM] != im0:
+                    iso_events += 1
+                    moved, just_i = True, True
+        if tau >= tau_end and _settled(md, y, P, Wm, Cm, Wh, Ch):
             settled = True
             if settle:
                 break
         if tau >= tau_stop or steps + cnt[0] > max_steps:
             break
         # --- step length ---------------------------------------------------------------
-        while ib < nb and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
+        while ib < nbk and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
             ib += 1
         hmax = h_max_pulse if tau < tau_end else h_max_free
         h = min(h, hmax)
-        if bm == 1.0:
-            # a decelerating slide approaches its stop geometrically (never crossing it)
-            s0 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
-            deriv(bm, e0, e1, tau, y, P, ex, work[:ny], work[ny:])
-            rate = (y[U + 2] * work[U + 2] + y[U + 3] * work[U + 3]) / s0
-            if rate < 0.0:
-                d_stop = s0 / -rate
+        finished = -1
+        for which in range(2):
+            mode = md[M_BM] if which == 0 else md[M_IM]
+            if which == 1 and not bearing:
+                continue
+            if mode == 1.0:
+                # a decelerating free slide approaches its stop geometrically (never crossing it)
+                d_stop = _approach(which, md, tau, y, P, ex, work)
                 if d_stop <= STOP_TIME * max(1.0, abs(tau)):
-                    # the slide ends within round-off of the time: one step to the stop
-                    rk_step(bm, e0, e1, tau, y, d_stop, P, ex, atol, rtol, K, y1)
-                    steps += 1
-                    tau += d_stop
-                    _copy(y, y1)
-                    y[U + 2] = 0.0
-                    y[U + 3] = 0.0
-                    events += 1
-                    um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
-                    if um > umax:
-                        umax, tpeak, angle = um, tau, math.atan2(y[U + 1], y[U])
-                    AFx, AFy, lim = _stuck_floor(tau, y, P, ex, work)
-                    mag = math.sqrt(AFx * AFx + AFy * AFy)
-                    if mag > lim:
-                        e0, e1 = -AFx / mag, -AFy / mag
-                        bm, just = 2.0, True
-                        events += 1
-                    else:
-                        bm = 0.0
-                    h = h_restart
-                    nh = _record(hist, nh, hist_cap, tau, y, bm)
-                    continue
+                    finished = which
+                    h = d_stop
+                    break
                 h = min(h, STOP_FRACTION * d_stop)
-        elif bm != 0.0:
-            # a slow slide leaves the slaved line near the speed it was set for, not far above it
-            deriv(bm, e0, e1, tau, y, P, ex, work[:ny], work[ny:])
-            dx, dy = _slaved_direction(tau, y, P, ex, e0, e1, work[ny:])
-            rate = 0.5 * bm * (work[U + 2] * dx + work[U + 3] * dy)
-            if rate > 0.0:
-                sig = 0.5 * bm * (y[U + 2] * dx + y[U + 3] * dy)
-                h = min(h, max(2.0 * slaved - sig, 0.5 * slaved) / rate)
+            elif mode != 0.0:
+                # a slow slide leaves its slaved line near the speed it was set for
+                h = min(h, _slow_cap(which, md, tau, y, P, ex, work, slaved))
+        if finished >= 0:
+            # the free slide ends within round-off of the time: one step to the stop
+            rk_step(md, tau, y, h, P, ex, atol, rtol, K, y1)
+            steps += 1
+            tau += h
+            _copy(y, y1)
+            if finished == 0:
+                y[U + 2] = 0.0
+                y[U + 3] = 0.0
+                events += 1
+                um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
+                if um > umax:
+                    umax, tpeak, angle = um, tau, math.atan2(y[U + 1], y[U])
+                md[M_BM] = 0.0
+            else:
+                y[1] = 0.0
+                y[nb_ + 1] = 0.0
+                iso_events += 1
+                md[M_IM] = 0.0
+            bm0, im0 = md[M_BM], md[M_IM]
+            _select(md, md[M_BM] == 0.0, bearing and md[M_IM] == 0.0, tau, y, P, ex, work)
+            if md[M_BM] != bm0:
+                events += 1
+                just_b = True
+            if md[M_IM] != im0:
+                iso_events += 1
+                just_i = True
+            h = h_restart
+            nh = _record(hist, nh, hist_cap, tau, y, md)
+            continue
         target = tau_stop
-        if ib < nb and breakpoints[ib] < target:
+        if ib < nbk and breakpoints[ib] < target:
             target = breakpoints[ib]
         hit_target = False
         if tau + h >= target:
@@ -708,16 +983,18 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             hit_target = True
         # --- attempt until accepted ------------------------------------------------------
         while True:
-            err = rk_step(bm, e0, e1, tau, y, h, P, ex, atol, rtol, K, y1)
+            err = rk_step(md, tau, y, h, P, ex, atol, rtol, K, y1)
             steps += 1
-            if bm != 0.0 and err <= 1.0:
-                if bm == 1.0 and y[U + 2] * y1[U + 2] + y[U + 3] * y1[U + 3] < 0.0:
+            if err <= 1.0:
+                if md[M_BM] == 1.0 and y[U + 2] * y1[U + 2] + y[U + 3] * y1[U + 3] < 0.0:
                     err = 4.0
-                elif zone > 0.0:
+                elif md[M_IM] == 1.0 and y[1] * y1[1] + y[nb_ + 1] * y1[nb_ + 1] < 0.0:
+                    err = 4.0
+                elif md[M_BM] != 0.0 and zone > 0.0:
                     s0 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
                     s1 = math.sqrt(y1[U + 2] ** 2 + y1[U + 3] ** 2)
                     if min(s0, s1) < zone:
-                        err = max(err, verify(bm, e0, e1, tau, y, h, y1, P, ex, atol, rtol, K))
+                        err = max(err, verify(md, tau, y, h, y1, P, ex, atol, rtol, K))
                         steps += 2
             if err <= 1.0:
                 break
@@ -727,108 +1004,168 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         hnext = _next_step(h, err)
         tnew = target if hit_target else tau + h
         t_end_step = _left_limit(tnew)
-        # --- transitions inside the step ------------------------------------------------
-        if bm == 0.0:
-            if hold:
-                found, hs, herr = False, 0.0, 0.0
-                hold = False
-                g1, _ = _event(EV_DEMAND, 0.0, 1.0, 0.0, t_end_step, y1, P, ex, work)
-                if g1 > 0.0:
-                    found, hs = True, h
-                    _copy(ye, y1)
-            else:
-                found, hs, herr = _breakaway(tau, y, y1, h, t_end_step, P, ex, atol, rtol, check, K, ye, work, cnt)
-            if found:
-                if herr > 1.0:
-                    h = 0.5 * hs
-                    continue
-                tau += hs
-                _copy(y, ye)
-                y[U + 2] = 0.0
-                y[U + 3] = 0.0
-                AFx, AFy, lim = _stuck_floor(tau, y, P, ex, work)
-                mag = math.sqrt(AFx * AFx + AFy * AFy)
-                if mag > 0.0:
-                    e0, e1 = -AFx / mag, -AFy / mag
-                bm, slipped, just = 2.0, True, True
-                events += 1
-                h = h_restart
-                nh = _record(hist, nh, hist_cap, tau, y, bm)
-                continue
+        # --- transitions inside the step: the earliest ------------------------------------
+        best = -1
+        hbest = math.inf
+        herr_best = 0.0
+        if hold:
+            hold = False
         else:
-            if bm != 1.0:
-                found, hs, herr = _slow_stop(bm, e0, e1, tau, y, y1, h, t_end_step, just, check, P, ex, atol, rtol,
-                                             K, ye, work, cnt)
-                if found:
-                    if herr > 1.0:
-                        h = 0.5 * hs
-                        continue
-                    if hs == 0.0 and just:
-                        hold = True
-                    tau += hs
-                    _copy(y, ye)
+            if md[M_BM] == 0.0:
+                found, hs, herr = _breakaway(EV_DEMAND, P[P_THR], md, tau, y, y1, h, t_end_step, P, ex, atol, rtol,
+                                             check, K, ye, work, cnt)
+                if found and hs < hbest:
+                    best, hbest, herr_best = EV_DEMAND, hs, herr
+                    _copy(yb, ye)
+            if bearing and md[M_IM] == 0.0:
+                found, hs, herr = _breakaway(EV_BDEMAND, P[P_Q], md, tau, y, y1, h, t_end_step, P, ex, atol, rtol,
+                                             check, K, ye, work, cnt)
+                if found and hs < hbest:
+                    best, hbest, herr_best = EV_BDEMAND, hs, herr
+                    _copy(yb, ye)
+        if md[M_BM] == 2.0 or md[M_BM] == -2.0:
+            found, hs, herr = _slow_stop(EV_STOP, just_b, md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol,
+                                         K, ye, work, cnt)
+            if found and hs < hbest:
+                best, hbest, herr_best = EV_STOP, hs, herr
+                _copy(yb, ye)
+        if md[M_IM] == 2.0 or md[M_IM] == -2.0:
+            found, hs, herr = _slow_stop(EV_BSTOP, just_i, md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol,
+                                         K, ye, work, cnt)
+            if found and hs < hbest:
+                best, hbest, herr_best = EV_BSTOP, hs, herr
+                _copy(yb, ye)
+        if best >= 0:
+            if herr_best > 1.0:
+                h = 0.5 * hbest
+                continue
+            _copy(ye, yb)
+            # the peak of |u| before the transition, inside the slide
+            if md[M_BM] != 0.0:
+                umax, tpeak, angle = _peak_in(md, tau, y, ye, hbest, umax, tpeak, angle, P, ex, atol, rtol, K, y1,
+                                              work, cnt)
+            tau += hbest
+            _copy(y, ye)
+            if best == EV_STOP or best == EV_BSTOP:
+                if best == EV_STOP:
                     y[U + 2] = 0.0
                     y[U + 3] = 0.0
                     events += 1
                     um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
                     if um > umax:
                         umax, tpeak, angle = um, tau, math.atan2(y[U + 1], y[U])
-                    AFx, AFy, lim = _stuck_floor(tau, y, P, ex, work)
-                    mag = math.sqrt(AFx * AFx + AFy * AFy)
-                    if mag > lim and not hold:
-                        e0, e1 = -AFx / mag, -AFy / mag
-                        bm, just = 2.0, True
-                        events += 1
-                    else:
-                        bm, just = 0.0, False
-                    h = h_restart
-                    nh = _record(hist, nh, hist_cap, tau, y, bm)
-                    continue
-            q0 = y[U] * y[U + 2] + y[U + 1] * y[U + 3]
-            q1 = y1[U] * y1[U + 2] + y1[U + 1] * y1[U + 3]
-            if q0 > 0.0 and q1 < 0.0:
-                g0, r0 = _event(EV_PEAK, bm, e0, e1, tau, y, P, ex, work)
-                g1, r1 = _event(EV_PEAK, bm, e0, e1, t_end_step, y1, P, ex, work)
-                hp, _ = locate(EV_PEAK, bm, e0, e1, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), False,
-                               P, ex, atol, rtol, K, ye, work, cnt)
-                um = math.sqrt(ye[U] ** 2 + ye[U + 1] ** 2)
-                if um > umax:
-                    umax, tpeak, angle = um, tau + hp, math.atan2(ye[U + 1], ye[U])
+                    if hbest == 0.0 and just_b:
+                        hold = True
+                    md[M_BM] = 0.0
+                else:
+                    y[1] = 0.0
+                    y[nb_ + 1] = 0.0
+                    iso_events += 1
+                    if hbest == 0.0 and just_i:
+                        hold = True
+                    md[M_IM] = 0.0
+            bm0, im0 = md[M_BM], md[M_IM]
+            if best == EV_DEMAND:
+                # a breakaway keeps every force continuous: the other interface's mode stands
+                y[U + 2] = 0.0
+                y[U + 3] = 0.0
+                md[M_BM] = 2.0
+                md[M_E0], md[M_E1] = _slaved_dir(0, md, tau, y, P, ex, work[ny:4 * ny])
+            elif best == EV_BDEMAND:
+                y[1] = 0.0
+                y[nb_ + 1] = 0.0
+                md[M_IM] = 2.0
+                md[M_I0], md[M_I1] = _slaved_dir(1, md, tau, y, P, ex, work[ny:4 * ny])
+            elif not hold:
+                _select(md, md[M_BM] == 0.0, bearing and md[M_IM] == 0.0, tau, y, P, ex, work)
+            if md[M_BM] != bm0:
+                events += 1
+                slipped, just_b = True, True
+            else:
+                just_b = False
+            if md[M_IM] != im0:
+                iso_events += 1
+                moved, just_i = True, True
+            else:
+                just_i = False
+            xmax = max(xmax, math.sqrt(y[0] ** 2 + y[nb_] ** 2))
+            h = h_restart
+            nh = _record(hist, nh, hist_cap, tau, y, md)
+            continue
+        if md[M_BM] != 0.0:
+            umax, tpeak, angle = _peak_in(md, tau, y, y1, h, umax, tpeak, angle, P, ex, atol, rtol, K, ye, work, cnt)
         # --- accept -----------------------------------------------------------------------
         tau = tnew
         _copy(y, y1)
-        just = False
-        if bm == 0.0:
+        just_b = False
+        just_i = False
+        if md[M_BM] == 0.0:
             y[U + 2] = 0.0
             y[U + 3] = 0.0
         else:
             s1 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
-            if bm == 1.0 and s1 < slaved:
-                dx, dy = _slaved_direction(tau, y, P, ex, e0, e1, work[ny:])
+            if md[M_BM] == 1.0 and s1 < slaved:
+                dx, dy = _slaved_dir(0, md, tau, y, P, ex, work[ny:4 * ny])
                 if abs(y[U + 2] * dy - y[U + 3] * dx) < ALIGNED * s1:
                     sg = 1.0 if y[U + 2] * dx + y[U + 3] * dy >= 0.0 else -1.0
-                    bm = 2.0 * sg
+                    md[M_BM] = 2.0 * sg
+                    md[M_E0], md[M_E1] = dx, dy
                     y[U + 2] = sg * s1 * dx
                     y[U + 3] = sg * s1 * dy
-            elif bm != 1.0 and s1 >= 2.0 * slaved:
-                bm = 1.0
-            if s1 > 0.0:
-                e0, e1 = y[U + 2] / s1, y[U + 3] / s1
+            elif md[M_BM] != 1.0 and s1 >= 2.0 * slaved:
+                md[M_BM] = 1.0
+            if s1 > 0.0 and md[M_BM] == 1.0:
+                md[M_E0], md[M_E1] = y[U + 2] / s1, y[U + 3] / s1
             vmax = max(vmax, s1)
             um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
             if um > umax:
                 umax, tpeak, angle = um, tau, math.atan2(y[U + 1], y[U])
+        if _held(md[M_IM], P):
+            for a in range(2):
+                y[a * nb_ + 1] = 0.0
+        elif bearing:
+            s1 = math.sqrt(y[1] ** 2 + y[nb_ + 1] ** 2)
+            if md[M_IM] == 1.0 and s1 < slaved:
+                dx, dy = _slaved_dir(1, md, tau, y, P, ex, work[ny:4 * ny])
+                if abs(y[1] * dy - y[nb_ + 1] * dx) < ALIGNED * s1:
+                    sg = 1.0 if y[1] * dx + y[nb_ + 1] * dy >= 0.0 else -1.0
+                    md[M_IM] = 2.0 * sg
+                    md[M_I0], md[M_I1] = dx, dy
+                    y[1] = sg * s1 * dx
+                    y[nb_ + 1] = sg * s1 * dy
+            elif md[M_IM] != 1.0 and s1 >= 2.0 * slaved:
+                md[M_IM] = 1.0
+            if s1 > 0.0 and md[M_IM] == 1.0:
+                md[M_I0], md[M_I1] = y[1] / s1, y[nb_ + 1] / s1
         if P[P_KIND] == KIND_FIXED:
             for a in range(2):
                 y[a * nb_] = 0.0
-                y[a * nb_ + 1] = 0.0
+        xmax = max(xmax, math.sqrt(y[0] ** 2 + y[nb_] ** 2))
         h = hnext
-        nh = _record(hist, nh, hist_cap, tau, y, bm)
+        nh = _record(hist, nh, hist_cap, tau, y, md)
     ures = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
-    ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh, rejected],
-                    dtype=np.int64)
-    floats = np.array([umax, tpeak, angle, ures, tau, vmax, y[U], y[U + 1]])
+    ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh, rejected, iso_events,
+                     1 if moved else 0], dtype=np.int64)
+    floats = np.array([umax, tpeak, angle, ures, tau, vmax, y[U], y[U + 1], xmax])
     return ints, floats, hist[:nh]
+
+
+@njit(cache=True)
+def _peak_in(md, tau, y, y1, h, umax, tpeak, angle, P, ex, atol, rtol, K, ye, work, cnt):
+    """The peak of ``|u|`` inside the step ``(tau, y) -> y1`` where ``u . w`` turns negative: ``(umax, tpeak, angle)``."""
+    U = y.shape[0] - 4
+    q0 = y[U] * y[U + 2] + y[U + 1] * y[U + 3]
+    q1 = y1[U] * y1[U + 2] + y1[U + 1] * y1[U + 3]
+    if q0 > 0.0 and q1 < 0.0:
+        t_end = _left_limit(tau + h)
+        g0, r0 = _event(EV_PEAK, md, tau, y, P, ex, work)
+        g1, r1 = _event(EV_PEAK, md, t_end, y1, P, ex, work)
+        hp, _ = locate(EV_PEAK, md, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), False, P, ex, atol, rtol,
+                       K, ye, work, cnt)
+        um = math.sqrt(ye[U] ** 2 + ye[U + 1] ** 2)
+        if um > umax:
+            return um, tau + hp, math.atan2(ye[U + 1], ye[U])
+    return umax, tpeak, angle
 
 
 # numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
