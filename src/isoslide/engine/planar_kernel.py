@@ -125,7 +125,7 @@ def history_columns(n: int) -> dict:
             "iso_phase": 6 + 2 * nb}
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ground(tau, ex):
     """Horizontal ground acceleration ``(g_x, g_y)`` in the building's axes at ``tau`` (units of a_p)."""
     code, params, code_y, params_y, G = ex
@@ -138,7 +138,7 @@ def ground(tau, ex):
     return c * px - s * py, s * px + c * py
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ground_rate(tau, ex):
     """Rate ``d/dtau`` of :func:`ground`."""
     code, params, code_y, params_y, G = ex
@@ -151,19 +151,19 @@ def ground_rate(tau, ex):
     return c * px - s * py, s * px + c * py
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _sliding_bearing(P):
     """True for a sliding bearing (friction pendulum): a second planar friction interface."""
     return P[P_KIND] == KIND_SLIDING
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _held(im, P):
     """True while the slab is held to the ground (a fixed base, or a stuck sliding bearing)."""
     return P[P_KIND] == KIND_FIXED or (P[P_KIND] == KIND_SLIDING and im == 0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _axis(o, stuck, r, p, y, P, A, held, rb, nz):
     """Absolute accelerations of one axis: ``(Ab, A_F)``, the floors' into ``A``.
 
@@ -206,7 +206,7 @@ def _axis(o, stuck, r, p, y, P, A, held, rb, nz):
     return Ab, (A[fl] if roof else Ab)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _level(s, nz, P):
     """Friction level ``nz phi(s)`` of a block sliding at speed ``s`` (units of a_p)."""
     if P[P_COULOMB] == 1.0:
@@ -214,7 +214,7 @@ def _level(s, nz, P):
     return friction(s, P)[0] * nz
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _unit(x, y, f0, f1):
     """``(x, y) / |(x, y)|``, or ``(f0, f1)`` for a zero vector."""
     r = math.sqrt(x * x + y * y)
@@ -223,7 +223,7 @@ def _unit(x, y, f0, f1):
     return f0, f1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _stuck_accels(y, gx, gy, P, A, held, rbx, rby, nz):
     """The floor's acceleration ``(A_Fx, A_Fy)`` with the block stuck on it (``A`` scratch space)."""
     nb = 2 + 2 * int(P[P_N])
@@ -231,7 +231,7 @@ def _stuck_accels(y, gx, gy, P, A, held, rbx, rby, nz):
             _axis(nb, True, 0.0, gy, y, P, A, held, rby, nz)[1])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _block_force(md, y, gx, gy, P, nz, tmp, held, rbx, rby):
     """The sliding block's friction force on its floor over its mass (per unit ``m``), and its level.
 
@@ -287,7 +287,7 @@ def _bearing_need(md, y, gx, gy, P, nz, tmp):
     return -mb * gx - kd * y[0] + Sx + rx, -mb * gy - kd * y[nb] + Sy + ry
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _bearing_force(md, tau, y, P, ex, nz, tmp):
     """A sliding bearing's friction force on the slab ``(rb_x, rb_y)`` and its slaved direction.
 
@@ -309,7 +309,7 @@ def _bearing_force(md, tau, y, P, ex, nz, tmp):
     return qn * sg * dx, qn * sg * dy, dx, dy
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _axis_rates(o, stuck, r, p, y, P, out, held, rb, nz):
     """One axis's state rates into ``out`` (see :func:`_axis`); returns the floor's acceleration ``A_F``."""
     n = int(P[P_N])
@@ -327,7 +327,7 @@ def _axis_rates(o, stuck, r, p, y, P, out, held, rb, nz):
     return AF
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _rates(md, tau, y, P, ex, out, tmp):
     """The state's rates in the modes ``md`` without the slaved lines' turning terms; ``(A_Fx, A_Fy)``."""
     n = int(P[P_N])
