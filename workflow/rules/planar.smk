@@ -26,7 +26,7 @@ rule planar_dataset:
     threads: 1
     resources:
         mem_mb=600,  # measured: max_rss 264 MB
-        runtime=2,  # minutes; measured: 2.8 s (default config: 576 + 216 scenes, 288 1-D ones, 1.1 s solving)
+        runtime=2,  # minutes; measured: 2.8 s (default config: 576 + 216 scenes, 288 1-D ones, 1.1 s solving), 5.3 s under load
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -49,7 +49,7 @@ rule planar_figure:
     threads: 1
     resources:
         mem_mb=600,  # measured: max_rss 273 MB
-        runtime=2,  # minutes; measured: 5.6 s (default config, four figures in two formats)
+        runtime=2,  # minutes; measured: 5.6 s (default config, four figures in two formats), 10.4 s under load
     conda:
         "../envs/isoslide.yaml"
     script:
