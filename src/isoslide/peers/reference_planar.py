@@ -138,17 +138,22 @@ from ..scene import Scene
 from .reference_building import shear_building
 from .result import PeerResult, counted
 
-__all__ = ["PlanarBuilding", "PlanarRun", "START_SPEED", "TURN_ANGLE", "planar_building", "planar_excitation",
+__all__ = ["PlanarBuilding", "PlanarRun", "SLOW_SPEED", "STIFF_SPEED", "TURN_ANGLE", "planar_building", "planar_excitation",
            "run_planar", "solve_reference_planar"]
 
 TURN_ANGLE = math.pi / 6.0
 """Largest angle (radians) the sliding velocity turns within one segment before a new segment
 starts with a new reference direction (see the module docstring)."""
 
-START_SPEED = 1e-8
-"""Speed (units ``a_p T_p``) up to which a slip from rest slides along the slaved direction
-``-A_S/|A_S|`` before the exact equations take over (module docstring)."""
+SLOW_SPEED = 1e-8
+"""Speed (units ``a_p T_p``) below which a slip runs along the slaved direction ``-A_S/|A_S|``
+(module docstring): up to it from rest, and from half of it, relaxed, to the stop."""
 
+STIFF_SPEED = 1.0 / 256.0
+"""Below the speed ``STIFF_SPEED thr`` (units ``a_p T_p``) the exact equations are stiff and run
+with the implicit Radau integrator, above twice it with DOP853 (module docstring)."""
+
+_COS_RELAXED = math.cos(1e-5)   # the sliding velocity is relaxed within 1e-5 rad of -A_S/|A_S|
 _COS_TURN = math.cos(TURN_ANGLE)
 _ULP4 = 4e-15      # relative slack of the stick limit, as in isoslide.peers.reference
 _MERGE = 1e-10     # breakpoints closer than _MERGE (1 + |tau|) are one
@@ -466,6 +471,7 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
     ex = planar_excitation(scene)
     i_u, i_w = 4 * B.nd, 4 * B.nd + 2
     lim = B.thr * (1.0 + _ULP4)
+    stiff = STIFF_SPEED * B.thr
     tau_end = ex.tau_end
     t_stop = tau_end + float(horizon) * max(1.0, scene.pi3, scene.pi12)
     bps = [b for b in ex.breakpoints() if b < t_stop] + [t_stop]
@@ -480,6 +486,7 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
     tau = ex.tau_start
     y = np.zeros(4 * B.nd + 4)
     mode = _STUCK
+    implicit = False            # sliding: Radau (slow, stiff) or DOP853
     from_rest = False
     e = np.array([1.0, 0.0])     # a sliding segment's reference direction
     peak, tau_peak, angle_peak = 0.0, math.nan, math.nan
@@ -506,8 +513,17 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
             y[i_w:i_w + 2] = 0.0
             af = _stuck_af(B, y, ground(tau))
             if math.hypot(af[0], af[1]) > lim * nz(tau):
-                mode, from_rest = _START, True
+                mode, from_rest = _SLAVED, True
                 n_events += 1
+        elif mode == _SLIDING:
+            speed = math.hypot(y[i_w], y[i_w + 1])
+            if speed < 0.75 * SLOW_SPEED:
+                n_s = _slaved_direction(B, y, ground(tau), e)
+                if y[i_w] * n_s[0] + y[i_w + 1] * n_s[1] >= speed * _COS_RELAXED:
+                    y[i_w:i_w + 2] = (speed, 0.0)   # relaxed: slaved from here
+                    mode, e = _SLAVED, n_s
+                else:                       # not relaxed, so not stiff: the exact equations, explicitly
+                    implicit = False
         free = mode == _STUCK and tau >= tau_end
         if free and (settle_g is None or settle_g(tau, y) >= 0.0):
             settled = True
@@ -515,19 +531,22 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
         if tau >= t_stop:
             break
         # ---- this segment -------------------------------------------------------------------
-        if mode == _START:
-            seg = _start_segment(B, ground, nz, e, tau, y, from_rest)
+        method = "DOP853"
+        if mode == _SLAVED:
+            seg = _slaved_segment(B, ground, nz, e, tau, y, from_rest)
         elif mode == _SLIDING:
-            seg = _sliding_segment(B, ground, nz, e, atol)
+            seg = _sliding_segment(B, ground, nz, e, atol, SLOW_SPEED / 2.0 if speed >= 0.75 * SLOW_SPEED else None,
+                                   (2.0 * stiff, 1.0) if implicit else (stiff, -1.0))
+            method = "Radau" if implicit else "DOP853"
         else:
             seg = _stuck_segment(B, ground, nz, lim, settle_g if free else None)
         rhs, specs = seg.rhs, seg.events
-        sol = solve_ivp(counted(rhs, max_work, "reference", used), (tau, t_end), y, method="DOP853", rtol=rtol,
+        sol = solve_ivp(counted(rhs, max_work, "reference", used), (tau, t_end), y, method=method, rtol=rtol,
                         atol=atol, events=[s[0] for s in specs], max_step=hmax_pulse if tau < tau_end else hmax_free,
                         dense_output=sample_t is not None)
         nfev += sol.nfev
         if sol.status < 0:
-            raise RuntimeError(f"solve_ivp failed: {sol.message}")
+            raise RuntimeError(f"solve_ivp ({method}) failed at tau = {sol.t[-1]!r}: {sol.message}; scene={scene!r}")
         if sample_t is not None:
             lo = rec_t[-1][-1] if rec_t else -math.inf
             ts = sample_t[(sample_t >= tau) & (sample_t <= sol.t[-1]) & (sample_t > lo)]
@@ -540,13 +559,13 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
             if not terminal:            # the peaks of |u| inside a slip
                 for t_, y_ in zip(te, ye, strict=True):
                     note(t_, y_)
+        from_rest = False
         if sol.status != 1:             # the segment's end: a breakpoint or the horizon
             tau = t_end
             y = np.array(sol.y[:, -1], dtype=float)
             note(tau, y)
             if mode == _SLIDING:
                 e = _unit(y[i_w:i_w + 2], e)
-            from_rest = False
             continue
         te, ye, kind = min(((te[0], ye[0], s[1]) for te, ye, s in zip(sol.t_events, sol.y_events, specs, strict=True)
                             if s[2] and len(te)), key=lambda h: h[0])
@@ -556,23 +575,25 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
         tau = float(te)
         y = np.array(ye, dtype=float)
         note(tau, y)
-        from_rest = False
         if kind == "settle":
             settled = True
             break
-        if kind == "break":             # slides from rest along -A_F/|A_F| (the start's direction)
-            mode, from_rest = _START, True
+        if kind == "break":             # slides from rest along -A_S/|A_S|
+            mode, from_rest = _SLAVED, True
             n_events += 1
         elif kind == "stop":
             y[i_w:i_w + 2] = 0.0
             mode = _STUCK
             n_events += 1
-        elif kind == "fast":            # the start's speed reached START_SPEED: the exact equations
+        elif kind == "fast":            # the slaved speed reached SLOW_SPEED: the exact equations
             w = seg.velocity(tau, y)
             y[i_w:i_w + 2] = w
             e = _unit(w, e)
-            mode = _SLIDING
-        else:                           # "turn": a new reference direction, nothing else changes
+            mode, implicit = _SLIDING, True
+        elif kind == "gear":            # between the explicit and the implicit integrator
+            implicit = not implicit
+            e = _unit(y[i_w:i_w + 2], e)
+        else:                           # "turn", "slow": a new segment (slaved if slow and relaxed)
             e = _unit(y[i_w:i_w + 2], e)
 
     note(tau, y)
@@ -586,8 +607,8 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
     return PlanarRun(result=res, tau=tt, u=yy[:2], w=yy[2:])
 
 
-_STUCK, _START, _SLIDING = 0, 1, 2
-"""The block's modes: stuck, starting to slide (slaved direction), sliding (module docstring)."""
+_STUCK, _SLAVED, _SLIDING = 0, 1, 2
+"""The block's modes: stuck, sliding slowly along the slaved direction, sliding (module docstring)."""
 
 
 @dataclass(frozen=True)
@@ -610,7 +631,7 @@ def _forces(B: PlanarBuilding, yy):
 
 
 def _stuck_af(B: PlanarBuilding, y, g) -> tuple:
-    """Absolute acceleration ``A_F`` (units ``a_p``) of the contents' floor with the block stuck.
+    """Absolute acceleration ``A_S`` (units ``a_p``) of the contents' floor with the block stuck.
 
     ``g`` is the ground acceleration ``(g_x, g_y)``; on a moving floor the ground term cancels.
     """
@@ -621,10 +642,15 @@ def _stuck_af(B: PlanarBuilding, y, g) -> tuple:
     return float(a[0]), float(a[1])
 
 
+def _slaved_direction(B: PlanarBuilding, y, g, fallback) -> np.ndarray:
+    """``-A_S/|A_S|`` (``fallback`` where ``A_S = 0``): the direction a slow slip relaxes to."""
+    return _unit([-a for a in _stuck_af(B, y, g)], fallback)
+
+
 def _stuck_segment(B: PlanarBuilding, ground, nz, lim: float, settle_g) -> _Segment:
     """A segment with the block stuck.
 
-    Events: ``"break"`` (``|A_F|`` reaches ``lim nz``) and, when ``settle_g`` is given, ``"settle"``.
+    Events: ``"break"`` (``|A_S|`` reaches ``lim nz``) and, when ``settle_g`` is given, ``"settle"``.
     """
     nd = B.nd
     Mst = B.stuck_masses
@@ -652,11 +678,11 @@ def _stuck_segment(B: PlanarBuilding, ground, nz, lim: float, settle_g) -> _Segm
     return _Segment(rhs, events, lambda t, yy: np.zeros(2))
 
 
-def _start_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: bool) -> _Segment:
-    """A slip's start: the speed ``r`` (held in ``y[w_x]``) along ``n = -A_S/|A_S|`` (module docstring).
+def _slaved_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: bool) -> _Segment:
+    """A slow slip: the speed ``r`` (held in ``y[w_x]``) along ``n = -A_S/|A_S|`` (module docstring).
 
     Events: ``"stop"`` (``r`` to zero; ``r/(tau - t0)`` from rest) and ``"fast"`` (``r`` up to
-    :data:`START_SPEED`), terminal, and ``"peak"`` (``u . n`` from positive to negative).  ``e``
+    :data:`SLOW_SPEED`), terminal, and ``"peak"`` (``u . n`` from positive to negative).  ``e``
     is the direction where ``A_S = 0``.
     """
     nd, k, m = B.nd, B.k, B.m
@@ -666,7 +692,7 @@ def _start_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: b
     phi = B.phi
 
     def parts(t, yy):
-        """``(n, A_F, f, friction level)``: direction, floor acceleration, floor forces (or None)."""
+        """Direction, floor acceleration, floor forces (None on a ground-fixed floor), friction, ground."""
         g = ground(t)
         fr = nz(t) * phi(abs(yy[i_w]))
         if k >= 0:
@@ -699,16 +725,16 @@ def _start_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: b
         d[i_w] = -(afx * nx + afy * ny) - fr
         return d
 
-    r0 = float(rhs(t0, np.asarray(y0, dtype=float))[i_w]) if from_rest else float(y0[i_w])
+    r0 = float(rhs(t0, np.asarray(y0, dtype=float))[i_w])
 
     def g_stop(t, yy):
-        dt = t - t0
         if not from_rest:
             return yy[i_w]
+        dt = t - t0
         return yy[i_w] / dt if dt > 0.0 else r0
 
     def g_fast(t, yy):
-        return yy[i_w] - START_SPEED
+        return yy[i_w] - SLOW_SPEED
 
     def g_peak(t, yy):
         nx, ny = parts(t, yy)[:2]
@@ -723,13 +749,14 @@ def _start_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: b
     return _Segment(rhs, [(g_stop, "stop", True), (g_fast, "fast", True), (g_peak, "peak", False)], velocity)
 
 
-def _sliding_segment(B: PlanarBuilding, ground, nz, e, slack: float) -> _Segment:
+def _sliding_segment(B: PlanarBuilding, ground, nz, e, slack: float, slow, gear) -> _Segment:
     """A sliding segment with the reference direction ``e`` (module docstring).
 
-    The friction direction is ``sgn(w . e) w/|w|`` (``e`` where ``w = 0``).  Events: ``"stop"``
-    (``w . e`` to zero) and ``"turn"`` (``w . e - cos(30 deg) |w| + slack`` to zero: ``w`` 30
-    degrees from ``e``, ``slack`` the velocity's absolute tolerance), terminal, and ``"peak"``
-    (``u . w`` from positive to negative).
+    The friction direction is ``sgn(w . e) w/|w|`` (``e`` where ``w = 0``).  Events, terminal:
+    ``"stop"`` (``w . e`` to zero), ``"turn"`` (``w . e - cos(30 deg) |w| + slack`` to zero: ``w``
+    30 degrees from ``e``, ``slack`` the velocity's absolute tolerance), ``"slow"`` (``|w|`` down to
+    ``slow``; none when ``slow`` is None) and ``"gear"`` (``|w|`` through ``gear[0]`` in the
+    direction ``gear[1]``); and ``"peak"`` (``u . w`` from positive to negative).
     """
     nd, k, m = B.nd, B.k, B.m
     M = B.masses
@@ -773,10 +800,19 @@ def _sliding_segment(B: PlanarBuilding, ground, nz, e, slack: float) -> _Segment
     def g_peak(t, yy):
         return yy[i_u] * yy[i_w] + yy[i_u + 1] * yy[i_w + 1]
 
-    for fn, terminal in ((g_stop, True), (g_turn, True), (g_peak, False)):
-        fn.terminal, fn.direction = terminal, -1.0
-    return _Segment(rhs, [(g_stop, "stop", True), (g_turn, "turn", True), (g_peak, "peak", False)],
-                    lambda t, yy: np.array(yy[i_w:i_w + 2]))
+    def g_gear(t, yy):
+        return math.hypot(yy[i_w], yy[i_w + 1]) - gear[0]
+
+    events = [(g_stop, "stop", True, -1.0), (g_turn, "turn", True, -1.0), (g_gear, "gear", True, gear[1]),
+              (g_peak, "peak", False, -1.0)]
+    if slow is not None:
+        def g_slow(t, yy):
+            return math.hypot(yy[i_w], yy[i_w + 1]) - slow
+
+        events.append((g_slow, "slow", True, -1.0))
+    for fn, _, terminal, direction in events:
+        fn.terminal, fn.direction = terminal, direction
+    return _Segment(rhs, [ev[:3] for ev in events], lambda t, yy: np.array(yy[i_w:i_w + 2]))
 
 
 def _unit(v, fallback) -> np.ndarray:
