@@ -4,9 +4,9 @@ The planar sibling of :mod:`isoslide.peers.reference_building`: the same buildin
 a linear isolator under a rigid superstructure or a flexible shear building of ``N`` storeys),
 moved by two horizontal ground components and optionally a vertical one, carry contents that
 slide in any direction on their floor.  The right-hand side is plain Python + NumPy, integrated
-segment by segment with :func:`scipy.integrate.solve_ivp` (``DOP853``) and every transition located
-with ``solve_ivp``'s events; nothing comes from the compiled kernel (:mod:`isoslide.engine`), so
-the two can check each other.  Hysteretic isolators (``Pi9 > 0``) are not modelled (refused).
+segment by segment with :func:`scipy.integrate.solve_ivp` (``DOP853``, and ``Radau`` for slow
+slips, see below) and every transition located with ``solve_ivp``'s events; nothing comes from the
+compiled kernel (:mod:`isoslide.engine`), so the two can check each other.  Hysteretic isolators (``Pi9 > 0``) are not modelled (refused).
 
 Model (dimensionless: ``tau = t/T_p``, lengths ``a_p T_p**2``, accelerations ``a_p``, masses ``M_b``)
 ---------------------------------------------------------------------------------------------------
@@ -42,64 +42,71 @@ relative to their floor, friction level ``phi(s) = thr sech(Pi6 s) + Pi2 (1 - se
 
 * stuck (``w = 0``): the block moves with its floor (its mass joins ``M_kk`` in both axes),
   ``R = -m A_F``; it stays stuck while ``|A_F| <= thr nz`` (Euclidean norm).  Then
-  ``A_F = -(K_k d + C_k d')/(M_kk + m)`` (the ground term cancels).
+  ``A_F = A_S = -(K_k d + C_k d')/(M_kk + m)`` (the ground term cancels).
 * sliding: ``R = m nz phi(|w|) n``, ``w' = -A_F - nz phi(|w|) n`` with the friction direction
   ``n = w/|w|``;
-* breakaway where ``|A_F|`` (stuck) reaches ``thr nz``: the block starts to slide along
-  ``-A_F/|A_F|``; it is force-continuous (``phi(0) = thr``), and a block that stops where
-  ``|A_F| > thr nz`` slides on along ``-A_F/|A_F|`` (consistent: its relative acceleration
-  points that way, ``(|A_F| (M_kk + m) - thr nz (M_kk + m)) / M_kk > 0`` on the floor ``k``);
+* breakaway where ``|A_S|`` (``A_F`` stuck) reaches ``thr nz``: the block starts to slide along
+  ``-A_S/|A_S|``; it is force-continuous (``phi(0) = thr``), and a block that stops where
+  ``|A_S| > thr nz`` slides on along ``-A_S/|A_S|`` (consistent: its speed grows,
+  ``|w|' = (M_kk + m)/M_kk (|A_S| - thr nz) > 0`` on a moving floor, ``|g| - thr nz`` on one that
+  moves with the ground);
 * ``Pi1 = max |u|``, ``peak_angle = atan2(u_y, u_x)`` there, ``tau_peak`` its time.
 
 Slips
 -----
-A slip from rest is stiff: the direction of ``w`` relaxes towards ``-A_F/|A_F|`` at the rate
+A slow slip is stiff: the direction of ``w`` relaxes towards ``-A_F/|A_F|`` at the rate
 ``|A_F|/|w|`` (in polar form ``|w| psi' = -|A_F| sin psi``, ``psi`` the angle of ``w`` from
 ``-A_F/|A_F|``), so an explicit integrator needs steps of about ``|w|/|A_F|``; after a breakaway
-``|w|`` grows like ``(tau - tau_0)**2``, and following that from ``|w| = 0`` would take without
-bound many steps.  So a slip runs in two kinds of segment.
+``|w|`` grows like ``(tau - tau_0)**2`` and following it from ``|w| = 0`` explicitly takes without
+bound many steps, and a block creeping at a small speed takes as many.  A slip therefore runs in
+segments of three kinds, by speed ``r = |w|``.
 
-*Start* (from rest until the speed reaches :data:`START_SPEED`): the direction is the one the
-relaxation tends to, ``n = -A_S/|A_S|`` with ``A_S`` the floor's acceleration were the block
-stuck (``A_S = f_k/(M_kk + m)``, ``f_k = -(K_k d + C_k d')`` the floor's other forces; ``A_S = g``
-on a floor that moves with the ground), and the speed ``r`` is a state::
+*Slaved* (``r < SLOW_SPEED = 1e-8 a_p T_p``, :data:`SLOW_SPEED`): the direction is the one the
+relaxation tends to, ``n = -A_S/|A_S|`` with ``A_S`` the floor's acceleration were the block stuck
+(``A_S = f_k/(M_kk + m)``, ``f_k = -(K_k d + C_k d')`` the floor's other forces; ``A_S = g`` on a
+floor that moves with the ground), and the speed ``r`` is a state::
 
     r' = -A_F . n - nz phi(r),   u' = r n,   R = m nz phi(r) n
 
 (on a moving floor ``r' = (M_kk + m)/M_kk (|A_S| - nz phi(r))``).  The true direction lags this
-one by about ``r Omega/|A_F|`` (``Omega`` the turning rate of ``A_S``): below ``START_SPEED =
-1e-8 a_p T_p`` the friction force's direction is off by ~1e-7 at most, for the ~1e-4 ``T_p`` the
-start lasts, a change of the building's momentum ~1e-11 ``m a_p T_p`` and of ``u`` ~1e-16
-``a_p T_p**2``.  Under a one-dimensional excitation ``A_S`` keeps its line and the start is
-exact.  A start whose speed returns to zero ends in a stop, the root of ``r`` (of
-``r/(tau - tau_0)`` from rest, which has the sign of ``r`` without the trivial root at
-``tau_0``; ``r`` is smooth and crosses zero with ``r' < 0``).
+one by about ``r Omega/|A_S|`` (``Omega`` the turning rate of ``A_S``): below ``SLOW_SPEED`` the
+friction force's direction is off by ~1e-7 at most, a change of the building's momentum
+~1e-7 ``m nz phi`` times the slaved phase's duration (~1e-4 ``T_p`` after a breakaway), and of
+``u`` ~``SLOW_SPEED`` times that.  Changing ``SLOW_SPEED`` from 1e-6 to 1e-10 changes ``Pi1`` by
+less than 1e-12 relative on the scenes tried (1e-10 from 1e-6).  Under a one-dimensional
+excitation ``A_S`` keeps its line and the slaved phase is exact.  Every slip from rest starts
+slaved (along ``-A_S/|A_S|``, the breakaway direction) and switches to the exact equations when
+``r`` reaches ``SLOW_SPEED``; a sliding block whose speed falls to ``SLOW_SPEED/2`` with ``w``
+within 1e-5 rad of ``-A_S/|A_S|`` (relaxed) continues slaved.  A slaved slip stops at the root of
+``r`` (of ``r/(tau - tau_0)`` from rest, which has the sign of ``r`` without the trivial root at
+``tau_0``): ``r`` is smooth and crosses zero with ``r' < 0``, so the stop is located as exactly as
+the one-dimensional reference's.
 
-*Sliding* (from ``r = START_SPEED`` on, with ``w = r n``): the exact equations with a fixed
-reference direction ``e`` (the direction of ``w`` at the segment's start) and the friction
-direction ``n = sgn(w . e) w/|w|``, which is ``w/|w|`` while ``w`` stays within 90 degrees of
-``e``.  The segment ends at the first of:
+*Sliding*, the exact equations, with the implicit ``Radau`` integrator (stiffly stable) while
+``r`` is below ``2 STIFF_SPEED thr`` after falling below ``STIFF_SPEED thr`` (:data:`STIFF_SPEED`,
+``thr/256``: where the relaxation rate ``|A_F|/r`` exceeds ~256 per ``T_p``), else with
+``DOP853``.  A sliding segment carries a fixed reference direction ``e`` (the direction of ``w``
+at its start) and uses the friction direction ``n = sgn(w . e) w/|w|``, which is ``w/|w|`` while
+``w`` stays within 90 degrees of ``e``.  It ends at the first of:
 
 * *turn*: ``w . e = cos(30 deg) |w| - atol`` (``w`` has turned 30 degrees away from ``e``; the
   velocity's absolute tolerance ``atol`` keeps round-off in the direction of a ``w`` within
   ``atol`` of zero from starting segments): a new segment starts at once with ``e = w/|w|``;
-  nothing else changes (not a transition);
-* *stop*: ``w . e = 0``.  Before it ``w . e >= cos(30 deg) |w| - atol``, so there
-  ``|w| <= atol/cos(30 deg)``: the root is the stop, to the velocity's tolerance.  It is a
-  simple, transversal root of a continuous function: as ``|w| -> 0`` the direction ``w/|w|``
-  tends to ``-A_F/|A_F|`` (``|w|' = |A_F| cos psi - f`` and ``psi`` shrinks like
-  ``|w|**(|A_F|/(f - |A_F|))``, ``f = nz phi``), and past the root the extension
-  ``n = sgn(w . e) w/|w|`` keeps ``n`` continuous (``w`` comes back along ``+A_F/|A_F|``, ``n``
-  stays ``-A_F/|A_F|``), exactly as the one-dimensional reference keeps the sign ``s`` of a slip
-  past its stop; there ``(w . e)' = (f - |A_F|) (-A_F/|A_F|) . e < 0``.  ``solve_ivp`` brackets
-  the root between accepted steps of the error-controlled solution and Brent's method refines it
-  on the dense output to about 4 ulp: the stop time, ``u`` and the building's state are exact to
-  the integration tolerances.  (The direction ``w/|w|`` is only Hoelder continuous in time at a
-  stop, so the error control takes small steps there; under a one-dimensional excitation ``w``
-  stays on one line and everything is smooth.)
+* *slow*: ``r = SLOW_SPEED/2`` (slaved if relaxed, else on with DOP853, which is not stiff there:
+  an unrelaxed direction relaxes slowly);
+* *gear*: ``r`` through the stiff band's limits (the integrator changes);
+* *stop* (reached only with DOP853 below ``SLOW_SPEED``, unrelaxed): ``w . e = 0``.  Before it
+  ``w . e >= cos(30 deg) |w| - atol``, so there ``|w| <= atol/cos(30 deg)``: the root is the stop,
+  to the velocity's tolerance.  It is a transversal root of a continuous function: past it the
+  extension ``n = sgn(w . e) w/|w|`` keeps ``n`` continuous (``w`` comes back the way it came and
+  ``n`` keeps its direction), exactly as the one-dimensional reference keeps the sign ``s`` of a
+  slip past its stop.  ``solve_ivp`` brackets the root between accepted steps of the
+  error-controlled solution and Brent's method refines it on the dense output to about 4 ulp:
+  the stop time, ``u`` and the building's state are exact to the integration tolerances.
 
-At a stop ``w = 0`` and the block sticks if ``|A_F| <= thr nz``, else it starts again along
-``-A_F/|A_F|``.
+Only these changes of segment interrupt a slip; they change nothing in the state but the way
+``w`` is held (``w = r n`` between slaved and sliding).  At a stop ``w = 0`` and the block sticks
+if ``|A_S| <= thr nz``, else it starts again along ``-A_S/|A_S|``.
 
 Inside a slip ``|u|`` peaks where ``(|u|**2)'/2 = u . w`` goes from positive to negative (a
 non-terminal event); ``|u|`` is also taken at every stop and at the end of every segment, so the
@@ -150,7 +157,7 @@ SLOW_SPEED = 1e-8
 (module docstring): up to it from rest, and from half of it, relaxed, to the stop."""
 
 STIFF_SPEED = 1.0 / 256.0
-"""Below the speed ``STIFF_SPEED thr`` (units ``a_p T_p``) the exact equations are stiff and run
+"""Below the speed ``STIFF_SPEED thr`` (``STIFF_SPEED`` in units ``T_p``) the exact equations are stiff and run
 with the implicit Radau integrator, above twice it with DOP853 (module docstring)."""
 
 _COS_RELAXED = math.cos(1e-5)   # the sliding velocity is relaxed within 1e-5 rad of -A_S/|A_S|
@@ -731,7 +738,7 @@ def _slaved_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: 
         if not from_rest:
             return yy[i_w]
         dt = t - t0
-        return yy[i_w] / dt if dt > 0.0 else r0
+        return yy[i_w] / dt if dt > 0.0 else max(r0, 0.0)   # a start that cannot grow stops at once
 
     def g_fast(t, yy):
         return yy[i_w] - SLOW_SPEED
