@@ -198,6 +198,21 @@ def test_the_building_matches_the_shear_chain():
     assert fixed.nd == 0 and fixed.k == -1
 
 
+def test_no_slip_follows_settlement():
+    """A planar scene on a lightly damped isolator settles after its pulses while the building still
+    moves; followed on to 15 isolation periods past the pulses without the settlement test, it has
+    the same transitions, Pi1 and final displacement (the bound that stopped it was safe)."""
+    scene = Scene(**dict(LINEAR, pi4=0.05), **PLANAR)
+    settled = run_planar(scene).result
+    followed = run_planar(scene, settle=False, horizon=15.0).result
+    end = planar_excitation(scene).tau_end
+    assert settled.settled and not followed.settled
+    assert end < settled.tau_end < followed.tau_end == pytest.approx(end + 30.0)
+    assert followed.n_events == settled.n_events
+    assert followed.pi1 == settled.pi1
+    assert followed.pi1_residual == settled.pi1_residual
+
+
 def test_a_slow_slip_is_insensitive_to_the_slaved_speed(monkeypatch):
     """Pi1 of a planar scene with slow slips (breakaways at the stick limit) changes by less than
     1e-10 relative when the speed below which slips run slaved goes from 1e-8 to 1e-10."""

@@ -121,10 +121,12 @@ Start and end
 The run starts at rest at the earliest start of the pulses and follows the response past the
 latest end ``tau_end`` of all of them.  After ``tau_end`` a stuck block on a free building
 settles (``settled = True``, the run stops) as soon as it provably never slides again: the free
-stuck system ``Ms d'' + C d' + K d = 0`` (both axes) has the non-increasing energy
-``E = sum_a (d_a' Ms d_a' + d_a K d_a)/2``, and ``A_F`` per axis is ``c . (d_a, d_a')`` with
-``c = -(K_k, C_k)/(M_kk + m)``, so ``|A_F| <= sqrt(2 E c^T P^-1 c)`` for all later times
-(``P = diag(K, Ms)``, Cauchy-Schwarz).  Settlement is the first moment this bound is at most
+stuck system ``Ms d'' + C d' + K d = 0`` holds in every horizontal direction ``d`` (the
+projections ``D d`` of the two axes' coordinates obey it), so the energy of the motion along
+``d``, ``E_d = d^T Q d/2`` with ``Q = D^T K D + V^T Ms V``, never increases; ``A_F . d`` is
+``c . (D d, V d)`` with ``c = -(K_k, C_k)/(M_kk + m)``, so for all later times
+``|A_F| = max_d A_F . d <= sqrt(lambda_max(Q) c^T P^-1 c)`` (``P = diag(K, Ms)``,
+Cauchy-Schwarz), with ``Q`` taken now.  Settlement is the first moment this bound is at most
 ``thr`` (checked at every segment start and as a terminal event of the free segments); it only
 decides where the run stops, never ``Pi1``.  A fixed base with the contents on the ground-fixed
 floor settles as soon as the block sticks after ``tau_end``.  A run that has not settled by
@@ -455,7 +457,8 @@ def solve_reference_planar(scene: Scene, history: bool = False, rtol: float = 1e
 
 
 def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: float = 200.0,
-               max_work: int | None = None, samples=None, max_segments: int = 1_000_000) -> PlanarRun:
+               max_work: int | None = None, samples=None, max_segments: int = 1_000_000,
+               settle: bool = True) -> PlanarRun:
     """:func:`solve_reference_planar`, optionally sampling the trajectory.
 
     Parameters
@@ -464,6 +467,9 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
         As :func:`solve_reference_planar`.
     samples : array_like or None
         Times (units ``T_p``) at which to record ``u`` and ``w`` (those the run reaches).
+    settle : bool
+        Stop at settlement (default); ``False`` follows the scene to the horizon (``settled``
+        stays False), to check the settlement bound.
     max_segments : int
         Safety cap on the number of integration segments (raises ``RuntimeError``).
 
@@ -486,7 +492,7 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
     short = scene.pi15 if ex.y is not None else 1.0
     hmax_pulse = min([1.0 / 64.0, short / 64.0] + [T / 32.0 for T in periods])
     hmax_free = min([max(1.0, scene.pi3) / 64.0] + [T / 32.0 for T in periods])
-    settle_g = _settle_margin(B)
+    settle_g = _settle_margin(B) if settle else None
     sample_t = np.sort(np.asarray(samples, dtype=float).ravel()) if samples is not None else None
     rec_t, rec_y = [], []
 
@@ -532,7 +538,7 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
                 else:                       # not relaxed, so not stiff: the exact equations, explicitly
                     implicit = False
         free = mode == _STUCK and tau >= tau_end
-        if free and (settle_g is None or settle_g(tau, y) >= 0.0):
+        if free and settle and (settle_g is None or settle_g(tau, y) >= 0.0):
             settled = True
             break
         if tau >= t_stop:
@@ -829,11 +835,13 @@ def _unit(v, fallback) -> np.ndarray:
 
 
 def _settle_margin(B: PlanarBuilding):
-    """The settlement margin ``g(tau, y) = thr - sqrt(2 E c^T P^-1 c)`` (module docstring).
+    """The settlement margin ``g(tau, y) = thr - sqrt(lambda_max(Q) c^T P^-1 c)`` (module docstring).
 
-    Non-decreasing along the free stuck response (``E`` the building's energy in both axes);
-    ``g >= 0`` once the contents can never slide again.  None when the contents' floor moves with
-    the ground (after the pulses nothing can move it).
+    ``Q = D^T K D + V^T Ms V`` (2 x 2; ``D``, ``V`` the coordinates and velocities of both axes) holds
+    twice the energy of the motion projected on any direction ``d``, ``d^T Q d``, which never
+    increases along the free stuck response; so neither does ``lambda_max(Q)``, and ``g`` never
+    decreases.  ``g >= 0`` once the contents can never slide again.  None when the contents' floor
+    moves with the ground (after the pulses nothing can move it).
     """
     if B.k < 0:
         return None
@@ -848,7 +856,8 @@ def _settle_margin(B: PlanarBuilding):
     def g(t, yy):
         D = yy[:2 * n].reshape(n, 2)
         V = yy[2 * n:4 * n].reshape(n, 2)
-        two_e = float(np.einsum("ia,ij,ja->", D, K, D) + np.einsum("ia,i,ia->", V, Ms, V))
-        return thr - math.sqrt(max(two_e, 0.0)) * scale
+        Q = D.T @ K @ D + (V * Ms[:, None]).T @ V
+        lam = 0.5 * (Q[0, 0] + Q[1, 1] + math.hypot(Q[0, 0] - Q[1, 1], 2.0 * Q[0, 1]))
+        return thr - math.sqrt(max(lam, 0.0)) * scale
 
     return g
