@@ -6,7 +6,8 @@ moved by two horizontal ground components and optionally a vertical one, carry c
 slide in any direction on their floor.  The right-hand side is plain Python + NumPy, integrated
 segment by segment with :func:`scipy.integrate.solve_ivp` (``DOP853``, and ``Radau`` for slow
 slips, see below) and every transition located with ``solve_ivp``'s events; nothing comes from the
-compiled kernel (:mod:`isoslide.engine`), so the two can check each other.  Hysteretic isolators (``Pi9 > 0``) are not modelled (refused).
+compiled kernel (:mod:`isoslide.engine`), so the two can check each other.  Hysteretic isolators
+(``Pi9 > 0``) are not modelled (refused).
 
 Model (dimensionless: ``tau = t/T_p``, lengths ``a_p T_p**2``, accelerations ``a_p``, masses ``M_b``)
 ---------------------------------------------------------------------------------------------------
@@ -147,7 +148,8 @@ from ..scene import Scene
 from .reference_building import shear_building
 from .result import PeerResult, counted
 
-__all__ = ["PlanarBuilding", "PlanarRun", "SLOW_SPEED", "STIFF_SPEED", "TURN_ANGLE", "planar_building", "planar_excitation",
+__all__ = ["PlanarBuilding", "PlanarRun", "SLOW_SPEED", "STIFF_SPEED", "TURN_ANGLE", "planar_building",
+           "planar_excitation",
            "run_planar", "solve_reference_planar"]
 
 TURN_ANGLE = math.pi / 6.0
@@ -418,7 +420,7 @@ class PlanarRun:
 
 def solve_reference_planar(scene: Scene, history: bool = False, rtol: float = 1e-11, atol: float = 1e-13,
                            horizon: float = 200.0, max_work: int | None = None) -> PeerResult:
-    """Solve one scene with contents sliding in the plane, event-driven DOP853 (module docstring).
+    """Solve one scene with contents sliding in the plane, event-driven (module docstring).
 
     Parameters
     ----------
@@ -429,8 +431,8 @@ def solve_reference_planar(scene: Scene, history: bool = False, rtol: float = 1e
         Must be False: a planar response has no one-dimensional
         :class:`~isoslide.store.history.History`; :func:`run_planar` samples its trajectory.
     rtol, atol : float
-        Tolerances passed to ``solve_ivp`` (DOP853); ``atol`` in the state's units (``a_p T_p**2``,
-        ``a_p T_p``).
+        Tolerances passed to ``solve_ivp`` (DOP853, and Radau for slow slips); ``atol`` in the
+        state's units (``a_p T_p**2``, ``a_p T_p``).
     horizon : float
         Follow an unsettled response up to ``horizon max(1, Pi3, Pi12)`` (units ``T_p``) after the
         last pulse's end, ``>= 0``.
@@ -440,10 +442,12 @@ def solve_reference_planar(scene: Scene, history: bool = False, rtol: float = 1e
     Returns
     -------
     PeerResult
-        ``method = "reference"``, ``integrator = "DOP853"``; ``pi1 = max |u|`` (units
+        ``method = "reference"``, ``integrator = "DOP853"`` (that of every stuck and fast
+        phase; slow slips run with Radau or slaved, see the module docstring); ``pi1 = max |u|`` (units
         ``a_p T_p**2``), ``peak_angle = atan2(u_y, u_x)`` at the peak (radians, building axes; nan
-        with ``pi1 = 0`` if the block never slid), ``pi1_residual = |u|`` at the end, ``n_events``
-        the breakaways, stops and restarts from a stop.
+        with ``pi1 = 0`` if the block never slid; ``tau_peak`` then nan too), ``pi1_residual = |u|``
+        at the end, ``n_events`` the breakaways (from rest, also right after a stop) and stops,
+        ``nfev`` the right-hand-side evaluations of both integrators.
 
     Raises
     ------
