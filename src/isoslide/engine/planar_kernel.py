@@ -1103,20 +1103,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             y[U + 2] = 0.0
             y[U + 3] = 0.0
         else:
-            s1 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
-            if md[M_BM] == 1.0 and s1 < slaved:
-                dx, dy = _slaved_dir(0, md, tau, y, P, ex, work[ny:4 * ny])
-                if abs(y[U + 2] * dy - y[U + 3] * dx) < ALIGNED * s1:
-                    sg = 1.0 if y[U + 2] * dx + y[U + 3] * dy >= 0.0 else -1.0
-                    md[M_BM] = 2.0 * sg
-                    md[M_E0], md[M_E1] = dx, dy
-                    y[U + 2] = sg * s1 * dx
-                    y[U + 3] = sg * s1 * dy
-            elif md[M_BM] != 1.0 and s1 >= 2.0 * slaved:
-                md[M_BM] = 1.0
-            if s1 > 0.0 and md[M_BM] == 1.0:
-                md[M_E0], md[M_E1] = y[U + 2] / s1, y[U + 3] / s1
-            vmax = max(vmax, s1)
+            vmax = max(vmax, _line_switch(0, md, tau, y, P, ex, work, slaved))
             um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
             if um > umax:
                 umax, tpeak, angle = um, tau, math.atan2(y[U + 1], y[U])
@@ -1124,19 +1111,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             for a in range(2):
                 y[a * nb_ + 1] = 0.0
         elif bearing:
-            s1 = math.sqrt(y[1] ** 2 + y[nb_ + 1] ** 2)
-            if md[M_IM] == 1.0 and s1 < slaved:
-                dx, dy = _slaved_dir(1, md, tau, y, P, ex, work[ny:4 * ny])
-                if abs(y[1] * dy - y[nb_ + 1] * dx) < ALIGNED * s1:
-                    sg = 1.0 if y[1] * dx + y[nb_ + 1] * dy >= 0.0 else -1.0
-                    md[M_IM] = 2.0 * sg
-                    md[M_I0], md[M_I1] = dx, dy
-                    y[1] = sg * s1 * dx
-                    y[nb_ + 1] = sg * s1 * dy
-            elif md[M_IM] != 1.0 and s1 >= 2.0 * slaved:
-                md[M_IM] = 1.0
-            if s1 > 0.0 and md[M_IM] == 1.0:
-                md[M_I0], md[M_I1] = y[1] / s1, y[nb_ + 1] / s1
+            _line_switch(1, md, tau, y, P, ex, work, slaved)
         if P[P_KIND] == KIND_FIXED:
             for a in range(2):
                 y[a * nb_] = 0.0
@@ -1148,6 +1123,34 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                      1 if moved else 0], dtype=np.int64)
     floats = np.array([umax, tpeak, angle, ures, tau, vmax, y[U], y[U + 1], xmax])
     return ints, floats, hist[:nh]
+
+
+@njit(cache=True)
+def _line_switch(which, md, tau, y, P, ex, work, slaved):
+    """At an accepted point, move a sliding interface between its free mode (1) and its slaved line (``+-2``).
+
+    ``which``: the block (0) or a sliding bearing (1).  A free slide slower than ``slaved`` joins the
+    line when its velocity is within :data:`ALIGNED` of it (keeping its speed); a slow one leaves it
+    above ``2 slaved``.  Updates the fallback direction; returns the speed.
+    """
+    ny = y.shape[0]
+    U = ny - 4
+    iv, jv = (U + 2, U + 3) if which == 0 else (1, U // 2 + 1)
+    mi, di = (M_BM, M_E0) if which == 0 else (M_IM, M_I0)
+    s1 = math.sqrt(y[iv] ** 2 + y[jv] ** 2)
+    if md[mi] == 1.0 and s1 < slaved:
+        dx, dy = _slaved_dir(which, md, tau, y, P, ex, work[ny:4 * ny])
+        if abs(y[iv] * dy - y[jv] * dx) < ALIGNED * s1:
+            sg = 1.0 if y[iv] * dx + y[jv] * dy >= 0.0 else -1.0
+            md[mi] = 2.0 * sg
+            md[di], md[di + 1] = dx, dy
+            y[iv] = sg * s1 * dx
+            y[jv] = sg * s1 * dy
+    elif md[mi] != 1.0 and s1 >= 2.0 * slaved:
+        md[mi] = 1.0
+    if s1 > 0.0 and md[mi] == 1.0:
+        md[di], md[di + 1] = y[iv] / s1, y[jv] / s1
+    return s1
 
 
 @njit(cache=True)
