@@ -201,6 +201,13 @@ class PlanarBuilding:
     pi2: float
     pi6: float
     pi7: float
+    q: float = 0.0
+    kd: float = 0.0
+
+    @property
+    def bearing(self) -> bool:
+        """True for a sliding bearing (friction pendulum) under the slab, a second friction interface."""
+        return self.q > 0.0
 
     @property
     def nd(self) -> int:
@@ -225,7 +232,9 @@ class PlanarBuilding:
         """Natural periods of the stuck building (units ``T_p``), to bound the step."""
         if not self.nd:
             return []
-        lam = scipy.linalg.eigh(self.K, np.diag(self.stuck_masses), eigvals_only=True)
+        lam = list(scipy.linalg.eigh(self.K, np.diag(self.stuck_masses), eigvals_only=True))
+        if self.bearing and self.nd > 1:   # the floors above a held slab
+            lam += list(scipy.linalg.eigh(self.K[1:, 1:], np.diag(self.stuck_masses[1:]), eigvals_only=True))
         return [2.0 * math.pi / math.sqrt(v) for v in lam if v > 0.0]
 
 
@@ -246,9 +255,9 @@ def planar_building(scene: Scene) -> PlanarBuilding:
     ValueError
         ``pi9 > 0`` (a bilinear or sliding bearing), which this peer does not model.
     """
-    if scene.pi9 > 0.0:
-        raise ValueError(f"pi9 = {scene.pi9!r} (a hysteretic isolator) is not modelled by the planar reference "
-                         "peer; allowed: pi9 = 0 (a linear isolator, or a fixed base with pi3 = 0)")
+    if scene.pi9 > 0.0 and scene.pi10 > 0.0 and scene.pi3 > 0.0:
+        raise ValueError(f"pi10 = {scene.pi10!r} (a bilinear bearing) is not modelled by the planar reference peer; "
+                         "allowed: pi10 = 0 (a sliding bearing with pi9 > 0, or a linear isolator with pi9 = 0)")
     flexible = scene.pi12 > 0.0
     floor = scene.floor_index if flexible else 0
     if flexible:
@@ -265,6 +274,8 @@ def planar_building(scene: Scene) -> PlanarBuilding:
         return PlanarBuilding(masses=np.zeros(0), K=np.zeros((0, 0)), C=np.zeros((0, 0)), k=-1, **common)
     wb = 2.0 * math.pi / scene.pi3
     kd, cb = wb * wb, 2.0 * scene.pi4 * wb
+    if scene.pi9 > 0.0:
+        common.update(q=float(scene.pi9), kd=kd)
     if not flexible:
         return PlanarBuilding(masses=np.ones(1), K=np.array([[kd]]), C=np.array([[cb]]), k=0, **common)
     T = np.hstack([-np.ones((n, 1)), np.eye(n)])
@@ -486,9 +497,11 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
                                          and horizon >= 0.0):
         raise ValueError(f"horizon = {horizon!r} is out of range; allowed range: 0 <= value < inf")
     ex = planar_excitation(scene)
-    i_u, i_w = 4 * B.nd, 4 * B.nd + 2
-    lim = B.thr * (1.0 + _ULP4)
-    stiff = STIFF_SPEED * B.thr
+    P = _Planar(B)
+    nd = B.nd
+    i_u, i_w, i_v = 4 * nd, 4 * nd + 2, 2 * nd
+    lims = (B.thr * (1.0 + _ULP4), B.q * (1.0 + _ULP4))
+    stiff = (STIFF_SPEED * B.thr, STIFF_SPEED * B.q)
     tau_end = ex.tau_end
     t_stop = tau_end + float(horizon) * max(1.0, scene.pi3, scene.pi12)
     bps = [b for b in ex.breakpoints() if b < t_stop] + [t_stop]
@@ -496,16 +509,18 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
     short = scene.pi15 if ex.y is not None else 1.0
     hmax_pulse = min([1.0 / 64.0, short / 64.0] + [T / 32.0 for T in periods])
     hmax_free = min([max(1.0, scene.pi3) / 64.0] + [T / 32.0 for T in periods])
-    settle_g = _settle_margin(B) if settle else None
+    settle_of = _settle_margin(B, lims[1]) if settle else None
     sample_t = np.sort(np.asarray(samples, dtype=float).ravel()) if samples is not None else None
     rec_t, rec_y = [], []
 
     tau = ex.tau_start
-    y = np.zeros(4 * B.nd + 4)
-    mode = _STUCK
-    implicit = False            # sliding: Radau (slow, stiff) or DOP853
-    from_rest = False
-    e = np.array([1.0, 0.0])     # a sliding segment's reference direction
+    y = np.zeros(4 * nd + 4)
+    # the interfaces: 0 the contents on their floor, 1 the sliding bearing (_NONE without one)
+    modes = [_STUCK, _STUCK if B.bearing else _NONE]
+    implicit = [False, False]               # sliding: Radau (slow, stiff) or DOP853
+    from_rest = [False, False]
+    dirs = [np.array([1.0, 0.0]), np.array([1.0, 0.0])]   # the reference directions
+    slots = ((i_w, i_w + 2), (i_v, i_v + 2))               # where each interface's velocity is held
     peak, tau_peak, angle_peak = 0.0, math.nan, math.nan
     n_events = nfev = zero_len = segments = ib = 0
     used = [0]
@@ -525,38 +540,49 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
             ib += 1
         t_end = bps[ib] if ib < len(bps) else t_stop
         ground, nz = ex.window(tau, max(t_end, tau))
-        # ---- the mode at the segment start --------------------------------------------------
-        if mode == _STUCK:
-            y[i_w:i_w + 2] = 0.0
-            af = _stuck_af(B, y, ground(tau))
-            if math.hypot(af[0], af[1]) > lim * nz(tau):
-                mode, from_rest = _SLAVED, True
-                n_events += 1
-        elif mode == _SLIDING:
-            speed = math.hypot(y[i_w], y[i_w + 1])
-            if speed < 0.75 * SLOW_SPEED:
-                n_s = _slaved_direction(B, y, ground(tau), e)
-                if y[i_w] * n_s[0] + y[i_w + 1] * n_s[1] >= speed * _COS_RELAXED:
-                    y[i_w:i_w + 2] = (speed, 0.0)   # relaxed: slaved from here
-                    mode, e = _SLAVED, n_s
-                else:                       # not relaxed, so not stiff: the exact equations, explicitly
-                    implicit = False
-        free = mode == _STUCK and tau >= tau_end
+        g0, z0 = ground(tau), nz(tau)
+        # ---- the modes at the segment start -------------------------------------------------
+        slow = [None, None]
+        for j in (0, 1):
+            if modes[j] != _SLIDING:
+                continue
+            a, b = slots[j]
+            speed = math.hypot(y[a], y[a + 1])
+            if speed >= 0.75 * SLOW_SPEED:
+                slow[j] = SLOW_SPEED / 2.0
+                continue
+            trial = modes.copy()
+            trial[j] = _SLAVED
+            yt = y.copy()
+            yt[a:b] = (speed, 0.0)
+            n_s = P.directions(g0, z0, yt, trial, dirs)[j]
+            if y[a] * n_s[0] + y[a + 1] * n_s[1] >= speed * _COS_RELAXED:
+                y[a:b] = (speed, 0.0)           # relaxed: slaved from here
+                modes[j], dirs[j] = _SLAVED, n_s
+            else:                               # not relaxed, so not stiff: the exact equations, explicitly
+                implicit[j] = False
+        for j in (0, 1):
+            if modes[j] == _STUCK:
+                a, b = slots[j]
+                y[a:b] = 0.0
+        if _STUCK in modes:
+            chosen = P.choose(g0, z0, y, modes, dirs, lims)
+            for j in (0, 1):
+                if chosen[j] != modes[j]:
+                    n_events += 1
+                    from_rest[j] = True
+            modes = chosen
+        free = modes[0] == _STUCK and modes[1] in (_STUCK, _NONE) and tau >= tau_end
+        settle_g = settle_of(y) if free and settle_of is not None else None
         if free and settle and (settle_g is None or settle_g(tau, y) >= 0.0):
             settled = True
             break
         if tau >= t_stop:
             break
         # ---- this segment -------------------------------------------------------------------
-        method = "DOP853"
-        if mode == _SLAVED:
-            seg = _slaved_segment(B, ground, nz, e, tau, y, from_rest)
-        elif mode == _SLIDING:
-            seg = _sliding_segment(B, ground, nz, e, atol, SLOW_SPEED / 2.0 if speed >= 0.75 * SLOW_SPEED else None,
-                                   (2.0 * stiff, 1.0) if implicit else (stiff, -1.0))
-            method = "Radau" if implicit else "DOP853"
-        else:
-            seg = _stuck_segment(B, ground, nz, lim, settle_g if free else None)
+        gears = [(2.0 * stiff[j], 1.0) if implicit[j] else (stiff[j], -1.0) for j in (0, 1)]
+        method = "Radau" if any(modes[j] == _SLIDING and implicit[j] for j in (0, 1)) else "DOP853"
+        seg = _segment(P, ground, nz, tuple(modes), dirs, tau, y, from_rest, atol, lims, slow, gears, settle_g)
         rhs, specs = seg.rhs, seg.events
         sol = solve_ivp(counted(rhs, max_work, "reference", used), (tau, t_end), y, method=method, rtol=rtol,
                         atol=atol, events=[s[0] for s in specs], max_step=hmax_pulse if tau < tau_end else hmax_free,
@@ -570,22 +596,24 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
             if ts.size:
                 ys = np.asarray(sol.sol(ts)).reshape(y.size, -1)
                 rec_t.append(ts)
-                rec_y.append(np.vstack([ys[i_u:i_u + 2], np.array([seg.velocity(t, c) for t, c in
+                rec_y.append(np.vstack([ys[i_u:i_u + 2], np.array([seg.velocity(t, c)[0] for t, c in
                                                                    zip(ts, ys.T, strict=True)]).T]))
         for (_, _kind, terminal), te, ye in zip(specs, sol.t_events, sol.y_events, strict=True):
             if not terminal:            # the peaks of |u| inside a slip
                 for t_, y_ in zip(te, ye, strict=True):
                     note(t_, y_)
-        from_rest = False
+        from_rest = [False, False]
         if sol.status != 1:             # the segment's end: a breakpoint or the horizon
             tau = t_end
             y = np.array(sol.y[:, -1], dtype=float)
             note(tau, y)
-            if mode == _SLIDING:
-                e = _unit(y[i_w:i_w + 2], e)
+            for j in (0, 1):
+                if modes[j] == _SLIDING:
+                    dirs[j] = _unit(y[slots[j][0]:slots[j][1]], dirs[j])
             continue
-        te, ye, kind = min(((te[0], ye[0], s[1]) for te, ye, s in zip(sol.t_events, sol.y_events, specs, strict=True)
-                            if s[2] and len(te)), key=lambda h: h[0])
+        te, ye, (j, kind) = min(((te[0], ye[0], s[1]) for te, ye, s in
+                                 zip(sol.t_events, sol.y_events, specs, strict=True) if s[2] and len(te)),
+                                key=lambda h: h[0])
         zero_len = zero_len + 1 if te <= tau else 0
         if zero_len > 8:
             raise RuntimeError(f"zero-length stick/slip chatter at tau={te!r}; scene={scene!r}")
@@ -595,23 +623,24 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
         if kind == "settle":
             settled = True
             break
-        if kind == "break":             # slides from rest along -A_S/|A_S|
-            mode, from_rest = _SLAVED, True
+        a, b = slots[j]
+        if kind == "break":             # slides from rest along its slaved direction
+            modes[j], from_rest[j] = _SLAVED, True
             n_events += 1
-        elif kind == "stop":
-            y[i_w:i_w + 2] = 0.0
-            mode = _STUCK
+        elif kind == "stop":            # at rest: the modes are chosen at the next segment's start
+            y[a:b] = 0.0
+            modes[j] = _STUCK
             n_events += 1
         elif kind == "fast":            # the slaved speed reached SLOW_SPEED: the exact equations
-            w = seg.velocity(tau, y)
-            y[i_w:i_w + 2] = w
-            e = _unit(w, e)
-            mode, implicit = _SLIDING, True
+            v = seg.velocity(tau, y)[j]
+            y[a:b] = v
+            dirs[j] = _unit(v, dirs[j])
+            modes[j], implicit[j] = _SLIDING, True
         elif kind == "gear":            # between the explicit and the implicit integrator
-            implicit = not implicit
-            e = _unit(y[i_w:i_w + 2], e)
+            implicit[j] = not implicit[j]
+            dirs[j] = _unit(y[a:b], dirs[j])
         else:                           # "turn", "slow": a new segment (slaved if slow and relaxed)
-            e = _unit(y[i_w:i_w + 2], e)
+            dirs[j] = _unit(y[a:b], dirs[j])
 
     note(tau, y)
     res = PeerResult(method="reference", pi1=float(peak), pi1_residual=float(math.hypot(y[i_u], y[i_u + 1])),
@@ -624,16 +653,205 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
     return PlanarRun(result=res, tau=tt, u=yy[:2], w=yy[2:])
 
 
-_STUCK, _SLAVED, _SLIDING = 0, 1, 2
-"""The block's modes: stuck, sliding slowly along the slaved direction, sliding (module docstring)."""
+_NONE, _STUCK, _SLAVED, _SLIDING = -1, 0, 1, 2
+"""The modes of a friction interface: stuck (a held bearing), sliding slowly along the slaved
+direction, sliding (module docstring); ``_NONE`` where there is no sliding bearing."""
+
+_JOINT_ITERATIONS = 200
+
+
+def _unit(v, fallback) -> np.ndarray:
+    """``v/|v|``, or ``fallback`` for a zero vector."""
+    r = math.hypot(v[0], v[1])
+    return np.array([v[0] / r, v[1] / r]) if r > 0.0 else np.array(fallback, dtype=float)
+
+
+def _along(v, e) -> np.ndarray:
+    """The friction direction ``sgn(v . e) v/|v|`` of a sliding velocity ``v`` (``e`` for a zero one)."""
+    r = math.hypot(v[0], v[1])
+    if r == 0.0:
+        return np.array(e, dtype=float)
+    s = 1.0 if v[0] * e[0] + v[1] * e[1] >= 0.0 else -1.0
+    return np.array([s * v[0] / r, s * v[1] / r])
+
+
+@dataclass(frozen=True)
+class _State:
+    """The building and the interfaces at one instant in given modes (see :meth:`_Planar.state`).
+
+    ``A`` the coordinates' absolute accelerations (shape ``(nd, 2)``, units ``a_p``; a held slab's
+    is ``g``), ``V`` their velocities (a slaved slab's ``r_b n_b``), ``AF`` the contents' floor's
+    absolute acceleration, ``nc``/``nb`` the contents' and the bearing's friction directions (None
+    where the interface is stuck or absent), ``fr`` the contents' friction level ``nz phi``,
+    ``need`` the force a held bearing must supply (None otherwise), ``g`` the ground acceleration.
+    """
+
+    A: np.ndarray
+    V: np.ndarray
+    AF: np.ndarray
+    nc: np.ndarray | None
+    nb: np.ndarray | None
+    fr: float
+    need: np.ndarray | None
+    g: np.ndarray
+
+
+class _Planar:
+    """The equations of motion of a :class:`PlanarBuilding` in the interfaces' modes (module docstring)."""
+
+    def __init__(self, B: PlanarBuilding):
+        self.B = B
+        self.nd, self.k, self.m = B.nd, B.k, B.m
+        self.masses, self.stuck = B.masses, B.stuck_masses
+        self.C0 = B.C[:, 0].copy() if B.nd else np.zeros(0)
+
+    def state(self, g, z: float, yy, modes, dirs) -> _State:
+        """Accelerations, velocities, friction directions and the held bearing's need at ``(g, nz, y)``.
+
+        ``modes = (contents, bearing)``, ``dirs`` their reference directions (the fallbacks of
+        the slaved directions and the signs of the sliding ones).
+        """
+        B, nd, k, m = self.B, self.nd, self.k, self.m
+        cm, bm = modes
+        i_w = 4 * nd + 2
+        gv = np.array([float(g[0]), float(g[1])])
+        held = bm == _STUCK
+        nc = nb = None
+        if cm == _SLIDING:
+            nc = _along(yy[i_w:i_w + 2], dirs[0])
+            fr = z * B.phi(math.hypot(yy[i_w], yy[i_w + 1]))
+        elif cm == _SLAVED:
+            fr = z * B.phi(abs(yy[i_w]))
+        else:
+            fr = 0.0
+        Ms = self.stuck if cm == _STUCK else self.masses
+        F = V = None
+        if nd:
+            D = yy[:2 * nd].reshape(nd, 2)
+            V = yy[2 * nd:4 * nd].reshape(nd, 2)
+            if bm in (_STUCK, _SLAVED):
+                V = V.copy()
+                V[0] = 0.0
+            F = -(B.C @ V + B.K @ D)
+            if bm != _NONE:
+                if z != 1.0:            # the pendulum's stiffness scales with the normal force
+                    F[0] -= (z - 1.0) * B.kd * D[0]
+                if bm == _SLIDING:
+                    nb = _along(V[0], dirs[1])
+                    F[0] -= B.q * z * nb
+                elif bm == _SLAVED:
+                    rb = yy[2 * nd]
+                    need = F[0] - Ms[0] * gv
+                    if k == 0 and cm == _SLAVED:
+                        nb, nc = _joint_directions(F[0], need, self.C0[0] * rb + B.q * z, m * fr, dirs)
+                    else:
+                        if k == 0 and cm == _SLIDING:
+                            need = need + m * fr * nc
+                        nb = _unit(need, dirs[1])
+                    F -= np.outer(self.C0, rb * nb)
+                    F[0] -= B.q * z * nb
+                    V[0] = rb * nb
+        if cm == _SLAVED and nc is None:
+            AS = gv if k < 0 or (held and k == 0) else F[k] / self.stuck[k]
+            nc = -_unit(AS, -np.asarray(dirs[0], dtype=float))
+        if cm != _STUCK and k >= 0:
+            F[k] += m * fr * nc
+        A = None
+        if nd:
+            A = F / Ms[:, None]
+            if held:
+                A[0] = gv
+        AF = gv if k < 0 else A[k]
+        need = F[0] - Ms[0] * gv if held else None
+        return _State(A=A, V=V, AF=AF, nc=nc, nb=nb, fr=fr, need=need, g=gv)
+
+    def directions(self, g, z: float, yy, modes, dirs) -> tuple:
+        """The friction directions ``(n_c, n_b)`` in the modes ``modes``."""
+        s = self.state(g, z, yy, modes, dirs)
+        return s.nc, s.nb
+
+    def rates(self, yy, s: _State, modes) -> np.ndarray:
+        """The state's rates from :meth:`state`'s ``s`` in the modes ``modes``."""
+        nd = self.nd
+        i_u, i_w = 4 * nd, 4 * nd + 2
+        cm, bm = modes
+        d = np.zeros(yy.size)
+        if nd:
+            d[:2 * nd] = s.V.ravel()
+            acc = s.A - s.g
+            if bm == _SLAVED:
+                acc[0] = (float(acc[0] @ s.nb), 0.0)
+            d[2 * nd:4 * nd] = acc.ravel()
+        if cm == _SLAVED:
+            r = yy[i_w]
+            d[i_u:i_u + 2] = r * s.nc
+            d[i_w] = -float(s.AF @ s.nc) - s.fr
+        elif cm == _SLIDING:
+            d[i_u:i_u + 2] = yy[i_w:i_w + 2]
+            d[i_w:i_w + 2] = -s.AF - s.fr * s.nc
+        return d
+
+    @staticmethod
+    def consistent(s: _State, modes, rest, lims, z: float) -> bool:
+        """True when the modes of the interfaces at rest (``rest[j]``) are consistent (module docstring)."""
+        cm, bm = modes
+        if rest[0]:
+            if cm == _STUCK:
+                if math.hypot(s.AF[0], s.AF[1]) > lims[0] * z:
+                    return False
+            elif not -float(s.AF @ s.nc) - s.fr > 0.0:
+                return False
+        if rest[1]:
+            if bm == _STUCK:
+                if math.hypot(s.need[0], s.need[1]) > lims[1] * z:
+                    return False
+            elif not float((s.A[0] - s.g) @ s.nb) > 0.0:
+                return False
+        return True
+
+    def choose(self, g, z: float, yy, modes, dirs, lims) -> list:
+        """The modes of the interfaces at rest (stuck or held), chosen together (module docstring).
+
+        Tried in the order both stuck, contents stuck and bearing sliding, contents sliding and
+        bearing held, both sliding; the first consistent one is taken.
+        """
+        rest = [modes[0] == _STUCK, modes[1] == _STUCK]
+        for cm in ((_STUCK, _SLAVED) if rest[0] else (modes[0],)):
+            for bm in ((_STUCK, _SLAVED) if rest[1] else (modes[1],)):
+                trial = (cm, bm)
+                if self.consistent(self.state(g, z, yy, trial, dirs), trial, rest, lims, z):
+                    return [cm, bm]
+        raise RuntimeError(f"no consistent stick/slip modes of the interfaces at rest (modes {modes!r}) at the "
+                           f"state {list(yy)!r}, ground {tuple(g)!r}, nz = {z!r}")
+
+
+def _joint_directions(a, b, beta: float, gamma: float, dirs) -> tuple:
+    """The slaved directions of a joint slow slip of the contents on the slab and of the bearing.
+
+    The bearing slides along ``n_b = (b + gamma n_c)/|.|`` (its need with the contents' friction
+    ``gamma n_c``) and the contents along ``n_c = -(a - beta n_b)/|.|`` (minus the slab's
+    acceleration were they stuck, times ``mb + m``, with the bearing's friction ``beta n_b``): the
+    fixed point, by iteration (a contraction near a consistent joint slip, by the factor
+    ``m/(mb + m)`` about).
+    """
+    nb = _unit(b, dirs[1])
+    back = -np.asarray(dirs[0], dtype=float)
+    for _ in range(_JOINT_ITERATIONS):
+        nc = -_unit(a - beta * nb, back)
+        nb_new = _unit(b + gamma * nc, nb)
+        done = abs(nb_new[0] - nb[0]) + abs(nb_new[1] - nb[1]) <= 4e-16
+        nb = nb_new
+        if done:
+            break
+    return nb, -_unit(a - beta * nb, back)
 
 
 @dataclass(frozen=True)
 class _Segment:
     """What one segment integrates.
 
-    ``rhs(t, y)``, its events ``(function, kind, terminal)`` and ``velocity(t, y)``, the sliding
-    velocity ``w`` (units ``a_p T_p``) that the state stands for.
+    ``rhs(t, y)``, its events ``(function, (interface, kind), terminal)`` and ``velocity(t, y)``,
+    the sliding velocities ``(w, x')`` (units ``a_p T_p``) that the state stands for.
     """
 
     rhs: object
@@ -641,227 +859,172 @@ class _Segment:
     velocity: object
 
 
-def _forces(B: PlanarBuilding, yy):
-    """``-(C d' + K d)`` (shape ``(nd, 2)``, units ``M_b a_p``): every floor's spring and damper forces."""
-    nd = B.nd
-    return -(B.C @ yy[2 * nd:4 * nd].reshape(nd, 2) + B.K @ yy[:2 * nd].reshape(nd, 2))
+def _segment(P: _Planar, ground, nz, modes: tuple, dirs, t0: float, y0, from_rest, atol: float, lims,
+             slow, gears, settle_g) -> _Segment:
+    """One segment in the modes ``modes = (contents, bearing)`` (module docstring).
 
-
-def _stuck_af(B: PlanarBuilding, y, g) -> tuple:
-    """Absolute acceleration ``A_S`` (units ``a_p``) of the contents' floor with the block stuck.
-
-    ``g`` is the ground acceleration ``(g_x, g_y)``; on a moving floor the ground term cancels.
+    Events of an interface, by mode: stuck ``"break"`` (its need reaches its limit); slaved
+    ``"stop"`` (``r`` to zero; ``r/(tau - t0)`` from rest) and ``"fast"`` (``r`` up to
+    :data:`SLOW_SPEED`); sliding ``"stop"`` (``v . e`` to zero), ``"turn"`` (``v . e - cos(30
+    deg) |v| + atol`` to zero), ``"slow"`` (``|v|`` down to ``slow[j]``; none when None) and
+    ``"gear"`` (``|v|`` through ``gears[j][0]`` in the direction ``gears[j][1]``), all terminal;
+    the contents' ``"peak"`` (``u . w`` from positive to negative) is not.  ``settle_g``, when
+    given, adds ``"settle"``.
     """
-    k, nd = B.k, B.nd
-    if k < 0:
-        return float(g[0]), float(g[1])
-    a = -(B.K[k] @ y[:2 * nd].reshape(nd, 2) + B.C[k] @ y[2 * nd:4 * nd].reshape(nd, 2)) / (B.masses[k] + B.m)
-    return float(a[0]), float(a[1])
+    nd = P.nd
+    i_u, i_w, i_v = 4 * nd, 4 * nd + 2, 2 * nd
+    slots = (i_w, i_v)
+    dirs = [np.array(d, dtype=float) for d in dirs]
+    cache = [None, None, None]
 
-
-def _slaved_direction(B: PlanarBuilding, y, g, fallback) -> np.ndarray:
-    """``-A_S/|A_S|`` (``fallback`` where ``A_S = 0``): the direction a slow slip relaxes to."""
-    return _unit([-a for a in _stuck_af(B, y, g)], fallback)
-
-
-def _stuck_segment(B: PlanarBuilding, ground, nz, lim: float, settle_g) -> _Segment:
-    """A segment with the block stuck.
-
-    Events: ``"break"`` (``|A_S|`` reaches ``lim nz``) and, when ``settle_g`` is given, ``"settle"``.
-    """
-    nd = B.nd
-    Mst = B.stuck_masses
+    def state(t, yy):
+        if cache[0] == t and np.array_equal(cache[1], yy):
+            return cache[2]
+        s = P.state(ground(t), nz(t), yy, modes, dirs)
+        cache[0], cache[1], cache[2] = t, np.array(yy), s
+        return s
 
     def rhs(t, yy):
-        d = np.zeros(yy.size)
-        if nd:
-            gx, gy = ground(t)
-            acc = _forces(B, yy) / Mst[:, None]
-            acc[:, 0] -= gx
-            acc[:, 1] -= gy
-            d[:2 * nd] = yy[2 * nd:4 * nd]
-            d[2 * nd:4 * nd] = acc.ravel()
-        return d
+        return P.rates(yy, state(t, yy), modes)
 
-    def g_break(t, yy):
-        af = _stuck_af(B, yy, ground(t))
-        return lim * nz(t) - math.hypot(af[0], af[1])
+    y0 = np.asarray(y0, dtype=float)
+    d0 = rhs(t0, y0)
+    events = []     # (function, (interface, kind), terminal, direction)
+    for j in (0, 1):
+        mode, ix, e = modes[j], slots[j], dirs[j]
+        if mode == _STUCK:
+            lim = lims[j]
+            if j == 0:
+                def g_break(t, yy, lim=lim):
+                    af = state(t, yy).AF
+                    return lim * nz(t) - math.hypot(af[0], af[1])
+            else:
+                def g_break(t, yy, lim=lim):
+                    need = state(t, yy).need
+                    return lim * nz(t) - math.hypot(need[0], need[1])
+            events.append((g_break, (j, "break"), True, -1.0))
+        elif mode == _SLAVED:
+            r0 = max(float(d0[ix]), 0.0)
 
-    g_break.terminal, g_break.direction = True, -1.0
-    events = [(g_break, "break", True)]
+            def g_stop(t, yy, ix=ix, r0=r0, rest=from_rest[j]):
+                if not rest:
+                    return yy[ix]
+                dt = t - t0
+                return yy[ix] / dt if dt > 0.0 else r0   # a start that cannot grow stops at once
+
+            def g_fast(t, yy, ix=ix):
+                return yy[ix] - SLOW_SPEED
+
+            events += [(g_stop, (j, "stop"), True, -1.0), (g_fast, (j, "fast"), True, 1.0)]
+            if j == 0:
+                def g_peak(t, yy):
+                    nc = state(t, yy).nc
+                    return yy[i_w] * (yy[i_u] * nc[0] + yy[i_u + 1] * nc[1])
+
+                events.append((g_peak, (0, "peak"), False, -1.0))
+        elif mode == _SLIDING:
+            ex_, ey_ = float(e[0]), float(e[1])
+
+            def g_stop(t, yy, ix=ix, ex_=ex_, ey_=ey_):
+                return yy[ix] * ex_ + yy[ix + 1] * ey_
+
+            def g_turn(t, yy, ix=ix, ex_=ex_, ey_=ey_):
+                return yy[ix] * ex_ + yy[ix + 1] * ey_ - _COS_TURN * math.hypot(yy[ix], yy[ix + 1]) + atol
+
+            def g_gear(t, yy, ix=ix, level=gears[j][0]):
+                return math.hypot(yy[ix], yy[ix + 1]) - level
+
+            events += [(g_stop, (j, "stop"), True, -1.0), (g_turn, (j, "turn"), True, -1.0),
+                       (g_gear, (j, "gear"), True, gears[j][1])]
+            if slow[j] is not None:
+                def g_slow(t, yy, ix=ix, level=slow[j]):
+                    return math.hypot(yy[ix], yy[ix + 1]) - level
+
+                events.append((g_slow, (j, "slow"), True, -1.0))
+            if j == 0:
+                def g_peak(t, yy):
+                    return yy[i_u] * yy[i_w] + yy[i_u + 1] * yy[i_w + 1]
+
+                events.append((g_peak, (0, "peak"), False, -1.0))
     if settle_g is not None:
-        settle_g.terminal, settle_g.direction = True, 1.0
-        events.append((settle_g, "settle", True))
-    return _Segment(rhs, events, lambda t, yy: np.zeros(2))
-
-
-def _slaved_segment(B: PlanarBuilding, ground, nz, e, t0: float, y0, from_rest: bool) -> _Segment:
-    """A slow slip: the speed ``r`` (held in ``y[w_x]``) along ``n = -A_S/|A_S|`` (module docstring).
-
-    Events: ``"stop"`` (``r`` to zero; ``r/(tau - t0)`` from rest) and ``"fast"`` (``r`` up to
-    :data:`SLOW_SPEED`), terminal, and ``"peak"`` (``u . n`` from positive to negative).  ``e``
-    is the direction where ``A_S = 0``.
-    """
-    nd, k, m = B.nd, B.k, B.m
-    M = B.masses
-    i_u, i_w = 4 * nd, 4 * nd + 2
-    ex_, ey_ = float(e[0]), float(e[1])
-    phi = B.phi
-
-    def parts(t, yy):
-        """Direction, floor acceleration, floor forces (None on a ground-fixed floor), friction, ground."""
-        g = ground(t)
-        fr = nz(t) * phi(abs(yy[i_w]))
-        if k >= 0:
-            f = _forces(B, yy)
-            ax, ay = f[k]
-        else:
-            f = None
-            ax, ay = g
-        a = math.hypot(ax, ay)
-        nx, ny = (-ax / a, -ay / a) if a > 0.0 else (ex_, ey_)
-        if k >= 0:
-            f[k, 0] += m * fr * nx
-            f[k, 1] += m * fr * ny
-            afx, afy = f[k, 0] / M[k], f[k, 1] / M[k]
-        else:
-            afx, afy = ax, ay
-        return nx, ny, afx, afy, f, fr, g
-
-    def rhs(t, yy):
-        nx, ny, afx, afy, f, fr, g = parts(t, yy)
-        r = yy[i_w]
-        d = np.zeros(yy.size)
-        if k >= 0:
-            acc = f / M[:, None]
-            acc[:, 0] -= g[0]
-            acc[:, 1] -= g[1]
-            d[:2 * nd] = yy[2 * nd:4 * nd]
-            d[2 * nd:4 * nd] = acc.ravel()
-        d[i_u], d[i_u + 1] = r * nx, r * ny
-        d[i_w] = -(afx * nx + afy * ny) - fr
-        return d
-
-    r0 = float(rhs(t0, np.asarray(y0, dtype=float))[i_w])
-
-    def g_stop(t, yy):
-        if not from_rest:
-            return yy[i_w]
-        dt = t - t0
-        return yy[i_w] / dt if dt > 0.0 else max(r0, 0.0)   # a start that cannot grow stops at once
-
-    def g_fast(t, yy):
-        return yy[i_w] - SLOW_SPEED
-
-    def g_peak(t, yy):
-        nx, ny = parts(t, yy)[:2]
-        return yy[i_w] * (yy[i_u] * nx + yy[i_u + 1] * ny)
-
-    def velocity(t, yy):
-        nx, ny = parts(t, yy)[:2]
-        return np.array([yy[i_w] * nx, yy[i_w] * ny])
-
-    for fn, terminal, direction in ((g_stop, True, -1.0), (g_fast, True, 1.0), (g_peak, False, -1.0)):
-        fn.terminal, fn.direction = terminal, direction
-    return _Segment(rhs, [(g_stop, "stop", True), (g_fast, "fast", True), (g_peak, "peak", False)], velocity)
-
-
-def _sliding_segment(B: PlanarBuilding, ground, nz, e, slack: float, slow, gear) -> _Segment:
-    """A sliding segment with the reference direction ``e`` (module docstring).
-
-    The friction direction is ``sgn(w . e) w/|w|`` (``e`` where ``w = 0``).  Events, terminal:
-    ``"stop"`` (``w . e`` to zero), ``"turn"`` (``w . e - cos(30 deg) |w| + slack`` to zero: ``w``
-    30 degrees from ``e``, ``slack`` the velocity's absolute tolerance), ``"slow"`` (``|w|`` down to
-    ``slow``; none when ``slow`` is None) and ``"gear"`` (``|w|`` through ``gear[0]`` in the
-    direction ``gear[1]``); and ``"peak"`` (``u . w`` from positive to negative).
-    """
-    nd, k, m = B.nd, B.k, B.m
-    M = B.masses
-    i_u, i_w = 4 * nd, 4 * nd + 2
-    ex_, ey_ = float(e[0]), float(e[1])
-    phi = B.phi
-
-    def rhs(t, yy):
-        gx, gy = ground(t)
-        wx, wy = yy[i_w], yy[i_w + 1]
-        s = math.hypot(wx, wy)
-        if s > 0.0:
-            sg = 1.0 if wx * ex_ + wy * ey_ >= 0.0 else -1.0
-            nx, ny = sg * wx / s, sg * wy / s
-        else:
-            nx, ny = ex_, ey_
-        fr = nz(t) * phi(s)
-        d = np.empty(yy.size)
-        if k >= 0:
-            f = _forces(B, yy)
-            f[k, 0] += m * fr * nx
-            f[k, 1] += m * fr * ny
-            acc = f / M[:, None]
-            afx, afy = acc[k, 0], acc[k, 1]
-            acc[:, 0] -= gx
-            acc[:, 1] -= gy
-            d[:2 * nd] = yy[2 * nd:4 * nd]
-            d[2 * nd:4 * nd] = acc.ravel()
-        else:
-            afx, afy = gx, gy
-        d[i_u], d[i_u + 1] = wx, wy
-        d[i_w], d[i_w + 1] = -afx - fr * nx, -afy - fr * ny
-        return d
-
-    def g_stop(t, yy):
-        return yy[i_w] * ex_ + yy[i_w + 1] * ey_
-
-    def g_turn(t, yy):
-        return yy[i_w] * ex_ + yy[i_w + 1] * ey_ - _COS_TURN * math.hypot(yy[i_w], yy[i_w + 1]) + slack
-
-    def g_peak(t, yy):
-        return yy[i_u] * yy[i_w] + yy[i_u + 1] * yy[i_w + 1]
-
-    def g_gear(t, yy):
-        return math.hypot(yy[i_w], yy[i_w + 1]) - gear[0]
-
-    events = [(g_stop, "stop", True, -1.0), (g_turn, "turn", True, -1.0), (g_gear, "gear", True, gear[1]),
-              (g_peak, "peak", False, -1.0)]
-    if slow is not None:
-        def g_slow(t, yy):
-            return math.hypot(yy[i_w], yy[i_w + 1]) - slow
-
-        events.append((g_slow, "slow", True, -1.0))
+        events.append((settle_g, (0, "settle"), True, 1.0))
     for fn, _, terminal, direction in events:
         fn.terminal, fn.direction = terminal, direction
-    return _Segment(rhs, [ev[:3] for ev in events], lambda t, yy: np.array(yy[i_w:i_w + 2]))
+
+    def velocity(t, yy):
+        s = state(t, yy)
+        w = (yy[i_w] * s.nc if modes[0] == _SLAVED else
+             np.array(yy[i_w:i_w + 2]) if modes[0] == _SLIDING else np.zeros(2))
+        v = (yy[i_v] * s.nb if modes[1] == _SLAVED else
+             np.array(yy[i_v:i_v + 2]) if modes[1] == _SLIDING else np.zeros(2))
+        return w, v
+
+    return _Segment(rhs, [ev[:3] for ev in events], velocity)
 
 
-def _unit(v, fallback) -> np.ndarray:
-    """``v/|v|``, or ``fallback`` for a zero vector."""
-    r = math.hypot(v[0], v[1])
-    return np.array([v[0] / r, v[1] / r]) if r > 0.0 else np.asarray(fallback, dtype=float)
+def _settle_margin(B: PlanarBuilding, lim_b: float):
+    """The settlement margin of the free stuck response (module docstring), or None.
 
-
-def _settle_margin(B: PlanarBuilding):
-    """The settlement margin ``g(tau, y) = thr - sqrt(lambda_max(Q) c^T P^-1 c)`` (module docstring).
-
-    ``Q = D^T K D + V^T Ms V`` (2 x 2; ``D``, ``V`` the coordinates and velocities of both axes) holds
-    twice the energy of the motion projected on any direction ``d``, ``d^T Q d``, which never
-    increases along the free stuck response; so neither does ``lambda_max(Q)``, and ``g`` never
-    decreases.  ``g >= 0`` once the contents can never slide again.  None when the contents' floor
-    moves with the ground (after the pulses nothing can move it).
+    Returns a function of the state at a free segment's start giving ``g(tau, y)``, non-decreasing
+    along the free stuck response, ``>= 0`` once no interface can slip again: ``thr - sqrt(2 E
+    c^T P^-1 c)`` for the contents on a moving floor, and with a held sliding bearing also
+    ``q - kd |x| - sqrt(2 E c_b^T P^-1 c_b)`` (``x`` the held slab's displacement, ``E`` the
+    energy of the floors above it).  None when nothing can ever slip after the pulses (the
+    contents on a floor that moves with the ground, on a fixed base).
     """
-    if B.k < 0:
-        return None
-    n, k = B.nd, B.k
-    K, Ms = B.K, B.stuck_masses
-    c = -np.concatenate([K[k], B.C[k]]) / Ms[k]
-    P = np.zeros((2 * n, 2 * n))
-    P[:n, :n], P[n:, n:] = K, np.diag(Ms)
-    scale = math.sqrt(float(c @ np.linalg.solve(P, c)))
-    thr = B.thr
+    n, k, thr = B.nd, B.k, B.thr
+    if not B.bearing:
+        if k < 0:
+            return None
+        K, Ms = B.K, B.stuck_masses
+        c = -np.concatenate([K[k], B.C[k]]) / Ms[k]
+        P = np.zeros((2 * n, 2 * n))
+        P[:n, :n], P[n:, n:] = K, np.diag(Ms)
+        scale = math.sqrt(float(c @ np.linalg.solve(P, c)))
 
-    def g(t, yy):
-        D = yy[:2 * n].reshape(n, 2)
-        V = yy[2 * n:4 * n].reshape(n, 2)
-        Q = D.T @ K @ D + (V * Ms[:, None]).T @ V
-        lam = 0.5 * (Q[0, 0] + Q[1, 1] + math.hypot(Q[0, 0] - Q[1, 1], 2.0 * Q[0, 1]))
-        return thr - math.sqrt(max(lam, 0.0)) * scale
+        def g(t, yy):
+            D = yy[:2 * n].reshape(n, 2)
+            V = yy[2 * n:4 * n].reshape(n, 2)
+            return thr - math.sqrt(_largest_energy(D, V, K, Ms)) * scale
 
-    return g
+        return lambda y: g
+    # a held sliding bearing: the floors above the held slab are free, xs = d_j - x
+    f = n - 1
+    Ks, Cs, Mf = B.K[1:, 1:], B.C[1:, 1:], B.stuck_masses[1:]
+    scales = []
+    if f:
+        P = np.zeros((2 * f, 2 * f))
+        P[:f, :f], P[f:, f:] = Ks, np.diag(Mf)
+        cb = np.concatenate([Ks.sum(axis=0), Cs.sum(axis=0)])
+        scales.append((lim_b, True, math.sqrt(float(cb @ np.linalg.solve(P, cb)))))
+        if k >= 1:
+            cc = -np.concatenate([Ks[k - 1], Cs[k - 1]]) / Mf[k - 1]
+            scales.append((thr, False, math.sqrt(float(cc @ np.linalg.solve(P, cc)))))
+    else:
+        scales.append((lim_b, True, 0.0))
+    kd = B.kd
+
+    def margin(y):
+        held = kd * math.hypot(y[0], y[1])
+
+        def g(t, yy):
+            if f:
+                D = yy[:2 * n].reshape(n, 2)
+                r = math.sqrt(_largest_energy(D[1:] - D[0], yy[2 * n + 2:4 * n].reshape(f, 2), Ks, Mf))
+            else:
+                r = 0.0
+            return min(lim - (held if bearing else 0.0) - r * s for lim, bearing, s in scales)
+
+        return g
+
+    return margin
+
+
+def _largest_energy(D, V, K, M) -> float:
+    """Twice the largest energy of the motion projected on a horizontal direction.
+
+    ``lambda_max(Q)``, ``Q = D^T K D + V^T M V`` (2 x 2), ``D`` and ``V`` the coordinates and
+    velocities of both axes, shape ``(n, 2)``.
+    """
+    Q = D.T @ K @ D + (V * M[:, None]).T @ V
+    return max(0.5 * (Q[0, 0] + Q[1, 1] + math.hypot(Q[0, 0] - Q[1, 1], 2.0 * Q[0, 1])), 0.0)
