@@ -9,7 +9,29 @@ netCDF and draws the figures):
   ``T_p`` as the scales of both, so ``ratio = Pi1_pulse / Pi1_record =
   u_pulse / u_record``;
 * :func:`ratio_summary` and :func:`summary_markdown` -- how well the pulse
-  predicts the peak sliding, per record.
+  predicts the peak sliding, per record;
+* :func:`pairs_grid` (:func:`record_pairs_dataset` in the pipeline) -- the
+  recorded pairs of a suite (by default the 14 FEMA P695 near-field records
+  with a pulse) against their fitted pulses: each component on a line, as
+  recorded and as its fitted pulse (the paper's Fig. 4 comparison), and the
+  pair in the plane, as recorded and as the pair of fitted pulses with their
+  relative amplitude, period and lag (``Pi14``, ``Pi15``, ``Pi16``,
+  :func:`pair_groups`): ``Pi1`` and the direction of the planar peak;
+* :func:`pairs_summary`, :func:`direction_summary`, :func:`fit_table`,
+  :func:`ratio_by`, :func:`amplification` and :func:`pairs_findings` -- the
+  ratio record/pulse per component and in the plane, whether the fitted pair
+  catches the direction of the planar peak and where the fits fail.
+
+Fitted pairs and the record's senses
+------------------------------------
+A fitted pulse runs positive at its peak (:meth:`PulseFit.as_pulse`) and
+``Pi14 >= 0``, so a pair whose two fits have opposite polarities cannot be
+written as one scene in the record's senses.  The contents, the friction and
+the isolator are isotropic in the plane, so flipping a ground component
+mirrors the response: the fitted pair is solved with both pulses positive and
+its ``peak_angle`` mirrored by ``diag(polarity_x, polarity_y)``
+(:func:`reflect_angle`; ``Pi1`` is unchanged).  The tests check this against a
+sampled, sign-flipped pulse.
 
 Stand-in for the paper's record
 -------------------------------
@@ -37,9 +59,12 @@ from ..datasets import global_attrs
 from ..scene import Scene
 from .. import solver
 
-__all__ = ["FIG4_RECORD", "STAND_IN_FOR", "compare_grid", "fig4_data", "fig4_dataset",
-           "ratio_summary", "record_dataset", "records_dataset", "records_settings",
-           "resolve_record", "summary_markdown"]
+__all__ = ["COMPONENTS", "FIG4_RECORD", "PAIR_SUITE", "STAND_IN_FOR", "SUMMARY_VIEWS", "VIEWS", "amplification",
+           "check_pairs_settings", "compare_grid", "direction_summary", "fig4_data", "fig4_dataset", "fit_table",
+           "line_angle", "pair_groups", "pair_pulses", "pair_scenes", "pairs_findings", "pairs_grid",
+           "pairs_settings", "pairs_summary", "ratio_by", "ratio_summary", "record_dataset", "record_pairs_dataset",
+           "records_dataset", "records_settings", "reflect_angle", "resolve_record", "select_motions",
+           "sense_angle", "summary_markdown"]
 
 FIG4_RECORD = "Kobe_1995_TAK-090"
 """pyslammer sample that stands in for the paper's Rinaldi record in Fig. 4."""
@@ -438,4 +463,804 @@ def records_dataset(parts, settings: dict) -> xr.Dataset:
         summary_p90_ratio=float(a["p90_ratio"]), summary_within_tol=float(a["within_tol"]),
         summary_n_cells=int(a["n_cells"]), summary_n_both_slide=int(a["n_both_slide"]),
         summary_n_only_record=int(a["n_only_record"]), summary_n_only_pulse=int(a["n_only_pulse"]))
+    return ds
+
+
+# ----------------------------------------------------------------------------------------------
+# recorded pairs against their fitted pulses, on a line and in the plane (rule record_pairs)
+# ----------------------------------------------------------------------------------------------
+
+PAIR_SUITE = "fema-p695-near-field-pulse"
+"""Suite of the recorded pairs: the 14 FEMA P695 near-field records with a velocity pulse."""
+
+COMPONENTS = ("x", "y")
+"""The horizontal components of a pair (FEMA P695 components ``a`` and ``b``), the building's axes."""
+
+VIEWS = ("x", "y", "plane")
+"""What a pair's summary compares: each component on a line (its own scales), and the pair in the plane."""
+
+_PAIR_FIT_VARS = ("a_p", "a_p_g", "T_p", "t_peak", "t_ref", "polarity", "r2", "nrmse", "energy_fraction")
+
+
+def pair_groups(fit_x, fit_y) -> dict:
+    """``Pi14``, ``Pi15``, ``Pi16`` of a fitted pair and the polarities of its two pulses.
+
+    Parameters
+    ----------
+    fit_x, fit_y : PulseFit
+        The fits of the two horizontal components (same shape); ``fit_x`` gives the scales.
+
+    Returns
+    -------
+    dict
+        ``pi14 = a_py / a_p``, ``pi15 = T_py / T_p``, ``pi16 = (t_ref,y - t_ref,x) / T_p`` (the lag
+        of the y pulse's reference time behind the x pulse's, over ``T_p``; for the Ricker
+        ``t_ref`` is the peak) and ``polarity_x``, ``polarity_y`` (+1 or -1: the sign of each
+        fitted pulse at its peak in the record's own sense).
+    """
+    return {"pi14": fit_y.a_p / fit_x.a_p, "pi15": fit_y.T_p / fit_x.T_p,
+            "pi16": (fit_y.t_ref - fit_x.t_ref) / fit_x.T_p,
+            "polarity_x": int(fit_x.polarity), "polarity_y": int(fit_y.polarity)}
+
+
+def reflect_angle(angle, polarity_x: int, polarity_y: int):
+    """A peak direction (radians) mirrored by ``diag(polarity_x, polarity_y)``; nan stays nan.
+
+    The contents, the friction and the isolator are isotropic in the plane, so flipping the sign
+    of one ground component mirrors the whole response: ``Pi1`` is unchanged and the peak's
+    direction ``(cos a, sin a)`` becomes ``(polarity_x cos a, polarity_y sin a)``.  A fitted pair
+    is solved with both pulses positive at their peaks (``PulseFit.as_pulse``) and its direction
+    mirrored by this function into the record's own senses.
+    """
+    a = np.asarray(angle, dtype=float)
+    out = np.arctan2(polarity_y * np.sin(a), polarity_x * np.cos(a))
+    return float(out) if out.ndim == 0 else out
+
+
+def line_angle(angle, reference=0.0):
+    """Angle between the line along ``angle`` and the line along ``reference`` (radians, in ``[0, pi/2]``).
+
+    Directions that differ by ``pi`` lie on one line; nan stays nan.
+    """
+    d = np.abs(np.remainder(np.asarray(angle, dtype=float) - reference + math.pi, 2.0 * math.pi) - math.pi)
+    return np.minimum(d, math.pi - d)
+
+
+def sense_angle(angle, reference=0.0):
+    """Angle between the directions ``angle`` and ``reference`` (radians, in ``[0, pi]``); nan stays nan."""
+    return np.abs(np.remainder(np.asarray(angle, dtype=float) - reference + math.pi, 2.0 * math.pi) - math.pi)
+
+
+def select_motions(suite_name: str = PAIR_SUITE, motions="all") -> tuple:
+    """Ground motions of a suite that have two horizontal components.
+
+    Parameters
+    ----------
+    suite_name : str
+        A suite of :func:`isoslide.records.suite`.
+    motions : "all" or sequence of str
+        ``"all"``: every motion of the suite with a ``y`` component, in the suite's order; or
+        their names, in the order given.
+
+    Returns
+    -------
+    tuple of GroundMotion
+
+    Raises
+    ------
+    ValueError
+        A name not in the suite, a name given twice, a motion without a ``y`` component, or none.
+    """
+    found = _rec.suite(suite_name)
+    if isinstance(motions, str):
+        if motions != "all":
+            raise ValueError(f"motions = {motions!r} is invalid; allowed: 'all' or a list of motion names")
+        out = tuple(gm for gm in found if gm.y is not None)
+    else:
+        names = [str(m) for m in motions]
+        if len(set(names)) != len(names):
+            raise ValueError(f"motions = {names!r} names a motion twice; allowed: each once")
+        by_name = {gm.name: gm for gm in found}
+        unknown = [n for n in names if n not in by_name]
+        if unknown:
+            raise ValueError(f"motions {unknown!r} are not in suite {suite_name!r}; known: {sorted(by_name)}")
+        out = tuple(by_name[n] for n in names)
+        single = [gm.name for gm in out if gm.y is None]
+        if single:
+            raise ValueError(f"motions {single!r} of suite {suite_name!r} have one horizontal component; "
+                             f"allowed: pairs (x and y)")
+    if not out:
+        raise ValueError(f"suite {suite_name!r}: no motion with two horizontal components selected")
+    return out
+
+
+def pair_pulses(gm, shape: str = "ricker") -> dict:
+    """The excitations of one ground motion: its records as recorded and its fitted pulses.
+
+    Parameters
+    ----------
+    gm : GroundMotion
+        A pair (``x`` and ``y``).
+    shape : str
+        Fitted pulse shape.
+
+    Returns
+    -------
+    dict
+        ``record_x``, ``record_y`` (each in its own fit's scales), ``plane_x``, ``plane_y`` (both
+        in the x fit's scales, on the record's time axis: the pair as recorded), ``pulse_x``,
+        ``pulse_y`` (the fitted pulses, positive at their peaks) as
+        :class:`~isoslide.pulses.Pulse` s, and the groups of :func:`pair_groups`.
+    """
+    shape = canonical_shape(shape)
+    fits = {c: getattr(gm, c).fit(shape) for c in COMPONENTS}
+    fx = fits["x"]
+    out = {}
+    for c in COMPONENTS:
+        rec = getattr(gm, c)
+        out[f"record_{c}"] = rec.as_pulse(a_p=fits[c].a_p, T_p=fits[c].T_p)
+        out[f"plane_{c}"] = rec.as_pulse(a_p=fx.a_p, T_p=fx.T_p)
+        out[f"pulse_{c}"] = fits[c].as_pulse()
+    return out | pair_groups(fx, fits["y"])
+
+
+def pair_scenes(gm, pi2: float, pi3: float, shape: str = "ricker", pulses: dict | None = None, **groups) -> dict:
+    """The scenes of one ground motion at one ``(Pi2, Pi3)``: records as recorded and their fitted pulses.
+
+    Parameters
+    ----------
+    gm : GroundMotion
+        A pair (``x`` and ``y``).
+    pi2, pi3 : float
+        ``Pi2 = mu_k g / a_p`` and ``Pi3 = T_b / T_p``, in the scales of the run (below).
+    shape : str
+        Fitted pulse shape.
+    pulses : dict, optional
+        :func:`pair_pulses` of ``gm`` and ``shape``, when at hand.
+    **groups
+        The other groups (``pi4`` ... ``pi8``) of :class:`isoslide.Scene`.
+
+    Returns
+    -------
+    dict
+        ``{"x": (record, pulse), "y": (record, pulse), "plane": (record pair, fitted pair)}`` of
+        scenes.  On a line each component runs as recorded and as its fitted pulse, both in the
+        scales (``a_p``, ``T_p``) of that component's fit.  In the plane, in the x fit's scales:
+        the pair as recorded (as ``Scene(pulse=gm.x, pulse_y=gm.y)`` runs it), and the two fitted
+        pulses with :func:`pair_groups`' ``Pi14``, ``Pi15``, ``Pi16``, each positive at its peak:
+        mirror the fitted pair's ``peak_angle`` by :func:`reflect_angle` with the fits' polarities.
+    """
+    p = pair_pulses(gm, shape) if pulses is None else pulses
+    out = {c: (Scene(pi2=pi2, pi3=pi3, pulse=p[f"record_{c}"], **groups),
+               Scene(pi2=pi2, pi3=pi3, pulse=p[f"pulse_{c}"], **groups)) for c in COMPONENTS}
+    out["plane"] = (
+        Scene(pi2=pi2, pi3=pi3, pulse=p["plane_x"], pulse_y=p["plane_y"], **groups),
+        Scene(pi2=pi2, pi3=pi3, pulse=p["pulse_x"], pulse_y=p["pulse_y"], pi14=p["pi14"], pi15=p["pi15"],
+              pi16=p["pi16"], **groups),
+    )
+    return out
+
+
+def _over(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a / b``; +inf where only ``a`` is positive, nan where neither is."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(b > 0.0, a / np.where(b > 0.0, b, 1.0), np.where(a > 0.0, np.inf, np.nan))
+
+
+def _flag(values, long_name: str) -> tuple:
+    return np.asarray(values, dtype=bool).astype(np.int8), {
+        "long_name": long_name, "flag_values": np.array([0, 1], np.int8), "flag_meanings": "no yes"}
+
+
+def _pulse_flag(value) -> int:
+    return -1 if value is None else int(bool(value))
+
+
+def pairs_grid(motions, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1.0, pi6: float = 0.0,
+               pi7: float = 0.0, pi8: float = 1e-5, shape: str = "ricker", rtol=None,
+               solve_many=None) -> xr.Dataset:
+    """Peak sliding under recorded pairs and under their fitted pulses, on a line and in the plane.
+
+    For every ground motion and ``(Pi2, Pi3)`` the scenes of :func:`pair_scenes` are solved: each
+    component as recorded and as its fitted pulse (the paper's Fig. 4 comparison, in that
+    component's own scales), and in the plane the pair as recorded and the pair of fitted pulses
+    (in the x fit's scales).  The ratio of two ``Pi1`` in one scale is the ratio of the physical
+    peak sliding displacements.
+
+    Parameters
+    ----------
+    motions : sequence of GroundMotion
+        Pairs (see :func:`select_motions`), unique names.
+    pi2_values, pi3_values : sequence of float
+        ``Pi2 = mu_k g / a_p`` (> 0) and ``Pi3 = T_b / T_p`` (>= 0; 0 is a fixed base).
+    pi4, pi5, pi6, pi7, pi8 : float
+        The other groups, fixed (see :class:`isoslide.Scene`).
+    shape : str
+        Fitted pulse shape.
+    rtol : float, optional
+        Passed to the solver.
+    solve_many : callable, optional
+        ``solve_many(scenes, rtol=...)`` returning an object with array attributes ``pi1``,
+        ``peak_angle`` and ``settled``; default :func:`isoslide.solve_many`.
+
+    Returns
+    -------
+    xarray.Dataset
+        Over ``(motion, component, pi2, pi3)``: ``pi1_record``, ``pi1_pulse``,
+        ``record_over_pulse`` (``pi1_record / pi1_pulse``: +inf where only the record slides,
+        nan where neither does), ``settled_record``, ``settled_pulse``.  Over ``(motion, pi2,
+        pi3)``: ``pi1_record_plane``, ``pi1_pulse_plane``, ``record_over_pulse_plane``,
+        ``peak_angle_record``, ``peak_angle_pulse`` (rad, building axes, the record's own senses),
+        ``angle_off_line`` (rad, in ``[0, pi/2]``: between the lines of the two peaks),
+        ``angle_off`` (rad, in ``[0, pi]``: between their directions), the settled flags.  Over
+        ``(motion, component)``: the fit values, ``record`` (the component's name), ``pga`` (g),
+        ``pgv`` (m/s), ``duration`` (s), ``dt`` (s), ``peak_over_a_p`` (PGA over the fitted
+        ``a_p``).  Over ``motion``: ``pi14``, ``pi15``, ``pi16`` and metadata (event, station,
+        ``rsn``, magnitude, distance, ``pulse``).
+    """
+    if solve_many is None:
+        solve_many = solver.solve_many
+    motions = list(motions)
+    pi2_values = np.asarray(pi2_values, dtype=float).ravel()
+    pi3_values = np.asarray(pi3_values, dtype=float).ravel()
+    if len(motions) == 0 or pi2_values.size == 0 or pi3_values.size == 0:
+        raise ValueError("motions, pi2_values and pi3_values must all be non-empty")
+    names = [gm.name for gm in motions]
+    if len(set(names)) != len(names):
+        raise ValueError(f"motion names must be unique, got {names}")
+    missing_y = [gm.name for gm in motions if gm.y is None]
+    if missing_y:
+        raise ValueError(f"motions {missing_y!r} have no y component; allowed: pairs")
+    shape = canonical_shape(shape)
+    groups = {"pi4": pi4, "pi5": pi5, "pi6": pi6, "pi7": pi7, "pi8": pi8}
+    nm, n2, n3, nc = len(motions), pi2_values.size, pi3_values.size, len(COMPONENTS)
+    line = {k: np.full((nm, nc, n2, n3), np.nan) for k in ("pi1_record", "pi1_pulse")}
+    line_set = {k: np.zeros((nm, nc, n2, n3), bool) for k in ("record", "pulse")}
+    plane = {k: np.full((nm, n2, n3), np.nan) for k in ("pi1_record", "pi1_pulse", "angle_record", "angle_pulse")}
+    plane_set = {k: np.zeros((nm, n2, n3), bool) for k in ("record", "pulse")}
+    fit_vals = {k: np.full((nm, nc), np.nan) for k in _PAIR_FIT_VARS}
+    comp = {k: np.full((nm, nc), np.nan) for k in ("pga", "pgv", "duration", "dt")}
+    comp_names = np.empty((nm, nc), dtype=object)
+    per_motion = {k: np.full(nm, np.nan) for k in ("pi14", "pi15", "pi16", "magnitude", "rupture_distance_km",
+                                                   "vs30_m_s")}
+    meta_int = {k: np.zeros(nm, dtype=np.int32) for k in ("rsn", "year")}
+    meta_str = {k: np.empty(nm, dtype=object) for k in ("event", "station", "site_class", "fault_type")}
+    pulse_flag = np.zeros(nm, dtype=np.int8)
+    licences = set()
+    for i, gm in enumerate(motions):
+        fits = {c: getattr(gm, c).fit(shape) for c in COMPONENTS}
+        g = pair_pulses(gm, shape)
+        scenes, index = [], []
+        for j, pi2 in enumerate(pi2_values):
+            for k, pi3 in enumerate(pi3_values):
+                cell = pair_scenes(gm, pi2, pi3, shape=shape, pulses=g, **groups)
+                for view in VIEWS:
+                    for which, sc in zip(("record", "pulse"), cell[view], strict=True):
+                        scenes.append(sc)
+                        index.append((view, which, j, k))
+        batch = solve_many(scenes, rtol=rtol)
+        pi1 = np.asarray(batch.pi1, dtype=float)
+        angle = np.asarray(getattr(batch, "peak_angle", np.full(len(scenes), np.nan)), dtype=float)
+        settled = np.asarray(getattr(batch, "settled", np.zeros(len(scenes), bool)), dtype=bool)
+        for n, (view, which, j, k) in enumerate(index):
+            if view == "plane":
+                plane[f"pi1_{which}"][i, j, k] = pi1[n]
+                plane[f"angle_{which}"][i, j, k] = (angle[n] if which == "record" else
+                                                    reflect_angle(angle[n], g["polarity_x"], g["polarity_y"]))
+                plane_set[which][i, j, k] = settled[n]
+            else:
+                c = COMPONENTS.index(view)
+                line[f"pi1_{which}"][i, c, j, k] = pi1[n]
+                line_set[which][i, c, j, k] = settled[n]
+        for c, label in enumerate(COMPONENTS):
+            rec, fit = getattr(gm, label), fits[label]
+            for key in _PAIR_FIT_VARS:
+                fit_vals[key][i, c] = float(getattr(fit, key))
+            comp["pga"][i, c], comp["pgv"][i, c] = rec.pga, rec.pgv
+            comp["duration"][i, c], comp["dt"][i, c] = rec.duration, rec.dt
+            comp_names[i, c] = rec.name
+            if rec.licence:
+                licences.add(rec.source.split(":")[0] + ": " + rec.licence)
+        for key in ("pi14", "pi15", "pi16"):
+            per_motion[key][i] = g[key]
+        m = gm.metadata
+        for key in ("magnitude", "rupture_distance_km", "vs30_m_s"):
+            per_motion[key][i] = float(m.get(key, math.nan))
+        for key in meta_int:
+            meta_int[key][i] = int(m.get(key, -1))
+        for key in meta_str:
+            meta_str[key][i] = str(m.get(key, ""))
+        pulse_flag[i] = _pulse_flag(gm.pulse)
+
+    one = {"units": "1"}
+    ds = xr.Dataset(coords={
+        "motion": ("motion", np.array(names, dtype=object), {"long_name": "ground motion (a recorded pair)"}),
+        "component": ("component", np.array(COMPONENTS, dtype=object),
+                      {"long_name": "horizontal component: x = the suite's component a, y = its component b "
+                                    "(the building's axes)"}),
+        "pi2": ("pi2", pi2_values, {"long_name": "Pi2 = mu_k g / a_p (fitted a_p: the component's on a line, "
+                                                 "the x component's in the plane)", **one}),
+        "pi3": ("pi3", pi3_values, {"long_name": "Pi3 = T_b / T_p (fitted T_p: the component's on a line, "
+                                                 "the x component's in the plane); 0 is a fixed base", **one}),
+    })
+    d_line, d_plane = ("motion", "component", "pi2", "pi3"), ("motion", "pi2", "pi3")
+    ds["pi1_record"] = (d_line, line["pi1_record"], {
+        "long_name": "Pi1 = u_max/(a_p T_p^2) under the component as recorded, on a line (its own fit's scales)",
+        **one})
+    ds["pi1_pulse"] = (d_line, line["pi1_pulse"], {
+        "long_name": f"Pi1 = u_max/(a_p T_p^2) under the component's fitted {shape} pulse, on a line", **one})
+    ds["record_over_pulse"] = (d_line, _over(line["pi1_record"], line["pi1_pulse"]), {
+        "long_name": "pi1_record / pi1_pulse = u_record / u_pulse on a line", **one,
+        "comment": "+inf where only the record makes the contents slide, nan where neither does"})
+    for which in ("record", "pulse"):
+        ds[f"settled_{which}"] = (d_line, *_flag(line_set[which], f"response settled within the horizon ({which}, "
+                                                                   "on a line)"))
+    ds["pi1_record_plane"] = (d_plane, plane["pi1_record"], {
+        "long_name": "Pi1 = peak |u|/(a_p T_p^2) in the plane under the pair as recorded (the x fit's scales)",
+        **one})
+    ds["pi1_pulse_plane"] = (d_plane, plane["pi1_pulse"], {
+        "long_name": f"Pi1 = peak |u|/(a_p T_p^2) in the plane under the pair of fitted {shape} pulses "
+                     "(Pi14, Pi15, Pi16 of the two fits)", **one})
+    ds["record_over_pulse_plane"] = (d_plane, _over(plane["pi1_record"], plane["pi1_pulse"]), {
+        "long_name": "pi1_record_plane / pi1_pulse_plane = u_record / u_pulse in the plane", **one,
+        "comment": "+inf where only the recorded pair makes the contents slide, nan where neither does"})
+    angle_attrs = {"units": "rad", "comment": "atan2(u_y, u_x) at the peak of |u|, in (-pi, pi]; nan where the "
+                                              "contents do not slide"}
+    ang_r = np.where(plane["pi1_record"] > 0.0, plane["angle_record"], np.nan)
+    ang_p = np.where(plane["pi1_pulse"] > 0.0, plane["angle_pulse"], np.nan)
+    ds["peak_angle_record"] = (d_plane, ang_r, {"long_name": "direction of the peak sliding displacement under "
+                                                             "the pair as recorded, building axes", **angle_attrs})
+    ds["peak_angle_pulse"] = (d_plane, ang_p, {
+        "long_name": "direction of the peak sliding displacement under the fitted pair, building axes, in the "
+                     "record's senses (solved with both pulses positive, mirrored by diag(polarity_x, polarity_y))",
+        **angle_attrs})
+    ds["angle_off_line"] = (d_plane, line_angle(ang_p, ang_r), {
+        "long_name": "angle between the lines of the two peaks (fitted pair against recorded pair)", "units": "rad",
+        "comment": "in [0, pi/2]; nan where either does not slide"})
+    ds["angle_off"] = (d_plane, sense_angle(ang_p, ang_r), {
+        "long_name": "angle between the directions of the two peaks (fitted pair against recorded pair)",
+        "units": "rad", "comment": "in [0, pi]; nan where either does not slide"})
+    for which in ("record", "pulse"):
+        ds[f"settled_{which}_plane"] = (d_plane, *_flag(plane_set[which], "response settled within the horizon "
+                                                                          f"({which}, in the plane)"))
+    d_comp = ("motion", "component")
+    ds["record"] = (d_comp, comp_names.astype(str), {"long_name": "name of the component's record"})
+    for key in _PAIR_FIT_VARS:
+        ln, u = _FIT_VARS[key]
+        ds[key] = (d_comp, fit_vals[key], {"long_name": ln, "units": u})
+    ds["pga"] = (d_comp, comp["pga"], {"long_name": "peak ground acceleration of the component", "units": "g"})
+    ds["pgv"] = (d_comp, comp["pgv"], {"long_name": "peak ground velocity of the component", "units": "m s-1"})
+    ds["duration"] = (d_comp, comp["duration"], {"long_name": "record duration", "units": "s"})
+    ds["dt"] = (d_comp, comp["dt"], {"long_name": "record sampling interval", "units": "s"})
+    ds["peak_over_a_p"] = (d_comp, comp["pga"] / fit_vals["a_p_g"], {
+        "long_name": "peak ground acceleration of the component over its fitted a_p", **one})
+    ds["pi14"] = ("motion", per_motion["pi14"], {"long_name": "Pi14 = a_py / a_p of the fitted pair", **one})
+    ds["pi15"] = ("motion", per_motion["pi15"], {"long_name": "Pi15 = T_py / T_p of the fitted pair", **one})
+    ds["pi16"] = ("motion", per_motion["pi16"], {
+        "long_name": "Pi16 = (t_ref,y - t_ref,x) / T_p of the fitted pair: the y pulse's lag", **one})
+    ds["magnitude"] = ("motion", per_motion["magnitude"], {"long_name": "moment magnitude", **one})
+    ds["rupture_distance_km"] = ("motion", per_motion["rupture_distance_km"],
+                                 {"long_name": "closest distance to the rupture plane", "units": "km"})
+    ds["vs30_m_s"] = ("motion", per_motion["vs30_m_s"], {"long_name": "site Vs30", "units": "m s-1"})
+    ds["rsn"] = ("motion", meta_int["rsn"], {"long_name": "PEER NGA record sequence number (-1: none)"})
+    ds["year"] = ("motion", meta_int["year"], {"long_name": "year of the earthquake (-1: unknown)"})
+    for key, ln in (("event", "earthquake"), ("station", "recording station"), ("site_class", "NEHRP site class"),
+                    ("fault_type", "fault type")):
+        ds[key] = ("motion", meta_str[key].astype(str), {"long_name": ln})
+    ds["pulse"] = ("motion", pulse_flag, {"long_name": "classified as pulse-like by its suite",
+                                          "flag_values": np.array([-1, 0, 1], np.int8),
+                                          "flag_meanings": "not_classified no yes"})
+    ds.attrs.update({
+        "title": "Peak sliding under recorded pairs and under their fitted pulses, on a line and in the plane",
+        "shape": shape, "pi4": float(pi4), "pi5": float(pi5), "pi6": float(pi6), "pi7": float(pi7),
+        "pi8": float(pi8), "rtol": "default" if rtol is None else float(rtol), "g": G,
+        "scales": "on a line each component's fitted a_p and T_p normalise both its record and its pulse; in the "
+                  "plane the x component's normalise both pairs",
+        "sources": "; ".join(sorted(licences)),
+    })
+    return ds
+
+
+# ----------------------------------------------------------------------------------------------
+# what the recorded pairs say (the report reads these, from the dataset only)
+# ----------------------------------------------------------------------------------------------
+
+SUMMARY_VIEWS = ("x", "y", "line", "plane")
+"""Views of :func:`pairs_summary`: each component on a line, both components pooled, the plane."""
+
+DEG = 180.0 / math.pi
+
+
+def _view(ds: xr.Dataset, view: str) -> tuple:
+    """``(pi1_record, pi1_pulse)`` arrays of one view (``x``, ``y``, ``line`` or ``plane``)."""
+    if view == "plane":
+        return ds["pi1_record_plane"].values, ds["pi1_pulse_plane"].values
+    sub = ds if view == "line" else ds.sel(component=view)
+    return sub["pi1_record"].values, sub["pi1_pulse"].values
+
+
+def _stats(rec: np.ndarray, pul: np.ndarray, tolerance: float) -> dict:
+    rec, pul = np.asarray(rec, float).ravel(), np.asarray(pul, float).ravel()
+    sr, sp = rec > 0.0, pul > 0.0
+    both = sr & sp
+    out = {"n_cells": int(rec.size), "n_both_slide": int(both.sum()), "n_both_still": int((~sr & ~sp).sum()),
+           "n_only_record": int((sr & ~sp).sum()), "n_only_pulse": int((~sr & sp).sum())}
+    r = rec[both] / pul[both]
+    if r.size:
+        out.update(median=float(np.median(r)), gmean=float(np.exp(np.log(r).mean())),
+                   p10=float(np.percentile(r, 10)), p90=float(np.percentile(r, 90)), min=float(r.min()),
+                   max=float(r.max()), within_tol=float(np.mean(np.abs(r - 1.0) <= tolerance)))
+    else:
+        out.update({k: math.nan for k in ("median", "gmean", "p10", "p90", "min", "max", "within_tol")})
+    return out
+
+
+def pairs_summary(ds: xr.Dataset, tolerance: float | None = None) -> xr.Dataset:
+    """The ratio record/pulse per view and ground motion: how far the fitted pulses stand in.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Output of :func:`pairs_grid` (or :func:`record_pairs_dataset`).
+    tolerance : float, optional
+        Band of ``within_tol``: ``|ratio - 1| <= tolerance``; default the dataset's ``tolerance``
+        attribute.
+
+    Returns
+    -------
+    xarray.Dataset
+        Over ``view`` (:data:`SUMMARY_VIEWS`) and ``motion`` (each, then ``"all"``): ``n_cells``,
+        ``n_both_slide``, ``n_both_still``, ``n_only_record`` (the pulse misses the sliding),
+        ``n_only_pulse`` (the pulse invents it); over the cells where both slide, the ratio
+        ``pi1_record / pi1_pulse``'s ``median``, ``gmean`` (geometric mean), ``p10``, ``p90``,
+        ``min``, ``max`` and ``within_tol`` (share within the band).
+    """
+    tolerance = float(ds.attrs["tolerance"] if tolerance is None else tolerance)
+    labels = [str(m) for m in ds["motion"].values] + ["all"]
+    rows = {}
+    for view in SUMMARY_VIEWS:
+        for lab in labels:
+            sub = ds if lab == "all" else ds.sel(motion=[lab])
+            rows[view, lab] = _stats(*_view(sub, view), tolerance)
+    keys = list(next(iter(rows.values())))
+    out = xr.Dataset(coords={"view": ("view", np.array(SUMMARY_VIEWS, dtype=object)),
+                             "motion": ("motion", np.array(labels, dtype=object))})
+    for k in keys:
+        out[k] = (("view", "motion"), np.array([[rows[v, lab][k] for lab in labels] for v in SUMMARY_VIEWS]))
+    out.attrs.update({"tolerance": tolerance, "ratio": "pi1_record / pi1_pulse = u_record / u_pulse (one scale)"})
+    return out
+
+
+def direction_summary(ds: xr.Dataset, angle_tolerance: float | None = None) -> xr.Dataset:
+    """Whether the fitted pair catches the direction of the planar peak, per ground motion.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Output of :func:`pairs_grid` (or :func:`record_pairs_dataset`).
+    angle_tolerance : float, optional
+        Degrees: the pair "catches" the peak's line when its line is within this angle of the
+        record's; default the dataset's ``angle_tolerance`` attribute.
+
+    Returns
+    -------
+    xarray.Dataset
+        Over ``motion`` (each, then ``"all"``), over the cells where both pairs slide in the
+        plane: ``n_both_slide``, ``median_line_off`` and ``p90_line_off`` (degrees between the
+        lines of the two peaks), ``within_angle`` (share of cells within ``angle_tolerance``) and
+        ``same_sense`` (share where the two peaks also point the same way: less than 90 degrees
+        apart).
+    """
+    tol = float(ds.attrs["angle_tolerance"] if angle_tolerance is None else angle_tolerance)
+    labels = [str(m) for m in ds["motion"].values] + ["all"]
+    cols = {k: [] for k in ("n_both_slide", "median_line_off", "p90_line_off", "within_angle", "same_sense")}
+    for lab in labels:
+        sub = ds if lab == "all" else ds.sel(motion=[lab])
+        off = sub["angle_off_line"].values.ravel() * DEG
+        sense = sub["angle_off"].values.ravel() * DEG
+        ok = np.isfinite(off)
+        off, sense = off[ok], sense[ok]
+        cols["n_both_slide"].append(int(ok.sum()))
+        if off.size:
+            cols["median_line_off"].append(float(np.median(off)))
+            cols["p90_line_off"].append(float(np.percentile(off, 90)))
+            cols["within_angle"].append(float(np.mean(off <= tol)))
+            cols["same_sense"].append(float(np.mean(sense < 90.0)))
+        else:
+            for k in ("median_line_off", "p90_line_off", "within_angle", "same_sense"):
+                cols[k].append(math.nan)
+    out = xr.Dataset(coords={"motion": ("motion", np.array(labels, dtype=object))})
+    for k, v in cols.items():
+        out[k] = ("motion", np.array(v))
+    out.attrs.update({"angle_tolerance": tol, "units_of_angles": "degrees"})
+    return out
+
+
+def ratio_by(ds: xr.Dataset, dim: str) -> xr.Dataset:
+    """Median ratio record/pulse per value of ``dim`` (``pi2`` or ``pi3``), on a line and in the plane.
+
+    Over the cells where both slide; ``line`` pools the two components.  Also the counts of
+    cells where only the record slides (``only_record_line``, ``only_record_plane``).
+    """
+    if dim not in ("pi2", "pi3"):
+        raise ValueError(f"dim = {dim!r} is invalid; allowed: 'pi2' or 'pi3'")
+    out = xr.Dataset(coords={dim: ds[dim].values})
+    for view in ("line", "plane"):
+        med, only = [], []
+        for v in ds[dim].values:
+            s = _stats(*_view(ds.sel({dim: [v]}), view), 0.0)
+            med.append(s["median"])
+            only.append(s["n_only_record"])
+        out[f"median_{view}"] = (dim, np.array(med))
+        out[f"only_record_{view}"] = (dim, np.array(only))
+    return out
+
+
+def fit_table(ds: xr.Dataset, tolerance: float | None = None):
+    """Each component's fit against how well its pulse stands in for it on a line.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Output of :func:`pairs_grid` (or :func:`record_pairs_dataset`).
+    tolerance : float, optional
+        Band of ``stands_in``; default the dataset's ``tolerance`` attribute.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per ``(motion, component)``, sorted by ``|log median|`` (worst first): ``T_p``
+        (s), ``a_p_g``, ``r2``, ``energy_fraction``, ``peak_over_a_p`` (PGA / fitted ``a_p``),
+        ``median`` (ratio record/pulse where both slide), ``n_both_slide``, ``n_only_record``,
+        ``n_only_pulse`` and ``stands_in`` (the median within ``|median - 1| <= tolerance``).
+    """
+    import pandas as pd
+
+    tolerance = float(ds.attrs["tolerance"] if tolerance is None else tolerance)
+    rows = []
+    for m in ds["motion"].values:
+        for c in ds["component"].values:
+            sub = ds.sel(motion=m, component=c)
+            s = _stats(sub["pi1_record"].values, sub["pi1_pulse"].values, tolerance)
+            rows.append({"motion": str(m), "component": str(c), "T_p": float(sub["T_p"]),
+                         "a_p_g": float(sub["a_p_g"]), "r2": float(sub["r2"]),
+                         "energy_fraction": float(sub["energy_fraction"]),
+                         "peak_over_a_p": float(sub["peak_over_a_p"]), "median": s["median"],
+                         "n_both_slide": s["n_both_slide"], "n_only_record": s["n_only_record"],
+                         "n_only_pulse": s["n_only_pulse"],
+                         "stands_in": bool(np.isfinite(s["median"]) and abs(s["median"] - 1.0) <= tolerance)})
+    df = pd.DataFrame(rows).set_index(["motion", "component"])
+    order = np.argsort(-np.abs(np.log(df["median"].to_numpy(dtype=float))), kind="stable")
+    return df.iloc[order]
+
+
+def _spearman(a, b) -> float:
+    """Spearman's rank correlation of ``a`` and ``b`` over their finite pairs (nan for fewer than 3)."""
+    import pandas as pd
+
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    ok = np.isfinite(a) & np.isfinite(b)
+    if ok.sum() < 3:
+        return math.nan
+    ra, rb = pd.Series(a[ok]).rank().to_numpy(), pd.Series(b[ok]).rank().to_numpy()
+    if np.std(ra) == 0.0 or np.std(rb) == 0.0:
+        return math.nan
+    return float(np.corrcoef(ra, rb)[0, 1])
+
+
+def amplification(ds: xr.Dataset) -> dict:
+    """Median planar/1-D amplification of the recorded pair and of the fitted pair.
+
+    ``pi1_record_plane / pi1_record(x)`` and ``pi1_pulse_plane / pi1_pulse(x)`` (one scale: the
+    x fit's) over the cells where the plane and the x component alone both slide.
+
+    Returns
+    -------
+    dict
+        ``record`` and ``pulse`` (medians), ``n_record`` and ``n_pulse`` (cells).
+    """
+    out = {}
+    for which in ("record", "pulse"):
+        plane = ds[f"pi1_{which}_plane"].values.ravel()
+        line = ds[f"pi1_{which}"].sel(component="x").values.ravel()
+        ok = (plane > 0.0) & (line > 0.0)
+        out[which] = float(np.median(plane[ok] / line[ok])) if ok.any() else math.nan
+        out[f"n_{which}"] = int(ok.sum())
+    return out
+
+
+def _num(v: float, fmt: str = ".2f") -> str:
+    return "n/a" if not np.isfinite(v) else format(v, fmt)
+
+
+def _pct(v: float) -> str:
+    return "n/a" if not np.isfinite(v) else f"{v:.0%}"
+
+
+def pairs_findings(ds: xr.Dataset) -> list:
+    """The answers of the recorded pairs, as markdown sentences with their numbers (from ``ds`` only).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Output of :func:`record_pairs_dataset` (attributes ``tolerance``, ``angle_tolerance``).
+
+    Returns
+    -------
+    list of str
+        On a line (both components), in the plane, the planar amplification, the direction of the
+        planar peak, where the fits fail (the components whose median ratio leaves the band, the
+        rank correlations with the fit's R^2 and with PGA / a_p, the cells only the record makes
+        slide) and the ratio over Pi3.
+    """
+    tol = float(ds.attrs["tolerance"])
+    atol = float(ds.attrs["angle_tolerance"])
+    s = pairs_summary(ds, tol)
+    out = []
+    for view, what in (("line", "On a line (each component against its own fitted pulse, both components)"),
+                       ("plane", "In the plane (the pair as recorded against the pair of fitted pulses)")):
+        a = s.sel(view=view, motion="all")
+        out.append(
+            f"{what}: of {int(a.n_cells)} cells, both make the contents slide in {int(a.n_both_slide)}; there "
+            f"Π₁,record / Π₁,pulse has median **{_num(float(a['median']))}** (geometric mean "
+            f"{_num(float(a.gmean))}), P10–P90 **{_num(float(a.p10))}–{_num(float(a.p90))}** (range "
+            f"{_num(float(a['min']))}–{_num(float(a['max']))}), and {_pct(float(a.within_tol))} of them lie within "
+            f"±{tol:.0%}. Only the record slides in {int(a.n_only_record)} cells (the pulse misses the sliding), "
+            f"only the pulse in {int(a.n_only_pulse)}.")
+    for c in COMPONENTS:
+        a = s.sel(view=c, motion="all")
+        out.append(f"Component {c} alone: median ratio {_num(float(a['median']))}, P10–P90 "
+                   f"{_num(float(a.p10))}–{_num(float(a.p90))} over {int(a.n_both_slide)} cells.")
+    amp = amplification(ds)
+    out.append(
+        f"Sliding in the plane against the x component alone (one scale): the recorded pair slides a median "
+        f"**{_num(amp['record'])}×** as far as its x record ({amp['n_record']} cells), the fitted pair "
+        f"**{_num(amp['pulse'])}×** as far as its x pulse ({amp['n_pulse']} cells).")
+    d = direction_summary(ds, atol).sel(motion="all")
+    out.append(
+        f"Direction of the planar peak: where both pairs slide ({int(d.n_both_slide)} cells), the fitted pair's "
+        f"peak lies on a line a median **{_num(float(d.median_line_off), '.0f')}°** from the record's (P90 "
+        f"{_num(float(d.p90_line_off), '.0f')}°); within ±{atol:g}° in **{_pct(float(d.within_angle))}** of the "
+        f"cells, and pointing the same way (less than 90° apart) in {_pct(float(d.same_sense))}.")
+    ft = fit_table(ds, tol)
+    fails = ft[~ft["stands_in"]]
+    listed = "; ".join(
+        f"{m} {c} (median {_num(r['median'])}, R² {r['r2']:.2f}, T_p {r['T_p']:.2f} s, PGA/a_p "
+        f"{r['peak_over_a_p']:.2f})" for (m, c), r in fails.head(6).iterrows())
+    out.append(
+        f"Where the fits fail: {len(fails)} of {len(ft)} components have a median ratio outside ±{tol:.0%}"
+        + (f", the worst: {listed}" if len(fails) else "") + ". "
+        f"Rank correlation of |ln median ratio| with the fit's R²: "
+        f"{_num(_spearman(ft['r2'], np.abs(np.log(ft['median']))))} (negative: the better the fit, the closer the "
+        f"ratio to 1); with PGA/a_p: {_num(_spearman(ft['peak_over_a_p'], np.abs(np.log(ft['median']))))} "
+        f"(positive: the more the record's peak exceeds the pulse's, the farther the ratio from 1).")
+    by2 = ratio_by(ds, "pi2")
+    hi = float(ds["pi2"].max())
+    n_line, n_plane = int(by2["only_record_line"].sum()), int(by2["only_record_plane"].sum())
+    out.append(
+        f"Cells where only the record makes the contents slide: {n_line} on a line and {n_plane} in the plane, "
+        f"of which {int(by2['only_record_line'].sel(pi2=hi))} and {int(by2['only_record_plane'].sel(pi2=hi))} "
+        f"at the largest Π₂ = {hi:g} (a pulse slides the contents only for Π₂ below its stuck demand; the "
+        f"records' PGA reaches {float(ds['peak_over_a_p'].max()):.2f} a_p).")
+    by3 = ratio_by(ds, "pi3")
+    parts = [f"Π₃ = {float(v):g}: {_num(float(by3['median_line'].sel(pi3=v)))} on a line, "
+             f"{_num(float(by3['median_plane'].sel(pi3=v)))} in the plane" for v in ds["pi3"].values]
+    out.append("Median ratio by building (" + "; ".join(parts) + ").")
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# the pipeline's dataset of the recorded pairs (rule record_pairs)
+# ----------------------------------------------------------------------------------------------
+
+def pairs_settings(config: dict) -> dict:
+    """What the recorded pairs read of a complete configuration (:func:`isoslide.config.load`), as copies.
+
+    ``{"records": {"pairs": ...}, "defaults": ..., "solver": ...}``: only the ``pairs`` part of
+    the ``records`` section, so the rest of the record study leaves the pairs' job alone.  The
+    schema holds the defaults.
+    """
+    return {"records": {"pairs": copy.deepcopy(config["records"]["pairs"])},
+            "defaults": copy.deepcopy(config["defaults"]), "solver": copy.deepcopy(config["solver"])}
+
+
+def _values(key: str, values, low: float, low_in: bool) -> list:
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise ValueError(f"{key} = {values!r} is invalid; allowed: a list of numbers")
+    out = []
+    for i, v in enumerate(values):
+        ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) \
+            and (v >= low if low_in else v > low)
+        if not ok:
+            raise ValueError(f"{key}[{i}] = {v!r} is invalid; allowed range: {low:g} {'<=' if low_in else '<'} "
+                             f"value < inf")
+        out.append(float(v))
+    if not out or len(set(out)) != len(out):
+        raise ValueError(f"{key} = {list(values)!r} is invalid; allowed: a non-empty list of distinct values")
+    return out
+
+
+def check_pairs_settings(settings: dict) -> dict:
+    """The ``records.pairs`` section of :func:`pairs_settings`, checked (a ValueError names the key).
+
+    Checks the values without reading the suite: a motion's name is checked when the job reads
+    it (:func:`select_motions`).
+
+    Returns
+    -------
+    dict
+        The section with ``pi2`` and ``pi3`` as lists of floats.
+    """
+    sec = dict(settings["records"]["pairs"])
+    key = "records.pairs"
+    if not isinstance(sec.get("suite"), str) or not sec["suite"]:
+        raise ValueError(f"{key}.suite = {sec.get('suite')!r} is invalid; allowed: a suite name or path")
+    m = sec.get("motions")
+    if isinstance(m, str):
+        if m != "all":
+            raise ValueError(f"{key}.motions = {m!r} is invalid; allowed: 'all' or a list of motion names")
+    elif not isinstance(m, (list, tuple)) or not m or len(set(map(str, m))) != len(m):
+        raise ValueError(f"{key}.motions = {m!r} is invalid; allowed: 'all' or a non-empty list of distinct names")
+    sec["pi2"] = _values(f"{key}.pi2", sec["pi2"], 0.0, False)
+    sec["pi3"] = _values(f"{key}.pi3", sec["pi3"], 0.0, True)
+    for name, lo, hi in (("pi4", 0.0, 1000.0), ("tolerance", 0.0, math.inf), ("angle_tolerance", 0.0, 90.0)):
+        v = sec[name]
+        if not (isinstance(v, (int, float)) and not isinstance(v, bool) and lo <= v <= hi
+                and (name == "pi4" or v > lo)):
+            raise ValueError(f"{key}.{name} = {v!r} is out of range; allowed: {lo:g} < value <= {hi:g}")
+    return sec
+
+
+def record_pairs_dataset(settings: dict, solve_many=None) -> xr.Dataset:
+    """:func:`pairs_grid` of the configured pairs, with CF global attributes and the headline numbers.
+
+    Parameters
+    ----------
+    settings : dict
+        :func:`pairs_settings` of a complete configuration.
+    solve_many : callable, optional
+        See :func:`pairs_grid`.
+
+    Returns
+    -------
+    xarray.Dataset
+        :func:`pairs_grid`'s dataset; attributes add the suite, the ``tolerance`` and
+        ``angle_tolerance`` (degrees) of the summaries, the configuration and ``summary_*``: the
+        median, P10 and P90 of the ratio record/pulse on a line and in the plane and the share of
+        planar cells whose peak line the fitted pair catches.
+    """
+    sec = check_pairs_settings(settings)
+    d = settings["defaults"]
+    motions = select_motions(sec["suite"], sec["motions"])
+    ds = pairs_grid(motions, sec["pi2"], sec["pi3"], pi4=float(sec["pi4"]),
+                    **{k: float(d[k]) for k in ("pi5", "pi6", "pi7", "pi8")}, rtol=settings["solver"]["rtol"],
+                    solve_many=solve_many)
+    ds["motion"] = ds["motion"].astype(str)
+    ds["motion"].attrs["long_name"] = "ground motion (a recorded pair)"
+    ds["component"] = ds["component"].astype(str)
+    ds["component"].attrs["long_name"] = ("horizontal component: x = the suite's component a, y = its component "
+                                          "b (the building's axes)")
+    tol, atol = float(sec["tolerance"]), float(sec["angle_tolerance"])
+    ds.attrs.update(tolerance=tol, angle_tolerance=atol)
+    summ = pairs_summary(ds, tol).sel(motion="all")
+    direc = direction_summary(ds, atol).sel(motion="all")
+    extra = dict(ds.attrs)
+    title = extra.pop("title")
+    numbers = {}
+    for view in ("line", "plane"):
+        a = summ.sel(view=view)
+        for k in ("median", "p10", "p90", "within_tol"):
+            numbers[f"summary_{k}_{view}"] = float(a[k])
+        for k in ("n_cells", "n_both_slide", "n_only_record", "n_only_pulse"):
+            numbers[f"summary_{k}_{view}"] = int(a[k])
+    numbers["summary_within_angle"] = float(direc["within_angle"])
+    numbers["summary_median_line_off_deg"] = float(direc["median_line_off"])
+    ds.attrs = global_attrs(
+        title=f"isoslide {title}",
+        history=(f"isoslide.studies.record_study.pairs_grid: {ds.sizes['motion']} recorded pairs of suite "
+                 f"{sec['suite']!r} x {ds.sizes['pi2']} Pi2 x {ds.sizes['pi3']} Pi3, six scenes per cell (each "
+                 f"component as recorded and as its fitted pulse, the pair as recorded and the fitted pair), "
+                 f"solved exactly by isoslide.solve_many; by isoslide.studies.record_study.record_pairs_dataset; "
+                 f"no timestamps are stored"),
+        config=settings, suite=sec["suite"], **extra, **numbers)
     return ds
