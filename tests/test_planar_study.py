@@ -153,7 +153,8 @@ def test_findings_state_the_dataset_s_numbers(datasets):
     found = dict(planar.findings(ds, ds5))
     assert list(found) == ["How much farther the contents slide when both components act", "Where the peak points",
                            "The vertical component on the isolated and on the fixed floor",
-                           "Complete similarity in Π₅ in the plane"]
+                           "Complete similarity in Π₅ in the plane",
+                           "Friction pendulum against a linear isolator in the plane"]
     rows = planar.amplification_summary(ds)
     assert len(rows) == 2 * 2 * 2
     fixed = [r for r in rows if r["pi3"] == 0.0 and r["pi14"] == 1.5]
@@ -166,7 +167,26 @@ def test_findings_state_the_dataset_s_numbers(datasets):
         found["The vertical component on the isolated and on the fixed floor"]
     rel = float(ds5["relative_spread"].sel(pi3=1.0, pi14=1.0))
     assert f"{rel:.3f} at Π₃ = 1" in found["Complete similarity in Π₅ in the plane"]
-    assert len(planar.findings(ds)) == 3
+    p = [r for r in planar.pendulum_summary(ds) if r["pi15"] == 1.0 and r["pi14"] == 1.5][0]
+    assert f"Π₁₅ = 1, Π₁₄ = 1.5: peak {planar._x(p['peak_ratio'])}" in \
+        found["Friction pendulum against a linear isolator in the plane"]
+    assert len(planar.findings(ds)) == 4
+
+
+def test_the_friction_pendulum_points_equal_direct_solves(datasets, base_settings):
+    """The pendulum and its linear twin in the plane, at one grid point, solved directly."""
+    ds, _ = datasets
+    p = base_settings["planar"]
+    c = {k: base_settings["defaults"][k] for k in ("pi5", "pi6", "pi7", "pi8")}
+    kw = dict(pi2=float(ds["pi2"][1]), pi3=p["pendulum"]["pi3"], pi4=p["pi4"], **c, pulse=p["pulse"],
+              pulse_y=p["pulse_y"], pi14=1.5, pi15=1.0, pi16=p["pi16"])
+    pend = isoslide.solve(isoslide.Scene(**kw, pi9=p["pendulum"]["pi9"]))
+    lin = isoslide.solve(isoslide.Scene(**kw))
+    assert pend.model.startswith("sliding-bearing+") and pend.model.endswith("+planar")
+    got = ds.sel(pi15=1.0, pi14=1.5).isel(pi2=1)
+    assert float(got["pi1_pendulum"]) == pend.pi1
+    assert float(got["pi1_pendulum_linear"]) == lin.pi1
+    assert ds["pendulum_ratio"].dims == ("pi15", "pi14", "pi2")
 
 
 def test_dataset_is_byte_identical(settings, datasets, tmp_path):

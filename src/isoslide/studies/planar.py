@@ -36,7 +36,7 @@ from ..scene import Scene
 from ..solver import solve_many as _solve_many
 
 __all__ = ["DIMS", "PI5_DIMS", "amplification_summary", "check_settings", "direction_summary", "findings",
-           "line_deviation", "pi5_dataset", "pi5_scenes", "pi5_study", "planar_dataset", "planar_settings",
+           "line_deviation", "pendulum_summary", "pi5_dataset", "pi5_scenes", "pi5_study", "planar_dataset", "planar_settings",
            "planar_study", "scenes", "spread_summary", "vertical_summary"]
 
 DIMS = ("pi17", "pi3", "pi15", "pi14", "pi2")
@@ -130,6 +130,12 @@ def check_settings(settings: Mapping) -> dict:
         "pi17": _group_list("pi17", "pi17", s["pi17"]),
         "tolerance": _fraction("tolerance", s["tolerance"]),
     }
+    pend = s["pendulum"]
+    out["pendulum"] = {"pi3": _group_value("pendulum.pi3", "pi3", pend["pi3"]),
+                       "pi9": _group_value("pendulum.pi9", "pi9", pend["pi9"])}
+    if out["pendulum"]["pi3"] == 0.0 or out["pendulum"]["pi9"] == 0.0:
+        raise ValueError(f"planar.pendulum = {pend!r} is not a friction pendulum; allowed: pi3 > 0 (its period over "
+                         "T_p) and pi9 > 0 (its friction mu_b g / a_p)")
     if out["pi17"][0] != 0.0:
         raise ValueError(f"planar.pi17 = {s['pi17']!r} does not start with 0; allowed: 0 (no vertical motion, the "
                          f"reference of the vertical effect) first")
@@ -218,7 +224,22 @@ def scenes(settings: Mapping) -> dict:
                 for m, pi2 in enumerate(pi2s):
                     transverse.append(_transverse_scene(section, contents, pi2, pi3, pi14, pi15))
                     index.append((i, j, k, m))
-    return {"planar": planar, "line": line, "transverse": transverse, "transverse_index": index}
+    pend = section["pendulum"]
+    pendulum = [_pendulum_scene(section, contents, pi2, pi14, pi15, pi9)
+                for pi9 in (pend["pi9"], 0.0) for pi15 in section["pi15"] for pi14 in section["pi14"] for pi2 in pi2s]
+    return {"planar": planar, "line": line, "transverse": transverse, "transverse_index": index,
+            "pendulum": pendulum}
+
+
+def _pendulum_scene(section: Mapping, contents: Mapping, pi2: float, pi14: float, pi15: float, pi9: float) -> Scene:
+    """The two horizontal components on a friction pendulum (``pi9 > 0``) or on its linear twin (``pi9 = 0``).
+
+    Both of period ``Pi3 = planar.pendulum.pi3`` (the pendulum's ``T_b = 2 pi sqrt(R/g)``) and damping
+    ``Pi4``; the pendulum's friction ``Pi9 = mu_b g / a_p`` and true stick, in the plane.
+    """
+    pi3 = section["pendulum"]["pi3"]
+    return Scene(pi2=pi2, pi3=pi3, pi4=_pi4(section, pi3), **contents, pulse=section["pulse"], pulse_y=section["pulse_y"],
+                 pi14=pi14, pi15=pi15, pi16=section["pi16"], pi9=pi9)
 
 
 def pi5_scenes(settings: Mapping) -> list:
@@ -323,7 +344,9 @@ def planar_study(settings: Mapping, solve_many=None) -> xr.Dataset:
         component alone, units of ``a_p T_p^2``; 0 at ``Pi14 = 0``) and ``envelope_ratio``
         (``pi1`` at ``Pi17 = 0`` over the larger of the two components alone); over ``pi15,
         pi14``: ``ground_peak`` (peak ``|a_g|/a_p``) and ``ground_peak_angle`` (rad); over
-        ``pi3``: ``pi4``.
+        ``pi3``: ``pi4``; over ``pi15, pi14, pi2``: ``pi1_pendulum`` (a friction pendulum,
+        ``planar.pendulum``), ``pi1_pendulum_linear`` (the linear isolator of its period) and
+        ``pendulum_ratio``.
     """
     if solve_many is None:
         solve_many = _solve_many
@@ -378,6 +401,20 @@ def planar_study(settings: Mapping, solve_many=None) -> xr.Dataset:
                                              "atan2(a_gy, a_gx)", "units": "rad"})
     ds["pi4"] = ("pi3", np.array([_pi4(section, p) for p in section["pi3"]]),
                  {**pi_attrs("pi4"), "comment": "0 on the fixed base (Pi3 = 0)"})
+    pend = section["pendulum"]
+    d3 = ("pi15", "pi14", "pi2")
+    both = np.asarray(solve_many(built["pendulum"], rtol=rtol).pi1, dtype=float).reshape((2,) + shape[2:])
+    ds["pi1_pendulum"] = (d3, both[0],
+                          {**pi_attrs("pi1"), "long_name": "Pi1 in the plane on a friction pendulum (Pi9 = "
+                                                           f"{pend['pi9']:g}, Pi3 = {pend['pi3']:g}), without vertical "
+                                                           "motion"})
+    ds["pi1_pendulum_linear"] = (d3, both[1],
+                                 {**pi_attrs("pi1"), "long_name": "Pi1 in the plane on the linear isolator of the "
+                                                                  f"pendulum's period (Pi3 = {pend['pi3']:g}, Pi9 = 0)"})
+    ds["pendulum_ratio"] = (d3, _ratio(both[0], both[1]),
+                            {"long_name": "Pi1 on the friction pendulum over Pi1 on its linear twin", **one,
+                             "comment": "+inf where only the pendulum's floor slides; nan where neither does"})
+    ds.attrs.update({"pendulum_pi3": pend["pi3"], "pendulum_pi9": pend["pi9"]})
     ds.coords["pi16"] = ((), section["pi16"], pi_attrs("pi16"))
     for g, v in _contents(settings).items():
         ds.coords[g] = ((), v, pi_attrs(g))
@@ -700,4 +737,36 @@ def findings(ds: xr.Dataset, ds5: xr.Dataset | None = None) -> list:
                     f"{float(ds5['pi5'].max()):g} (Stribeck friction, Π₆ = {float(ds5['pi6']):g}). The largest spread "
                     f"between the Π₅ curves over the largest Π₁ of those curves (similarity holds at most "
                     f"{tol5:g}), with Π₁₅ = {float(ds5['pi15']):g}: " + "; ".join(lines) + "."))
+    if "pi1_pendulum" in ds:
+        prows = pendulum_summary(ds)
+        lines = [f"Π₁₅ = {r['pi15']:g}, Π₁₄ = {r['pi14']:g}: peak {_x(r['peak_ratio'])}, median "
+                 + (f"{r['median']:.2f}×" if np.isfinite(r["median"]) else "n/a")
+                 + (f", {r['only_pendulum']} Π₂ slide on the pendulum only" if r["only_pendulum"] else "")
+                 for r in prows]
+        out.append(("Friction pendulum against a linear isolator in the plane",
+                    f"Π₁ on a friction pendulum (Π₉ = μ_b g/a_p = {float(ds.attrs['pendulum_pi9']):g}, true stick, its "
+                    f"circular friction and the contents' coupled in the plane) over Π₁ on a linear isolator of the same "
+                    f"period (Π₃ = {float(ds.attrs['pendulum_pi3']):g}), both components acting, no vertical motion "
+                    "(peak of the pendulum's master curve over the linear one's, and the median pointwise ratio over "
+                    "the Π₂ where both slide): " + "; ".join(lines) + "."))
     return out
+
+
+def pendulum_summary(ds: xr.Dataset) -> list:
+    """Friction pendulum against its linear twin, per ``pi15, pi14``: peak and median ratios of ``Pi1``.
+
+    Rows with ``peak_ratio`` (the pendulum curve's largest ``Pi1`` over the linear one's), ``median``
+    (pointwise ratio over the ``Pi2`` where both slide) and ``only_pendulum`` (``Pi2`` where only the
+    pendulum's floor slides).
+    """
+    rows = []
+    for pi15 in ds["pi15"].values:
+        for pi14 in ds["pi14"].values:
+            a = ds["pi1_pendulum"].sel(pi15=pi15, pi14=pi14).values
+            b = ds["pi1_pendulum_linear"].sel(pi15=pi15, pi14=pi14).values
+            both = (a > 0.0) & (b > 0.0)
+            rows.append({"pi15": float(pi15), "pi14": float(pi14),
+                         "peak_ratio": float(a.max() / b.max()) if b.max() > 0.0 else math.inf,
+                         "median": float(np.median(a[both] / b[both])) if both.any() else math.nan,
+                         "only_pendulum": int(np.sum((a > 0.0) & (b == 0.0)))})
+    return rows
