@@ -48,7 +48,8 @@ from ..records import G
 from ..scene import FLOORS, Scene
 from .. import solver
 
-__all__ = ["BASES", "FIT_STATUS", "Study", "analysis_table", "base_of", "check_settings", "chunk_indices",
+__all__ = ["BASES", "FIT_STATUS", "Study", "analysis_table", "base_of", "check_building", "check_settings",
+           "chunk_indices",
            "dataset_name", "dataset_names", "fit_curves", "fragility_dataset", "fragility_settings", "merge_chunks",
            "n_chunks", "scatter_contributions", "solve_all", "solve_analyses", "solve_chunk", "scaled_pulse"]
 
@@ -84,8 +85,13 @@ def dataset_names(settings: dict) -> list:
 
 
 def fragility_settings(config: dict) -> dict:
-    """The sections of a complete configuration the study reads: ``fragility`` and ``solver`` (copies)."""
-    return {"fragility": copy.deepcopy(config["fragility"]), "solver": copy.deepcopy(config["solver"])}
+    """The sections of a complete configuration the study reads: ``fragility`` and ``solver`` (copies).
+
+    ``fragility.planar`` is left out: the planar analyses
+    (:mod:`isoslide.studies.fragility_planar`) read it, and changing it changes nothing here.
+    """
+    f = {k: copy.deepcopy(v) for k, v in config["fragility"].items() if k != "planar"}
+    return {"fragility": f, "solver": copy.deepcopy(config["solver"])}
 
 
 @dataclass(frozen=True)
@@ -142,20 +148,19 @@ def _increasing(key: str, values) -> np.ndarray:
     return arr
 
 
-def check_settings(settings: dict) -> Study:
-    """Check the ``fragility`` section (schema-completed) and draw the friction table.
+def check_building(f: dict) -> None:
+    """Check ``fragility.building`` and ``fragility.contents`` (schema-completed).
 
     Parameters
     ----------
-    settings : dict
-        :func:`fragility_settings` of a complete configuration.
+    f : dict
+        The ``fragility`` section.
 
     Raises
     ------
     ValueError
-        Naming the key, its value and what is allowed (records that cannot be read included).
+        Naming the key, its value and the allowed range.
     """
-    f = settings["fragility"]
     b, c = f["building"], f["contents"]
     for key, value, lo, hi in (("building.T_b", b["T_b"], 0.0, 100.0), ("building.xi_b", b["xi_b"], 0.0, 1000.0),
                                ("building.M_b", b["M_b"], 0.0, math.inf), ("contents.mass", c["mass"], 0.0, math.inf),
@@ -180,6 +185,24 @@ def check_settings(settings: dict) -> Study:
     if c["mass"] / b["M_b"] > 1000.0:
         raise ValueError(f"fragility.contents.mass = {c['mass']!r} is out of range; allowed range: "
                          f"mass / building.M_b <= 1000 (Pi8)")
+
+
+def check_settings(settings: dict) -> Study:
+    """Check the ``fragility`` section (schema-completed) and draw the friction table.
+
+    Parameters
+    ----------
+    settings : dict
+        :func:`fragility_settings` of a complete configuration.
+
+    Raises
+    ------
+    ValueError
+        Naming the key, its value and what is allowed (records that cannot be read included).
+    """
+    f = settings["fragility"]
+    b, c = f["building"], f["contents"]
+    check_building(f)
     im = f["stripes"]["im"]
     if im not in ("pga", "pgv"):
         raise ValueError(f"fragility.stripes.im = {im!r} is invalid; allowed: 'pga', 'pgv'")
