@@ -9,6 +9,7 @@ import sys
 
 from snakemake.exceptions import WorkflowError
 
+import isoslide.studies.fragility_planar as fragility_planar
 import isoslide.studies.fragility_study as fragility_study
 import isoslide.studies.isolation_study as isolation_study
 import isoslide.studies.similarity as similarity
@@ -65,6 +66,19 @@ FRAGILITY_RECORD_FILES = [r for r in FRAGILITY_SETTINGS["fragility"]["records"]
 FRAGILITY_FIGURE_FILES = expand("reports/figures/fragility.{ext}", ext=FORMATS)
 FRAGILITY_FIGURE_INPUT = {"isolated": "results/datasets/fragility.nc"} | (
     {"fixed_base": "results/datasets/fragility_fixed_base.nc"} if len(FRAGILITY_DATASETS) > 1 else {})
+
+# The planar fragility analyses (`fragility.planar`, isoslide.studies.fragility_planar): recorded
+# pairs of suites, checked here (the suites are read), so a bad value stops the workflow before any job.
+PLANAR_FRAGILITY_SETTINGS = sweep.jsonable(fragility_planar.planar_settings(config))
+PLANAR_FRAGILITY_DATASETS = fragility_planar.dataset_names(PLANAR_FRAGILITY_SETTINGS)
+try:
+    PLANAR_FRAGILITY_STUDY = (fragility_planar.check_settings(PLANAR_FRAGILITY_SETTINGS)
+                              if PLANAR_FRAGILITY_DATASETS else None)
+except ValueError as err:
+    raise WorkflowError(f"Invalid configuration: {err}")
+# a suite given as a manifest (.csv) is an input file; built-in suites are read from installed packages
+PLANAR_FRAGILITY_SUITE_FILES = [s for s in PLANAR_FRAGILITY_SETTINGS["fragility"]["planar"]["suites"]
+                                if os.path.splitext(s)[1].lower() == ".csv" and os.path.isfile(s)]
 
 # Buildings as engineers isolate them (workflow/rules/isolation.smk).
 ISOLATION_SETTINGS = sweep.jsonable(isolation_study.isolation_settings(config))
@@ -125,6 +139,14 @@ def fragility_chunk_files(wildcards):
     if n == 1:
         return []
     return expand("results/chunks/{frag}/{chunk}.nc", frag=wildcards.frag, chunk=range(n))
+
+
+def planar_fragility_chunk_files(wildcards):
+    """Chunk files of a planar fragility dataset; none for one chunk (its dataset job solves it)."""
+    n = fragility_planar.n_chunks(PLANAR_FRAGILITY_STUDY)
+    if n == 1:
+        return []
+    return expand("results/chunks/{pfrag}/{chunk}.nc", pfrag=wildcards.pfrag, chunk=range(n))
 
 
 def figure_datasets(wildcards):

@@ -4,6 +4,9 @@
 # `building.fixed_base`, results/datasets/fragility_fixed_base.nc (the same contents on a fixed
 # base); a dataset of one chunk is solved by its fragility_dataset job (one job instead of two).
 # Then the pelicun damage-model CSV, the figure and reports/fragility.html (rule report).
+# In the plane (`fragility.planar`, isoslide.studies.fragility_planar): the same fan-out for
+# results/datasets/fragility_planar.nc (and fragility_planar_fixed_base.nc), each analysis one
+# planar and two 1-D solves, read by reports/fragility.html.
 
 
 rule fragility_chunk:
@@ -93,3 +96,52 @@ rule fragility_figure:
         "../envs/isoslide.yaml"
     script:
         "../scripts/fragility_figure.py"
+
+
+rule fragility_planar_chunk:
+    input:
+        PLANAR_FRAGILITY_SUITE_FILES,
+    output:
+        "results/chunks/{pfrag}/{chunk}.nc",
+    params:
+        code=CODE["fragility_planar"],
+        settings=PLANAR_FRAGILITY_SETTINGS,
+    wildcard_constraints:
+        pfrag="|".join(PLANAR_FRAGILITY_DATASETS) or "no_planar_dataset",
+    log:
+        "logs/fragility_planar_chunk/{pfrag}/{chunk}.log",
+    benchmark:
+        "results/benchmarks/fragility_planar_chunk/{pfrag}/{chunk}.tsv"
+    threads: 1
+    resources:
+        mem_mb=800,  # measured: see docs/guide/fragility.rst (about 75 ms per analysis on one core)
+        runtime=30,  # minutes; a chunk of 100 analyses (the default chunk_size) takes about 8 s
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/fragility_planar_chunk.py"
+
+
+rule fragility_planar_dataset:
+    input:
+        suites=PLANAR_FRAGILITY_SUITE_FILES,
+        chunks=planar_fragility_chunk_files,
+    output:
+        "results/datasets/{pfrag}.nc",
+    params:
+        code=CODE["fragility_planar"],
+        settings=PLANAR_FRAGILITY_SETTINGS,
+    wildcard_constraints:
+        pfrag="|".join(PLANAR_FRAGILITY_DATASETS) or "no_planar_dataset",
+    log:
+        "logs/fragility_planar_dataset/{pfrag}.log",
+    benchmark:
+        "results/benchmarks/fragility_planar_dataset/{pfrag}.tsv"
+    threads: 1
+    resources:
+        mem_mb=1000,  # measured: see docs/guide/fragility.rst
+        runtime=30,  # minutes; default config: one chunk solved here, about 8 s, and the fits about 5 s
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/fragility_planar_dataset.py"

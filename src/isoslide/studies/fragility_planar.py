@@ -73,7 +73,7 @@ from ..scene import FLOORS, Scene
 from .. import solver
 
 __all__ = ["BASES", "IM_UNITS", "MOTIONS", "PLANAR_IMS", "PlanarStudy", "analysis_table", "base_of",
-           "check_settings", "chunk_indices", "dataset_name", "dataset_names", "fit_curves", "n_chunks",
+           "check_settings", "chunk_indices", "dataset_name", "dataset_names", "fit_curves", "merge_chunks", "n_chunks",
            "pair_intensities", "planar_dataset", "planar_settings", "solve_all", "solve_analyses", "solve_chunk"]
 
 BASES = ("isolated", "fixed_base")

@@ -30,7 +30,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
-from . import fragility_study, isolation_study
+from . import fragility_planar, fragility_study, isolation_study
 from .imports import closure, module_names
 
 DATASET_DIR = "results/datasets"
@@ -153,14 +153,24 @@ def _paper_datasets(config: Mapping) -> list[str]:
     return _paper_studies(config) + ["similarity"]
 
 
-def _fragility_datasets(config: Mapping) -> list[str]:
+def _fragility_1d_datasets(config: Mapping) -> list[str]:
     return fragility_study.dataset_names(fragility_study.fragility_settings(config))
 
 
+def _fragility_planar_datasets(config: Mapping) -> list[str]:
+    return fragility_planar.dataset_names(fragility_planar.planar_settings(config))
+
+
+def _fragility_datasets(config: Mapping) -> list[str]:
+    return _fragility_1d_datasets(config) + _fragility_planar_datasets(config)
+
+
 def _fragility_parameters(config: Mapping) -> dict:
-    # the fixed-base comparison when the configuration asks for it ("" otherwise)
-    names = _fragility_datasets(config)
-    return {"fixed_base_path": dataset_path(names[1]) if len(names) > 1 else ""}
+    # the fixed-base comparison and the planar datasets when the configuration asks for them ("" otherwise)
+    names, planar = _fragility_1d_datasets(config), _fragility_planar_datasets(config)
+    return {"fixed_base_path": dataset_path(names[1]) if len(names) > 1 else "",
+            "planar_path": dataset_path(planar[0]) if planar else "",
+            "planar_fixed_base_path": dataset_path(planar[1]) if len(planar) > 1 else ""}
 
 
 def _fragility_needs(config: Mapping) -> list[str]:
@@ -250,10 +260,13 @@ STUDIES: tuple[Study, ...] = (
             "fragility": ("budget", "datasets", "studies.fragility_study", "store.provenance", "solver"),
             "fragility_plot": ("budget", "datasets", "reports.fragility_plot", "store.provenance"),
             "pelicun": ("budget", "datasets", "studies.pelicun_export", "store.provenance"),
+            # fragility_planar_chunk, fragility_planar_dataset
+            "fragility_planar": ("budget", "datasets", "store.provenance", "solver", "studies.fragility_planar"),
         },
         rule_files=("fragility.smk",),
         groups={"fragility_chunk": "solve", "fragility_dataset": "merge", "fragility_figure": "figures",
-                "fragility_pelicun": "figures"},
+                "fragility_pelicun": "figures", "fragility_planar_chunk": "solve",
+                "fragility_planar_dataset": "merge"},
     ),
     Study(
         name="isolation",
