@@ -66,7 +66,8 @@ def test_the_table_has_one_component_per_floor_im_in_pelicun_units():
         assert pfa[f"LS{k + 1}-Theta_1"] == BETA[k, 2]
         assert pfv[f"LS{k + 1}-Theta_0"] == THETA[k, 3]
         assert pfv[f"LS{k + 1}-Theta_1"] == BETA[k, 3]
-    assert (pfa["Incomplete"], pfa["Demand-Offset"], pfa["Demand-Directional"]) == (0, 0, 1)
+    assert (pfa["Incomplete"], pfa["Demand-Offset"], pfa["Demand-Directional"]) == (0, 0, 0)
+    assert pfv["Demand-Directional"] == 0
 
 
 def test_limit_states_are_numbered_in_increasing_displacement_whatever_the_input_order():
@@ -90,17 +91,23 @@ def test_written_csv_is_byte_stable_and_reads_back_to_the_same_numbers(tmp_path)
     assert meta["isoslide.PFV"]["LimitStates"]["LS3"]["DS3"]["Description"] == "Peak sliding displacement above 0.3 m"
 
 
-def _pelicun_exceedance(db_path, x_pfa, x_pfv, per_level):
-    """P(DS >= k) at each demand level from pelicun's damage sample (demands given in m/s^2 and m/s)."""
-    asmnt = assessment.Assessment({"PrintLog": False, "Seed": 7})
-    cols = pd.MultiIndex.from_tuples([("PFA", "0", "1"), ("PFV", "0", "1")])
-    values = np.column_stack([np.repeat(x_pfa, per_level), np.repeat(x_pfv, per_level)])
-    units = pd.DataFrame([["mps2", "mps"]], columns=cols, index=["Units"])
+def _pelicun_exceedance(db_path, x_pfa, x_pfv, per_level, *, other=0.5, multiplier=1.0, direction="0"):
+    """P(DS >= k) at each demand level from pelicun's damage sample (demands given in m/s^2 and m/s).
+
+    The floor demands are given in two directions, ``x`` in direction 1 and ``other * x`` in
+    direction 2; the components are assigned with ``direction`` and pelicun's non-directional
+    multiplier is ``multiplier``.
+    """
+    asmnt = assessment.Assessment({"PrintLog": False, "Seed": 7, "NonDirectionalMultipliers": {"ALL": multiplier}})
+    cols = pd.MultiIndex.from_tuples([("PFA", "0", "1"), ("PFA", "0", "2"), ("PFV", "0", "1"), ("PFV", "0", "2")])
+    a, v = np.repeat(x_pfa, per_level), np.repeat(x_pfv, per_level)
+    values = np.column_stack([a, other * a, v, other * v])
+    units = pd.DataFrame([["mps2", "mps2", "mps", "mps"]], columns=cols, index=["Units"])
     asmnt.demand.load_sample(pd.concat([units, pd.DataFrame(values, columns=cols).astype(object)]))
     asmnt.stories = 1
     ids = list(COMPONENT_IDS.values())
     asmnt.asset.load_cmp_model({"marginals": pd.DataFrame(
-        {"Units": "ea", "Location": "1", "Direction": "1", "Theta_0": 1}, index=ids)})
+        {"Units": "ea", "Location": "1", "Direction": direction, "Theta_0": 1}, index=ids)})
     asmnt.asset.generate_cmp_sample()
     db = file_io.load_data(str(db_path), reindex=False, unit_conversion_factors=asmnt.unit_conversion_factors)
     asmnt.damage.load_model_parameters([db], set(asmnt.asset.list_unique_component_ids()))
@@ -202,3 +209,28 @@ def test_component_ids_can_be_renamed_and_incomplete_must_be_known():
     assert list(table.index) == ["isoslide.PFA", "lab.shelf.PFV"]
     with pytest.raises(ValueError, match=r"^incomplete = 'skip' is invalid; allowed: 'raise', 'flag'"):
         damage_db(*_curves(), incomplete="skip")
+
+
+@pytest.mark.parametrize("other, multiplier, direction", [(1.6, 1.2, "0"), (0.5, 1.2, "1"), (1.25, 1.0, "2")])
+def test_pelicun_reads_the_contents_as_non_directional(tmp_path, other, multiplier, direction):
+    """Demand-Directional 0: pelicun feeds each curve the larger of the two floor directions times its
+    non-directional multiplier (1.2 by default), whatever direction the component was assigned, so
+    P(DS >= k) is the fitted curve at multiplier * max(x, other * x)."""
+    theta, beta = _curves()
+    path = write_damage_db(tmp_path / "db.csv", theta, beta)
+    x_pfa = np.array([1.5, 3.0, 5.0])
+    x_pfv = np.array([0.2, 0.4, 0.7])
+    per_level = 3000
+    got = _pelicun_exceedance(path, x_pfa, x_pfv, per_level, other=other, multiplier=multiplier,
+                              direction=direction)
+    for im, x in (("pfa", x_pfa), ("pfv", x_pfv)):
+        b = IMS.index(im)
+        demand = multiplier * np.maximum(x, other * x)
+        want = np.stack([probability(demand, THETA[k, b], BETA[k, b]) for k in range(3)], axis=1)
+        want = np.maximum.accumulate(want[:, ::-1], axis=1)[:, ::-1]
+        sd = np.sqrt(want * (1 - want) / per_level)
+        assert np.all(np.abs(got[im] - want) <= 4 * sd + 1e-12), (im, got[im], want)
+        # and not the curve at the direction-1 demand alone, where the two differ
+        alone = probability(x, THETA[0, b], BETA[0, b])
+        differs = np.abs(want[:, 0] - alone) > 8 * np.sqrt(alone * (1 - alone) / per_level) + 0.02
+        assert np.all(np.abs(got[im][differs, 0] - alone[differs]) > 4 * sd[differs, 0])

@@ -20,9 +20,15 @@ The ground IMs (pga, pgv) are not exported: pelicun places contents on floors.
 
 How pelicun uses the table (pelicun 3.10, checked by ``tests/test_pelicun_export.py``):
 
-* ``Demand-Directional`` is 1: the curves were fitted on the demand along the one direction the
-  contents slide in; pelicun applies its non-directional multiplier (1.2 by default) only to
-  components marked 0.
+* ``Demand-Directional`` is 0: sliding contents are non-directional components (they slide in
+  whatever direction the floor drives them; the curves were fitted on the peak floor motion along
+  the line the contents slide on, the peak in any direction of that motion).  Assign them with
+  direction ``"0"`` in the component marginals (``Direction: 0``, as FEMA P-58 assigns its
+  non-directional components): pelicun then reads the demand of such a component as the largest
+  of the directions given at its floor (``PFA-<loc>-1``, ``PFA-<loc>-2``) times the
+  non-directional multiplier (``NonDirectionalMultipliers``, 1.2 by default for ``ALL``: the
+  FEMA P-58 estimate of the peak in any direction from two orthogonal peaks), whatever direction
+  the component was assigned.
 * ``Demand-Offset`` is 0: with pelicun's default global offset of -1 for PFA and PFV, a component
   placed at story ``L`` reads the floor demand at location ``L - 1``, the slab it stands on (as the
   floor-mounted contents of FEMA P-58).
@@ -50,7 +56,7 @@ import xarray as xr
 
 from ..atomic import atomic_path
 
-__all__ = ["COMPONENT_IDS", "DEMANDS", "G_PELICUN", "damage_db", "write_damage_db"]
+__all__ = ["COMPONENT_IDS", "DEMANDS", "DIRECTIONAL", "G_PELICUN", "damage_db", "write_damage_db"]
 
 G_PELICUN = 9.80665
 """pelicun's ``g``, m/s^2 (``pelicun/settings/default_units.json``): the median in g is the fitted one over it."""
@@ -61,6 +67,9 @@ COMPONENT_IDS = {"pfa": "isoslide.PFA", "pfv": "isoslide.PFV"}
 DEMANDS = {"pfa": ("Peak Floor Acceleration", "g", G_PELICUN),
            "pfv": ("Peak Floor Velocity", "mps", 1.0)}
 """Floor IM -> (pelicun Demand-Type, Demand-Unit, size of that unit in the fitted IM unit, m/s^2 or m/s)."""
+
+DIRECTIONAL = 0
+"""``Demand-Directional`` of every component: 0, non-directional (sliding contents slide in any direction)."""
 
 KNOWN_IMS = ("pga", "pgv", "pfa", "pfv")
 HEAD = ["ID", "Incomplete", "Demand-Type", "Demand-Unit", "Demand-Offset", "Demand-Directional"]
@@ -170,7 +179,7 @@ def damage_db(theta: xr.DataArray, beta: xr.DataArray, *, component_ids: dict | 
                 f"limit_state={limits[b]:g} m: medians do not increase with the limit state; allowed: "
                 f"increasing medians (pelicun's sequential limit states). Not reordered: refit with more "
                 f"analyses or merge the limit states")
-        row = [int(missing.any()), demand_type, unit, 0, 1]
+        row = [int(missing.any()), demand_type, unit, 0, DIRECTIONAL]
         for k in range(limits.size):
             if missing[k]:
                 row += ["", math.nan, math.nan, ""]
@@ -212,6 +221,8 @@ def _json_text(table: pd.DataFrame, description: str) -> str:
             "Comments": "Lognormal curves fitted by maximum likelihood (Baker 2015) to exact sliding "
                         "analyses (isoslide); limit state k: peak sliding displacement above the k-th limit",
             "SuggestedComponentBlockSize": "1 EA",
+            "Directional": "non-directional: assign with direction 0; pelicun reads the largest floor demand "
+                           "of the directions times its non-directional multiplier",
             "RoundUpToIntegerQuantity": "True",
             "LimitStates": {f"LS{k + 1}": {f"DS{k + 1}": {"Description": f"Peak sliding displacement above {lim:g} m"}}
                             for k, lim in enumerate(limits)},
