@@ -260,6 +260,33 @@ def test_a_friction_pendulum_along_a_line_gives_the_one_dimensional_reference(kw
     assert abs(_angle_difference(res.peak_angle, angle + 0.6)) < 1e-7
 
 
+@pytest.mark.parametrize("kw, chosen", [
+    (dict(pi2=0.055, pi3=2.9, pi4=0.05, pi9=0.17, pi8=0.3, pulse="makris_b"), ((0, 0), (1, 1))),
+    (dict(pi2=0.035, pi3=2.85, pi4=0.0, pi9=0.25, pi8=1.0, pulse="antisymmetric_ricker"), ((0, 0), (1, 0))),
+], ids=["both start", "the contents start, the bearing held"])
+def test_the_modes_at_rest_are_chosen_together(monkeypatch, kw, chosen):
+    """Scenes where both interfaces are at rest and the first consistent joint mode has the contents
+    sliding (a pulse that starts with a jump: both start at once; a bearing that stops while the
+    contents are stuck on the slab: they slide off on the held slab): along a line, 0.6 rad from x,
+    Pi1 equals the 1-D reference peer's within 1e-7 relative."""
+    import isoslide.peers.reference_planar as peer
+
+    seen = []
+    choose = peer._Planar.choose
+
+    def recording(self, *args):
+        out = choose(self, *args)
+        seen.append((tuple(args[3]), tuple(out)))
+        return out
+
+    monkeypatch.setattr(peer._Planar, "choose", recording)
+    pi1, _, angle, slid = _one_dimensional_peak(Scene(**kw))
+    res = solve_reference_planar(Scene(**kw, angle=0.6))
+    assert chosen in seen and slid
+    assert res.pi1 == pytest.approx(pi1, rel=1e-7)
+    assert abs(_angle_difference(res.peak_angle, angle + 0.6)) < 1e-7
+
+
 @pytest.mark.parametrize("kw", [dict(FRICTION_PENDULUM, pi8=0.3),
                                 dict(FRICTION_PENDULUM, pi2=0.15, pi3=3.0, pi4=0.0, pi9=0.05, pi8=0.1, **FLEXIBLE_ROOF),
                                 dict(FRICTION_PENDULUM, pi2=0.12, pi3=2.5, pi9=0.06, pi5=0.7, pi6=20.0, **VERTICAL)],

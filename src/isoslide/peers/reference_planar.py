@@ -1,13 +1,15 @@
 """Independent event-driven reference solver of contents sliding in the plane of the floor.
 
 The planar sibling of :mod:`isoslide.peers.reference_building`: the same buildings (fixed base, or
-a linear isolator under a rigid superstructure or a flexible shear building of ``N`` storeys),
+a linear isolator or a sliding bearing under a rigid superstructure or a flexible shear building of
+``N`` storeys),
 moved by two horizontal ground components and optionally a vertical one, carry contents that
 slide in any direction on their floor.  The right-hand side is plain Python + NumPy, integrated
 segment by segment with :func:`scipy.integrate.solve_ivp` (``DOP853``, and ``Radau`` for slow
 slips, see below) and every transition located with ``solve_ivp``'s events; nothing comes from the
-compiled kernel (:mod:`isoslide.engine`), so the two can check each other.  Hysteretic isolators
-(``Pi9 > 0``) are not modelled (refused).
+compiled kernel (:mod:`isoslide.engine`), so the two can check each other.  The sliding bearing
+(friction pendulum, ``Pi9 > 0`` with ``Pi10 = 0``) is a second friction interface in the plane,
+with true stick; the bilinear bearing (``Pi10 > 0``) is not modelled (refused).
 
 Model (dimensionless: ``tau = t/T_p``, lengths ``a_p T_p**2``, accelerations ``a_p``, masses ``M_b``)
 ---------------------------------------------------------------------------------------------------
@@ -17,7 +19,8 @@ Ground.  ``g(tau) = (g_x, g_y)`` in the building's axes: the excitation
 ``nz(tau) = 1 + Pi17 p_z(tau)`` (1 without a ``pulse_z``; ``p_z`` on the main pulse's time axis).
 
 Building, the same in ``x`` and in ``y`` (isotropic) and the two axes coupled only through the
-contents' friction force.  Coordinates ``d`` relative to the ground, one per moving mass:
+friction forces (the contents', the sliding bearing's).  Coordinates ``d`` relative to the ground,
+one per moving mass:
 
 * fixed base (``Pi3 = 0``), rigid superstructure or contents on the slab: none; the contents'
   floor moves with the ground (``A_F = g``) and their force does not act back;
@@ -29,7 +32,10 @@ contents' friction force.  Coordinates ``d`` relative to the ground, one per mov
   ``kd = (2 pi/Pi3)**2``, damping ``cb = 2 Pi4 (2 pi/Pi3)``;
 * linear isolator, flexible superstructure: the slab ``d_0 = x`` (mass ``1 - Pi11``) and the
   floors ``d_j = x + xs_j`` (masses ``m_j``), ``K = kd e_0 e_0^T + T^T Ks T`` and
-  ``C = cb e_0 e_0^T + T^T Cs T`` with ``xs = T d`` (``T = [-1 | I]``).
+  ``C = cb e_0 e_0^T + T^T Cs T`` with ``xs = T d`` (``T = [-1 | I]``);
+* sliding bearing (friction pendulum), rigid or flexible superstructure: the coordinates of the
+  linear isolator, the slab's row carrying the bearing's friction (below); on a fixed base
+  (``Pi3 = 0``) the bearing has no effect.
 
 With ``M`` the diagonal mass matrix and ``e_k`` the contents' floor, every axis obeys::
 
@@ -52,6 +58,51 @@ relative to their floor, friction level ``phi(s) = thr sech(Pi6 s) + Pi2 (1 - se
   ``|w|' = (M_kk + m)/M_kk (|A_S| - thr nz) > 0`` on a moving floor, ``|g| - thr nz`` on one that
   moves with the ground);
 * ``Pi1 = max |u|``, ``peak_angle = atan2(u_y, u_x)`` there, ``tau_peak`` its time.
+
+Sliding bearing (friction pendulum), ``q = Pi9``, under the slab of mass ``mb`` (``1 - Pi11``
+under a flexible superstructure, else 1; ``Ms_0`` is ``mb + m`` with the contents stuck on the
+slab, else ``mb``), the slab's displacement ``x = d_0`` and velocity ``x'`` relative to the ground.
+Its force on the slab is ``-(kd nz x + cb x' + fb)``: the pendulum's restoring force ``W x/R``
+scales with the normal force, so the slab's ``kd x`` in ``K d`` becomes ``kd nz x``, and ``fb`` is
+its friction:
+
+* held (``x' = 0``, ``x'' = 0``: the slab moves with the ground, ``d_0`` stays): the force the
+  bearing must supply, ``f_need = -Ms_0 g - kd nz x + S + R_0``, is within ``|f_need| <= q nz``;
+  ``S`` is the storeys' force on the slab (``S - kd nz x`` is row 0 of ``-(K d + C d')`` with
+  ``x' = 0``) and ``R_0`` the sliding contents' friction force when they are on the slab (0 on a
+  floor above; stuck on the slab their ``-m g`` is the ``m`` of ``Ms_0``).  The floors above move
+  on their rows of the equation of motion with ``d_0`` fixed, and the contents on the slab move
+  with the ground (``A_S = g``);
+* sliding: ``fb = q nz n_b``, ``n_b = x'/|x'|``; the slab's row is the linear isolator's with
+  ``-fb`` added, ``Ms_0 (g + x'') = -kd nz x - cb x' - fb + S + R_0`` (stuck on the slab the
+  contents see ``A_S = (-kd nz x - cb x' - fb + S)/(mb + m)``);
+* breakaway where ``|f_need|`` reaches ``q nz``: the slab slides from rest along
+  ``f_need/|f_need|`` (force-continuous: the friction ``-f_need`` held becomes ``q nz`` along the
+  same line, and the contents keep their mode); a slab whose ``|x'|`` returns to zero stops, and the
+  modes of the interfaces at rest are chosen (below).
+
+Joint modes
+-----------
+When one interface stops the force on the other jumps (the contents' ``-m A_S`` stuck against
+``m nz phi n`` sliding; a held slab's acceleration ``g`` against a sliding one's), so the modes of
+the interfaces at rest (stuck contents, a held bearing; after a stop, at every segment start) are
+chosen together: (both stuck), (contents stuck, bearing slides), (contents slide, bearing held),
+(both slide) are tried in that order and the first consistent one is taken (an interface that is
+moving keeps its mode).  A stuck interface is consistent when its need is within its limit:
+``|A_S| <= thr nz``, ``A_S`` the contents' floor's acceleration were they stuck computed with the
+bearing in its candidate mode (``g`` on a held slab), and ``|f_need| <= q nz`` with the contents
+in their candidate mode.  A starting interface is consistent when its speed grows from zero along
+its starting direction: the contents' along ``-A_S/|A_S|`` (with the bearing in its candidate
+mode, the sliding slab's ``-fb`` in ``A_S``), the bearing's along ``f_need/|f_need|`` (with the
+contents in their candidate mode, sliding from rest at ``phi(0) = thr`` along their starting
+direction).  Both starting on the slab, the two directions depend on each other:
+``n_b = (f_0 + m nz phi n_c)/|.|`` and ``n_c = -(F_0 - q nz n_b)/|.|`` (``F_0`` row 0 of
+``-(K d + C d')`` with ``x' = 0`` and ``kd nz``, ``f_0 = F_0 - mb g``), taken as their fixed point
+by iteration (a contraction by about ``m/(mb + m)`` where both starts are consistent).  These
+tests are the speeds' rates at zero speed, ``r' = (M_kk + m)/M_kk (|A_S| - thr nz)`` (``|g| -
+thr nz`` on a floor that moves with the ground) and ``r_b' = (|f_need| - q nz)/Ms_0``, so a stuck candidate and a starting one of the same interface
+exclude each other.  Under a one-dimensional excitation every direction keeps the excitation's
+line and the choice is the 1-D reference's (:mod:`~.reference_building`).
 
 Slips
 -----
@@ -106,13 +157,24 @@ at its start) and uses the friction direction ``n = sgn(w . e) w/|w|``, which is
   the stop time, ``u`` and the building's state are exact to the integration tolerances.
 
 Only these changes of segment interrupt a slip; they change nothing in the state but the way
-``w`` is held (``w = r n`` between slaved and sliding).  At a stop ``w = 0`` and the block sticks
-if ``|A_S| <= thr nz``, else it starts again along ``-A_S/|A_S|``.
+``w`` is held (``w = r n`` between slaved and sliding).  At a stop ``w = 0`` and the modes of the
+interfaces at rest are chosen (Joint modes): alone, the block sticks if ``|A_S| <= thr nz``, else
+it starts again along ``-A_S/|A_S|``.
+
+The sliding bearing's slips run the same three kinds of segment, by the slab's speed
+``r_b = |x'|``: slaved below ``SLOW_SPEED`` (the speed ``r_b`` a state, held in ``x'_x``, and
+``x' = r_b n_b``) along ``n_b = f_S/|f_S|``, ``f_S`` the need ``f_need`` evaluated with ``x' = 0``
+(the slab's damping ``-C_00 r_b n_b`` lies along ``n_b`` and does not turn it; the other rows get
+``-C_j0 r_b n_b``), so ``r_b' = (|f_S| - C_00 r_b - q nz)/Ms_0``; the exact equations with Radau
+below ``STIFF_SPEED q`` (until ``2 STIFF_SPEED q``) and DOP853 above, with the reference direction
+``e_b`` and the events *turn*, *slow*, *gear* and *stop* of ``x'``.  A segment runs with Radau when
+either sliding interface is in its stiff band.  A slaved slip of both interfaces at once (both
+from rest, the contents on the slab) takes the joint directions above at every evaluation.
 
 Inside a slip ``|u|`` peaks where ``(|u|**2)'/2 = u . w`` goes from positive to negative (a
 non-terminal event); ``|u|`` is also taken at every stop and at the end of every segment, so the
-maximum over time is exact.  A stuck block breaks away at the root of ``thr nz - |A_F|``
-(terminal).  Segments also end at every breakpoint of the three pulses (each pulse's start and
+maximum over time is exact.  A stuck block breaks away at the root of ``thr nz - |A_S|``
+and a held bearing at the root of ``q nz - |f_need|`` (terminal).  Segments also end at every breakpoint of the three pulses (each pulse's start and
 ``breakpoint_array``, mapped to ``tau`` for the second component: ``Pi16 + Pi15 b``); inside a
 segment each pulse is evaluated on the segment's side of its breakpoints, so jumps are taken
 one-sidedly.
@@ -129,7 +191,14 @@ projections ``D d`` of the two axes' coordinates obey it), so the energy of the 
 ``|A_F| = max_d A_F . d <= sqrt(lambda_max(Q) c^T P^-1 c)`` (``P = diag(K, Ms)``,
 Cauchy-Schwarz), with ``Q`` taken now.  Settlement is the first moment this bound is at most
 ``thr`` (checked at every segment start and as a terminal event of the free segments); it only
-decides where the run stops, never ``Pi1``.  A fixed base with the contents on the ground-fixed
+decides where the run stops, never ``Pi1``.  With a sliding bearing the response is free when the
+contents are stuck and the bearing held (a sliding slab never settles): then the slab stays at
+``x`` and only the floors above it move, ``xs = d_j - x``, with the non-increasing ``Q`` of
+``(xs, xs')`` over ``Ks`` and the floors' masses; ``|f_need| <= kd |x| + sqrt(lambda_max(Q)
+c_b^T P^-1 c_b)`` with ``c_b`` the storeys' forces on the slab (``S``) and ``P = diag(Ks, Ms)``
+(``|f_need| = kd |x|`` for ever under a rigid superstructure), and the contents' bound on a floor
+above as before (on the held slab they move with the motionless ground); settlement is the first
+moment both bounds are within their limits.  A fixed base with the contents on the ground-fixed
 floor settles as soon as the block sticks after ``tau_end``.  A run that has not settled by
 ``tau_end + horizon max(1, Pi3, Pi12)`` ends there with ``settled = False``.
 """
@@ -190,6 +259,12 @@ class PlanarBuilding:
     pi2, pi6, pi7 : float
         Kinetic level (units ``a_p``), Stribeck sharpness (units ``1/(a_p T_p)``) and viscous
         group (units ``1/T_p``) of the friction law.
+    q : float
+        Strength ``Pi9`` of a sliding bearing under the slab (units ``M_b a_p``, times ``nz``);
+        0 without one (a linear isolator or a fixed base).
+    kd : float
+        The pendulum's stiffness ``(2 pi/Pi3)**2`` with a sliding bearing (units
+        ``M_b / T_p**2``, times ``nz``; also in ``K[0, 0]``), else 0.
     """
 
     masses: np.ndarray
@@ -239,12 +314,13 @@ class PlanarBuilding:
 
 
 def planar_building(scene: Scene) -> PlanarBuilding:
-    """The building of a scene (module docstring); refuses a hysteretic isolator.
+    """The building of a scene (module docstring); refuses a bilinear bearing.
 
     Parameters
     ----------
     scene : Scene
-        ``Pi9 = 0`` (a linear isolator, or a fixed base with ``Pi3 = 0``).
+        A fixed base (``Pi3 = 0``), a linear isolator (``Pi9 = 0``) or a sliding bearing
+        (``Pi9 > 0``, ``Pi10 = 0``).
 
     Returns
     -------
@@ -253,7 +329,8 @@ def planar_building(scene: Scene) -> PlanarBuilding:
     Raises
     ------
     ValueError
-        ``pi9 > 0`` (a bilinear or sliding bearing), which this peer does not model.
+        ``pi10 > 0`` with ``pi9 > 0`` and ``pi3 > 0`` (a bilinear bearing), which this peer does not
+        model.
     """
     if scene.pi9 > 0.0 and scene.pi10 > 0.0 and scene.pi3 > 0.0:
         raise ValueError(f"pi10 = {scene.pi10!r} (a bilinear bearing) is not modelled by the planar reference peer; "
@@ -436,8 +513,9 @@ def solve_reference_planar(scene: Scene, history: bool = False, rtol: float = 1e
     Parameters
     ----------
     scene : Scene
-        Any scene with ``Pi9 = 0`` (a linear isolator or a fixed base; rigid or flexible
-        superstructure; one or two horizontal components at any angle; vertical motion).
+        Any scene without a bilinear bearing (a fixed base, a linear isolator or a sliding
+        bearing, ``Pi10 = 0``; rigid or flexible superstructure; one or two horizontal components
+        at any angle; vertical motion).
     history : bool
         Must be False: a planar response has no one-dimensional
         :class:`~isoslide.store.history.History`; :func:`run_planar` samples its trajectory.
@@ -457,13 +535,14 @@ def solve_reference_planar(scene: Scene, history: bool = False, rtol: float = 1e
         phase; slow slips run with Radau or slaved, see the module docstring); ``pi1 = max |u|`` (units
         ``a_p T_p**2``), ``peak_angle = atan2(u_y, u_x)`` at the peak (radians, building axes; nan
         with ``pi1 = 0`` if the block never slid; ``tau_peak`` then nan too), ``pi1_residual = |u|``
-        at the end, ``n_events`` the breakaways (from rest, also right after a stop) and stops,
-        ``nfev`` the right-hand-side evaluations of both integrators.
+        at the end, ``n_events`` the breakaways (from rest, also right after a stop) and stops of
+        the contents and of a sliding bearing, ``nfev`` the right-hand-side evaluations of both
+        integrators.
 
     Raises
     ------
     ValueError
-        ``pi9 > 0`` (hysteretic isolator), ``history = True``, or a bad ``horizon``.
+        ``pi10 > 0`` (a bilinear bearing), ``history = True``, or a bad ``horizon``.
     """
     if history:
         raise ValueError("history = True is not available for a planar response (no one-dimensional History); "
