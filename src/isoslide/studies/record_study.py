@@ -1090,8 +1090,8 @@ def pairs_findings(ds: xr.Dataset) -> list:
     list of str
         On a line (both components), in the plane, the planar amplification, the direction of the
         planar peak, where the fits fail (the components whose median ratio leaves the band, the
-        rank correlations with the fit's R^2 and with PGA / a_p, the cells only the record makes
-        slide) and the ratio over Pi3.
+        rank correlations with the fit's R^2, with PGA / a_p and with T_p, the cells only the
+        record makes slide) and the ratio over Pi3.
     """
     tol = float(ds.attrs["tolerance"])
     atol = float(ds.attrs["angle_tolerance"])
@@ -1104,9 +1104,9 @@ def pairs_findings(ds: xr.Dataset) -> list:
             f"{what}: of {int(a.n_cells)} cells, both make the contents slide in {int(a.n_both_slide)}; there "
             f"Π₁,record / Π₁,pulse has median **{_num(float(a['median']))}** (geometric mean "
             f"{_num(float(a.gmean))}), P10–P90 **{_num(float(a.p10))}–{_num(float(a.p90))}** (range "
-            f"{_num(float(a['min']))}–{_num(float(a['max']))}), and {_pct(float(a.within_tol))} of them lie within "
-            f"±{tol:.0%}. Only the record slides in {int(a.n_only_record)} cells (the pulse misses the sliding), "
-            f"only the pulse in {int(a.n_only_pulse)}.")
+            f"{_num(float(a['min']), '.2g')}–{_num(float(a['max']), '.3g')}), and {_pct(float(a.within_tol))} of "
+            f"them lie within ±{tol:.0%}. Cells where only the record slides (the pulse misses the sliding): "
+            f"{int(a.n_only_record)}; only the pulse (it invents sliding): {int(a.n_only_pulse)}.")
     for c in COMPONENTS:
         a = s.sel(view=c, motion="all")
         out.append(f"Component {c} alone: median ratio {_num(float(a['median']))}, P10–P90 "
@@ -1134,6 +1134,18 @@ def pairs_findings(ds: xr.Dataset) -> list:
         f"{_num(_spearman(ft['r2'], np.abs(np.log(ft['median']))))} (negative: the better the fit, the closer the "
         f"ratio to 1); with PGA/a_p: {_num(_spearman(ft['peak_over_a_p'], np.abs(np.log(ft['median']))))} "
         f"(positive: the more the record's peak exceeds the pulse's, the farther the ratio from 1).")
+    tp, med = ft["T_p"].to_numpy(float), ft["median"].to_numpy(float)
+    split = float(np.median(tp))
+    halves = []
+    for label, sel in (("below", tp < split), ("at or above", tp >= split)):
+        m = med[sel & np.isfinite(med)]
+        inside = int(np.sum(np.abs(m - 1.0) <= tol))
+        halves.append(f"{label} it {_num(float(np.median(m)) if m.size else math.nan)} ({inside} of {m.size} "
+                      f"within ±{tol:.0%})")
+    out.append(
+        f"By the fitted period: rank correlation of ln median ratio with T_p "
+        f"{_num(_spearman(tp, np.log(med)))}; the components' median T_p is {split:.2f} s, and the median ratio "
+        f"of the components {halves[0]}, {halves[1]}.")
     by2 = ratio_by(ds, "pi2")
     hi = float(ds["pi2"].max())
     n_line, n_plane = int(by2["only_record_line"].sum()), int(by2["only_record_plane"].sum())
@@ -1144,8 +1156,10 @@ def pairs_findings(ds: xr.Dataset) -> list:
         f"records' PGA reaches {float(ds['peak_over_a_p'].max()):.2f} a_p).")
     by3 = ratio_by(ds, "pi3")
     parts = [f"Π₃ = {float(v):g}: {_num(float(by3['median_line'].sel(pi3=v)))} on a line, "
-             f"{_num(float(by3['median_plane'].sel(pi3=v)))} in the plane" for v in ds["pi3"].values]
-    out.append("Median ratio by building (" + "; ".join(parts) + ").")
+             f"{_num(float(by3['median_plane'].sel(pi3=v)))} in the plane, only the record slides in "
+             f"{int(by3['only_record_line'].sel(pi3=v))} and {int(by3['only_record_plane'].sel(pi3=v))} cells"
+             for v in ds["pi3"].values]
+    out.append("Median ratio by building: " + "; ".join(parts) + ".")
     return out
 
 

@@ -228,14 +228,20 @@ STUDIES: tuple[Study, ...] = (
     Study(
         name="records",
         sections=("records", "defaults", "solver"),
-        datasets=("fig4_record", "records"),
-        figures=("records",),
-        reports=(Report("records", data={"records_path": dataset_path("records")},
+        datasets=("fig4_record", "records", "record_pairs"),
+        figures=("records", "record_pairs"),
+        reports=(Report("records", data={"records_path": dataset_path("records"),
+                                         "pairs_path": dataset_path("record_pairs")},
                         parameters={"figure_dir": FIGURE_DIR},
-                        needs=(figure_path("records"), figure_path("fig4")), code="records"),),
-        code={"records": ("budget", "datasets", "store.provenance", "studies.record_study", "solver")},
+                        needs=(figure_path("records"), figure_path("fig4"), figure_path("record_pairs")),
+                        code="records"),),
+        code={
+            # record_compare, records_dataset, record_pairs; the notebook imports studies.record_study
+            "records": ("budget", "datasets", "store.provenance", "studies.record_study", "solver"),
+            "record_pairs_plot": ("budget", "datasets", "reports.record_pairs_plot", "store.provenance"),
+        },
         rule_files=("records.smk",),
-        groups={"figure_records": "figures"},
+        groups={"figure_records": "figures", "record_pairs": "merge", "record_pairs_figure": "figures"},
     ),
     Study(
         name="accuracy",
