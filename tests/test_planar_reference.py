@@ -317,6 +317,23 @@ def test_turning_a_planar_friction_pendulum_turns_the_answer():
     assert abs(_angle_difference(turned.peak_angle, base.peak_angle + 0.7)) < 1e-7
 
 
+def test_no_slip_follows_the_settlement_of_a_held_bearing():
+    """A planar friction pendulum under a flexible superstructure, the contents on the roof: the run
+    settles with the bearing held after the pulses while the floors still move (the bounds of the
+    bearing's need and of the roof's acceleration), and followed on to 5 isolation periods past the
+    pulses without the settlement test it has the same transitions, Pi1 and final displacement."""
+    scene = Scene(**dict(FRICTION_PENDULUM, pi2=0.15, pi3=3.0, pi4=0.0, pi9=0.05, pi8=0.1, **FLEXIBLE_ROOF),
+                  pulse="ricker", pulse_y="antisymmetric_ricker", pi14=0.8)
+    settled = run_planar(scene).result
+    followed = run_planar(scene, settle=False, horizon=5.0).result
+    end = planar_excitation(scene).tau_end
+    assert settled.settled and not followed.settled
+    assert end < settled.tau_end < followed.tau_end == pytest.approx(end + 15.0)
+    assert followed.n_events == settled.n_events
+    assert followed.pi1 == settled.pi1
+    assert followed.pi1_residual == settled.pi1_residual
+
+
 def test_a_bilinear_bearing_is_refused():
     """``pi10 > 0`` with ``pi9 > 0`` (a bilinear bearing) raises a ValueError naming ``pi10``, its
     value and the allowed one; so do ``history=True`` and a negative ``horizon``."""
