@@ -2,7 +2,8 @@
 
 The SciPy event-driven peer :mod:`isoslide.peers.reference_planar` shares no code with the compiled
 planar kernel; both integrate the same model (planar Stribeck contents, the building in x and y,
-vertical motion through the normal force) to far below the tolerance compared here.
+vertical motion through the normal force, a friction pendulum as a second planar friction interface)
+to far below the tolerance compared here.
 """
 
 import math
@@ -19,6 +20,11 @@ SCENES = {
                                         pi15=0.6, pi16=0.3),
     "linear-vertical": dict(pi2=0.15, pi3=1.5, pi4=0.05, pi8=0.1, pi17=0.5, pulse_z="ricker",
                             pulse_y="makris_a", pi14=0.5, angle=0.4),
+    "friction-pendulum-two-way": dict(pi2=0.1, pi3=2.0, pi4=0.05, pi9=0.12, pi8=0.3, pulse_y="antisymmetric_ricker",
+                                      pi14=0.8),
+    "friction-pendulum-flexible-roof-vertical": dict(pi2=0.12, pi3=2.5, pi9=0.06, pi11=0.5, pi12=0.3, pi13=0.05,
+                                                     floor="roof", pi8=0.1, pi17=0.3, pulse_z="ricker",
+                                                     pulse_y="ricker", pi14=0.9, pi15=0.7, pi16=0.25),
     "three-storeys-roof": dict(pi2=0.15, pi3=2.0, pi4=0.1, pi11=0.5, pi12=0.3, pi13=0.05, storeys=3, floor="roof",
                                pi8=0.1, pulse_y="antisymmetric_ricker", pi14=0.9, pi16=-0.2),
 }
