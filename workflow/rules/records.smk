@@ -113,7 +113,7 @@ rule record_pairs:
     threads: 1
     resources:
         mem_mb=800,  # measured: max_rss 343 MB
-        runtime=5,  # minutes; measured: 11.2 s (default slice: 4 pairs x 4 Pi2 x 2 Pi3, 7.0 s solving) under load; the whole set (14 x 6 x 3) 28 s solving
+        runtime=5,  # minutes; measured: 11.2-16.2 s under load (default slice: 4 pairs x 4 Pi2 x 2 Pi3, 7.0 s solving); the whole set (14 x 6 x 3) 28 s solving
     conda:
         "../envs/isoslide.yaml"
     script:
