@@ -448,6 +448,11 @@ def test_dry_run_plans_the_whole_dag(wf):
     assert sorted(w for r, w in jobs if r == "fragility_chunk") == [
         f"frag={f}, chunk={c}" for f in ("fragility", "fragility_fixed_base") for c in range(3)]
     assert {w for r, w in jobs if r == "fragility_dataset"} == {"frag=fragility", "frag=fragility_fixed_base"}
+    # the planar fragility analyses: 8 per base in chunks of 5 (config/test.yaml) -> 2 chunk jobs each
+    assert sorted(w for r, w in jobs if r == "fragility_planar_chunk") == [
+        f"pfrag={f}, chunk={c}" for f in ("fragility_planar", "fragility_planar_fixed_base") for c in range(2)]
+    assert {w for r, w in jobs if r == "fragility_planar_dataset"} == {
+        "pfrag=fragility_planar", "pfrag=fragility_planar_fixed_base"}
 
 
 @pytest.mark.parametrize("overlay, key", [
@@ -653,8 +658,17 @@ def test_fragility_outputs(full_run):
     assert (wf / "results" / "fragility" / "pelicun_damage_db.csv").stat().st_size > 0
     for ext in ("png", "pdf"):
         assert (wf / "reports" / "figures" / f"fragility.{ext}").stat().st_size > 1000
+    p = cfg["planar"]
+    n_planar = len(p["suites"]) * p["pairs"] * len(p["angles"]) * len(p["stripes"]["levels"]) * p["friction_samples"]
+    for name in ("fragility_planar", "fragility_planar_fixed_base"):
+        ds = datasets.open_dataset(wf / "results" / "datasets" / f"{name}.nc")
+        assert ds.sizes["analysis"] == n_planar and list(ds.motion.values) == ["planar", "one_component",
+                                                                               "max_component"]
+        log = (wf / "logs" / "fragility_planar_dataset" / f"{name}.log").read_text()
+        assert "merging 2 chunk files" in log and log.rstrip().endswith("done")
     html = (wf / "reports" / "fragility.html").read_text()
     assert "Fragility of sliding contents" in html and "Traceback" not in html
+    assert "both components at once against one at a time" in html
 
 
 @pytest.mark.slow
@@ -705,9 +719,10 @@ def test_changing_the_fragility_study_reruns_only_fragility_jobs(full_run):
     (wf / "config" / "frag.yaml").write_text(yaml.safe_dump({"fragility": {"seed": 7}}))
     _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/frag.yaml", timeout=300)
     rules = {r for r, _ in planned_jobs(out)}
-    assert {"fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report"} <= rules
+    assert {"fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report",
+            "fragility_planar_chunk", "fragility_planar_dataset"} <= rules
     assert rules <= {"fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report",
-                     "index_page", "all"}, rules
+                     "fragility_planar_chunk", "fragility_planar_dataset", "index_page", "all"}, rules
     assert {w for r, w in planned_jobs(out) if r == "report"} == {"report=fragility"}
 
 
