@@ -180,6 +180,13 @@ def test_bootstrap_bounds_come_from_the_resamples_and_are_seeded(dataset, study,
     xr.testing.assert_identical(again.theta_ratio_low, dataset.theta_ratio_low)
 
 
+def test_no_resamples_give_no_bounds(analyses, settings):
+    study = fp.check_settings(_settings(bootstrap={"n_boot": 0}))
+    fits = fp.fit_curves(analyses["fixed_base"], study)
+    assert np.all(np.isnan(fits.theta_low.values)) and np.all(np.isnan(fits.theta_ratio_high.values))
+    assert np.isfinite(fits.theta.values).any() and not fits.n_boot_failed.values.any()
+
+
 def test_the_planar_slide_is_at_least_the_one_component_slides_here(analyses):
     """Not a law, but what these records do: the pair slides the contents at least as far as the larger
     component alone in most analyses that slide at all."""

@@ -557,6 +557,8 @@ class _Select:
 def _interval(values: np.ndarray, level: float) -> tuple:
     """Percentile bounds over the first axis, NaN ignored; NaN where no value is finite."""
     q = [(1.0 - level) / 2.0, (1.0 + level) / 2.0]
+    if values.shape[0] == 0:     # no resamples (bootstrap.n_boot = 0): no bounds
+        return np.full(values.shape[1:], np.nan), np.full(values.shape[1:], np.nan)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)   # all-NaN slices: no bounds
         lo, hi = np.nanquantile(values, q, axis=0)
