@@ -372,13 +372,31 @@ def test_accuracy_settings_agree_heavy(sc):
     An undamped base that never settles is followed to the horizon through hundreds of slips, and
     its error there sits at a few 1e-8 whatever the tolerance (see
     test_tightest_tolerance_agrees_with_reference_undamped): such scenes are held to rtol >= 1e-6.
+    Contents heavier than the building on a very soft base are held to rtol <= 1e-6 (see
+    test_heavy_contents_on_a_soft_base_meet_rtol_1e_4).
     """
     ref = solve(sc, rtol=1e-12, model="full")
     conv = ref.pi1
     rtols = (1e-2, 1e-4, 1e-6) if (sc.pi4 == 0.0 and sc.pi3 > 0.0 and not ref.settled) else (1e-2, 1e-4, 1e-6, 1e-8)
+    if sc.pi8 > 1.0 and sc.pi3 >= 10.0:
+        rtols = (1e-6, 1e-8)   # loose tolerances miss late marginal breakaways there (see below)
     for rtol in rtols:
         p = solve(sc, rtol=rtol).pi1
         assert abs(p - conv) <= rtol * max(conv, 1e-6), (rtol, p, conv)
+
+
+HEAVY_ON_SOFT = Scene(pi2=0.002333462310971313, pi3=100.0, pi4=0.03162277660168379, pi8=10.0, pulse="rectangular")
+"""Contents ten times the building's mass on a base of period 100 T_p (Pi1 = 217.6, ten transitions)."""
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="rtol = 1e-4 misses two late marginal breakaways (8 transitions instead of "
+                                       "10) and gives Pi1 = 217.088 against 217.597 (2.3e-3); rtol <= 1e-6 finds "
+                                       "all ten")
+def test_heavy_contents_on_a_soft_base_meet_rtol_1e_4():
+    conv = solve(HEAVY_ON_SOFT, rtol=1e-12, model="full").pi1
+    p = solve(HEAVY_ON_SOFT, rtol=1e-4).pi1
+    assert abs(p - conv) <= 1e-4 * conv, (p, conv)
 
 
 UNDAMPED_AT_HORIZON = Scene(pi2=0.08569495819168338, pi3=1.0, pi4=0.0, pi8=0.0, pulse="antisymmetric_ricker")
