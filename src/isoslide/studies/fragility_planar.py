@@ -64,7 +64,8 @@ import numpy as np
 import xarray as xr
 
 from . import fragility as _fit
-from .fragility_study import FIT_STATUS, T_SCALE, _increasing, check_building, merge_chunks
+from .fragility_study import (T_SCALE, _increasing, add_curves, check_building, chunk_indices,
+                              merge_chunks, n_chunks, stem_base)
 from .intensity import align_pair, pair_peaks, pair_sa, peak_abs
 from ..datasets import encode_facets, global_attrs
 from ..pulses import sampled
@@ -106,10 +107,7 @@ def dataset_name(base: str) -> str:
 
 def base_of(name: str) -> str:
     """The base of a dataset stem: ``fragility_planar`` -> ``isolated``, ``..._fixed_base`` -> ``fixed_base``."""
-    for base in BASES:
-        if dataset_name(base) == name:
-            return base
-    raise ValueError(f"name = {name!r} is invalid; allowed: {[dataset_name(b) for b in BASES]}")
+    return stem_base(name, dataset_name)
 
 
 def dataset_names(settings: dict) -> list:
@@ -315,19 +313,6 @@ def analysis_table(study: PlanarStudy) -> dict:
     f, g, k, j, s = np.meshgrid(*(np.arange(n) for n in study.shape), indexing="ij")
     return {"floor": f.ravel(), "ground_motion": g.ravel(), "orientation": k.ravel(), "stripe": j.ravel(),
             "friction_sample": s.ravel(), "angle": study.angles[g, k, j, s].ravel(), "mu_k": study.mu_k[g, j, s].ravel()}
-
-
-def n_chunks(study: PlanarStudy) -> int:
-    """Number of chunks of ``chunk_size`` analyses."""
-    return max(1, -(-study.size // study.chunk_size))
-
-
-def chunk_indices(study: PlanarStudy, chunk: int) -> np.ndarray:
-    """Analysis indices of chunk ``chunk`` (0-based)."""
-    n = n_chunks(study)
-    if not 0 <= chunk < n:
-        raise ValueError(f"chunk = {chunk!r} is out of range; allowed range: 0 <= chunk < {n}")
-    return np.arange(chunk * study.chunk_size, min((chunk + 1) * study.chunk_size, study.size))
 
 
 def pair_intensities(ax, ay, dt: float, period: float, damping: float) -> dict:
@@ -638,20 +623,7 @@ def fit_curves(ds: xr.Dataset, study: PlanarStudy) -> xr.Dataset:
     dims = ("floor", "group", "motion", "limit_state", "im")
     u_txt = "m s-2 (pga_rotd50, sa_rotd50) or m s-1 (pgv_rotd50): see im_units"
     pct = f"{study.level:.0%}"
-    meta = {
-        "theta": ("median capacity theta of P(u > limit | IM) = Phi(ln(IM/theta)/beta)", u_txt),
-        "beta": ("lognormal dispersion beta of the fragility curve", "1"),
-        "theta_low": (f"lower bound of the {pct} bootstrap interval of theta (ground motions resampled)", u_txt),
-        "theta_high": (f"upper bound of the {pct} bootstrap interval of theta (ground motions resampled)", u_txt),
-        "beta_low": (f"lower bound of the {pct} bootstrap interval of beta (ground motions resampled)", "1"),
-        "beta_high": (f"upper bound of the {pct} bootstrap interval of beta (ground motions resampled)", "1"),
-    }
-    for k, (ln, un) in meta.items():
-        out[k] = (dims, res[k], {"long_name": ln, "units": un})
-    out["fit_status"] = (dims, status, {
-        "long_name": "why a curve is missing (NaN theta, beta)", "units": "1",
-        "flag_values": np.arange(len(FIT_STATUS), dtype=np.int8), "flag_meanings": " ".join(FIT_STATUS)})
-    out["n_boot_failed"] = (dims, failed, {"long_name": "bootstrap resamples whose fit failed", "units": "1"})
+    add_curves(out, dims, res, status, failed, u="u", u_txt=u_txt, pct=pct, resampled="ground motions")
     out["n_exceeded"] = (dims[:4], n_exc, {"long_name": "outcomes with u > limit_state", "units": "1"})
     out["n_outcomes"] = (dims[:3], n_ana, {"long_name": "outcomes fitted (one_component: two per analysis)",
                                            "units": "1"})

@@ -72,10 +72,28 @@ def dataset_name(base: str) -> str:
 
 def base_of(name: str) -> str:
     """The base of a dataset stem: ``fragility`` -> ``isolated``, ``fragility_fixed_base`` -> ``fixed_base``."""
+    return stem_base(name, dataset_name)
+
+
+def stem_base(name: str, stem) -> str:
+    """The base whose dataset stem ``stem(base)`` is ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A dataset stem.
+    stem : callable
+        Maps a base (one of ``BASES``) to its dataset stem.
+
+    Returns
+    -------
+    str
+        The base, one of ``BASES``.
+    """
     for base in BASES:
-        if dataset_name(base) == name:
+        if stem(base) == name:
             return base
-    raise ValueError(f"name = {name!r} is invalid; allowed: {[dataset_name(b) for b in BASES]}")
+    raise ValueError(f"name = {name!r} is invalid; allowed: {[stem(b) for b in BASES]}")
 
 
 def dataset_names(settings: dict) -> list:
@@ -463,26 +481,59 @@ def fit_curves(ds: xr.Dataset, study: Study) -> xr.Dataset:
     dims = ("limit_state", "im")
     u_txt = "m s-2 (pga, pfa) or m s-1 (pgv, pfv): see im_units"
     pct = f"{study.level:.0%}"
+    add_curves(out, dims, res, status, n_failed, u="u_max", u_txt=u_txt, pct=pct, resampled="records",
+               extra={"log_likelihood": ("maximised log-likelihood of the fit", "1")})
+    out["n_exceeded"] = ("limit_state", n_exc, {"long_name": "analyses with u_max > limit_state", "units": "1"})
+    out["fit_method"] = ("im", np.array(["stripes" if k == study.im else "per analysis" for k in IM_NAMES],
+                                        dtype=object),
+                         {"long_name": "maximum likelihood on stripe counts or on one outcome per analysis"})
+    return out
+
+
+def add_curves(out: xr.Dataset, dims: tuple, res: dict, status: np.ndarray, failed: np.ndarray, *, u: str,
+               u_txt: str, pct: str, resampled: str, extra: dict | None = None) -> None:
+    """Store fitted curves with their CF attributes in ``out`` (in place).
+
+    Writes ``theta``, ``beta``, their bootstrap bounds, the entries of ``extra``, then
+    ``fit_status`` and ``n_boot_failed``, all over ``dims``.
+
+    Parameters
+    ----------
+    out : xarray.Dataset
+        The dataset receiving the variables.
+    dims : tuple
+        Dimensions of every variable.
+    res : dict
+        Arrays ``theta``, ``beta``, ``theta_low``, ``theta_high``, ``beta_low``, ``beta_high`` and
+        those named in ``extra``.
+    status, failed : numpy.ndarray
+        ``fit_status`` flags (see ``FIT_STATUS``) and failed bootstrap resamples.
+    u : str
+        Name of the response in the curve's formula (``u_max`` or ``u``).
+    u_txt : str
+        Units of ``theta`` and its bounds.
+    pct : str
+        Confidence level of the bounds as text (``"90%"``).
+    resampled : str
+        What the bootstrap resamples (``records``, ``ground motions``).
+    extra : dict, optional
+        Further variables, name -> (long_name, units), stored after the bounds.
+    """
     meta = {
-        "theta": ("median capacity theta of P(u_max > limit | IM) = Phi(ln(IM/theta)/beta)", u_txt),
+        "theta": (f"median capacity theta of P({u} > limit | IM) = Phi(ln(IM/theta)/beta)", u_txt),
         "beta": ("lognormal dispersion beta of the fragility curve", "1"),
-        "theta_low": (f"lower bound of the {pct} bootstrap interval of theta (records resampled)", u_txt),
-        "theta_high": (f"upper bound of the {pct} bootstrap interval of theta (records resampled)", u_txt),
-        "beta_low": (f"lower bound of the {pct} bootstrap interval of beta (records resampled)", "1"),
-        "beta_high": (f"upper bound of the {pct} bootstrap interval of beta (records resampled)", "1"),
-        "log_likelihood": ("maximised log-likelihood of the fit", "1"),
+        "theta_low": (f"lower bound of the {pct} bootstrap interval of theta ({resampled} resampled)", u_txt),
+        "theta_high": (f"upper bound of the {pct} bootstrap interval of theta ({resampled} resampled)", u_txt),
+        "beta_low": (f"lower bound of the {pct} bootstrap interval of beta ({resampled} resampled)", "1"),
+        "beta_high": (f"upper bound of the {pct} bootstrap interval of beta ({resampled} resampled)", "1"),
+        **(extra or {}),
     }
     for k, (ln, un) in meta.items():
         out[k] = (dims, res[k], {"long_name": ln, "units": un})
     out["fit_status"] = (dims, status, {
         "long_name": "why a curve is missing (NaN theta, beta)", "units": "1",
         "flag_values": np.arange(len(FIT_STATUS), dtype=np.int8), "flag_meanings": " ".join(FIT_STATUS)})
-    out["n_boot_failed"] = (dims, n_failed, {"long_name": "bootstrap resamples whose fit failed", "units": "1"})
-    out["n_exceeded"] = ("limit_state", n_exc, {"long_name": "analyses with u_max > limit_state", "units": "1"})
-    out["fit_method"] = ("im", np.array(["stripes" if k == study.im else "per analysis" for k in IM_NAMES],
-                                        dtype=object),
-                         {"long_name": "maximum likelihood on stripe counts or on one outcome per analysis"})
-    return out
+    out["n_boot_failed"] = (dims, failed, {"long_name": "bootstrap resamples whose fit failed", "units": "1"})
 
 
 def _share(values: np.ndarray, groups: np.ndarray) -> float:
