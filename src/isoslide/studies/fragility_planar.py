@@ -64,10 +64,10 @@ import numpy as np
 import xarray as xr
 
 from . import fragility as _fit
-from .fragility_study import (T_SCALE, _increasing, add_curves, check_building, chunk_indices,
+from .fragility_study import (T_SCALE, _increasing, add_curves, add_outputs, check_building, chunk_indices,
                               merge_chunks, n_chunks, stem_base)
 from .intensity import align_pair, pair_peaks, pair_sa, peak_abs
-from ..datasets import encode_facets, global_attrs
+from ..datasets import global_attrs
 from ..pulses import sampled
 from ..records import G, suite
 from ..scene import FLOORS, Scene
@@ -434,13 +434,7 @@ def _analysis_dataset(study, idx, tab, out, models) -> xr.Dataset:
         ds[k] = ("analysis", tab[k][idx].astype(np.int32))
     ds["angle"] = ("analysis", tab["angle"][idx])
     ds["mu_k"] = ("analysis", tab["mu_k"][idx])
-    for k in _OUT:
-        ds[k] = ("analysis", out[k])
-    for k, (ln, u) in _ANALYSIS_META.items():
-        ds[k].attrs.update(long_name=ln, units=u)
-    for name, var in encode_facets(models, ("analysis",)).items():
-        ds[name] = var
-    return ds
+    return add_outputs(ds, out, _OUT, _ANALYSIS_META, models)
 
 
 def solve_chunk(study: PlanarStudy, chunk: int, base: str) -> xr.Dataset:

@@ -392,9 +392,33 @@ def _analysis_dataset(study, idx, tab, out, models) -> xr.Dataset:
     for k in ("stripe", "friction_sample"):
         ds[k] = ("analysis", tab[k][idx].astype(np.int32))
     ds["mu_k"] = ("analysis", tab["mu_k"][idx])
-    for k in ("pga", "pgv", "pfa", "pfv", "u_max"):
+    return add_outputs(ds, out, ("pga", "pgv", "pfa", "pfv", "u_max"), _ANALYSIS_META, models)
+
+
+def add_outputs(ds: xr.Dataset, out: dict, names: tuple, meta: dict, models) -> xr.Dataset:
+    """Store the outputs of the analyses, their CF attributes and the model facets in ``ds`` (in place).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Dataset over ``analysis``.
+    out : dict
+        Output arrays over ``analysis``.
+    names : tuple
+        Keys of ``out`` to store, in order.
+    meta : dict
+        Variable name -> (long_name, units) of variables in ``ds`` once ``names`` are stored.
+    models : list
+        Model facets of the analyses (:func:`isoslide.datasets.encode_facets`).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds``.
+    """
+    for k in names:
         ds[k] = ("analysis", out[k])
-    for k, (ln, u) in _ANALYSIS_META.items():
+    for k, (ln, u) in meta.items():
         ds[k].attrs.update(long_name=ln, units=u)
     for name, var in encode_facets(models, ("analysis",)).items():
         ds[name] = var
