@@ -16,6 +16,7 @@ from isoslide.records import G, suite
 from isoslide.scene import Scene
 from isoslide.studies import fragility_planar as fp
 from isoslide.studies.intensity import align_pair, pair_peaks
+from fragility_cases import study_fixtures  # tests/ is on sys.path
 
 TINY = {
     "limit_states": [0.005, 0.05],
@@ -32,25 +33,7 @@ def _settings(planar=None, **fragility):
     return fp.planar_settings(cfg)
 
 
-@pytest.fixture(scope="module")
-def settings():
-    solver.warm_up(records=True)
-    return _settings()
-
-
-@pytest.fixture(scope="module")
-def study(settings):
-    return fp.check_settings(settings)
-
-
-@pytest.fixture(scope="module")
-def analyses(study):
-    return {base: fp.solve_all(study, base) for base in fp.BASES}
-
-
-@pytest.fixture(scope="module")
-def dataset(analyses, study, settings):
-    return fp.planar_dataset(analyses["fixed_base"], study, settings, "fixed_base")
+settings, study, analyses, dataset = study_fixtures(_settings, fp, fp.planar_dataset, "fixed_base")
 
 
 # ---- the analysis table and reproducibility -------------------------------------------------------

@@ -16,6 +16,7 @@ from isoslide.store.history_io import history_table
 from isoslide.studies.intensity import floor_peaks, peak_of_integral
 from isoslide.records import G, sample
 from isoslide.scene import Scene
+from fragility_cases import study_fixtures  # tests/ is on sys.path
 
 TINY = {
     "records": ["Northridge_1994_PAC-175", "Coyote_Lake_1979_G02-050"],
@@ -32,25 +33,7 @@ def _settings(**fragility):
     return fs.fragility_settings(cfg)
 
 
-@pytest.fixture(scope="module")
-def settings():
-    solver.warm_up(records=True)
-    return _settings()
-
-
-@pytest.fixture(scope="module")
-def study(settings):
-    return fs.check_settings(settings)
-
-
-@pytest.fixture(scope="module")
-def analyses(study):
-    return {base: fs.solve_all(study, base) for base in fs.BASES}
-
-
-@pytest.fixture(scope="module")
-def dataset(analyses, study, settings):
-    return fs.fragility_dataset(analyses["isolated"], study, settings, "isolated")
+settings, study, analyses, dataset = study_fixtures(_settings, fs, fs.fragility_dataset, "isolated")
 
 
 # ---- reproducibility -------------------------------------------------------------------------
