@@ -684,6 +684,52 @@ def draw(name: str, datasets: dict, outputs, settings: dict):
     return caption
 
 
+def render_stems(outputs, figures, what: str, datasets: dict, drawer_of, dpi: int, logger=log) -> dict:
+    """Draw every figure of ``figures`` into the ``outputs`` whose stem is its name.
+
+    Parameters
+    ----------
+    outputs : sequence of path
+        Files to write (``<figure>.<png|pdf|svg>``); every stem must be in ``figures``.
+    figures : sequence of str
+        Figure names, in drawing order.
+    what : str
+        What the figures are, for the error message (``"planar figures"``).
+    datasets : dict of str -> path or xarray.Dataset
+        Opened once (paths with :func:`isoslide.datasets.open_dataset`) before drawing.
+    drawer_of : callable
+        ``(name, data) -> (drawer, args)``: ``drawer(*args)`` returns ``(fig, caption)``.
+    dpi : int
+        Resolution of raster outputs.
+    logger : logging.Logger, optional
+        Receives each figure's caption.
+
+    Returns
+    -------
+    dict of str -> str
+        Caption of each figure drawn.
+
+    Raises
+    ------
+    ValueError
+        If a stem of ``outputs`` is not in ``figures``.
+    """
+    outputs = [Path(p) for p in outputs]
+    unknown = sorted({p.stem for p in outputs} - set(figures))
+    if unknown:
+        raise ValueError(f"outputs = {unknown!r} are not {what}; allowed stems: {list(figures)}")
+    data = {k: open_dataset(v) if isinstance(v, (str, Path)) else v for k, v in datasets.items()}
+    captions = {}
+    for name in figures:
+        mine = [p for p in outputs if p.stem == name]
+        if not mine:
+            continue
+        caption = _render(*drawer_of(name, data), mine, dpi)
+        logger.info("%s: %s", name, caption)
+        captions[name] = caption
+    return captions
+
+
 def _render(drawer, args, outputs, dpi: int) -> str:
     """Draw ``drawer(*args)`` -> ``(fig, caption)`` in :data:`STYLE`, save it into every path of ``outputs``.
 

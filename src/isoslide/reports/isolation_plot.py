@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..datasets import open_dataset
-from .figures import LABELS, WIDTH, _colors, _fixed_text, _render, master_curves
+from .figures import LABELS, WIDTH, _colors, _fixed_text, render_stems, master_curves
 
 log = logging.getLogger(__name__)
 
@@ -206,17 +206,5 @@ def draw_all(datasets: dict, outputs, settings: dict) -> dict:
     dict of str -> str
         Caption of each figure.
     """
-    outputs = [Path(p) for p in outputs]
-    unknown = sorted({p.stem for p in outputs} - set(FIGURES))
-    if unknown:
-        raise ValueError(f"outputs = {unknown!r} are not isolation figures; allowed stems: {list(FIGURES)}")
-    data = {k: _open(v) for k, v in datasets.items()}
-    captions = {}
-    for name in FIGURES:
-        mine = [p for p in outputs if p.stem == name]
-        if not mine:
-            continue
-        caption = _render(DRAWERS[name], (data,), mine, settings["dpi"])
-        log.info("%s: %s", name, caption)
-        captions[name] = caption
-    return captions
+    return render_stems(outputs, FIGURES, "isolation figures", datasets, lambda name, data: (DRAWERS[name], (data,)),
+                        settings["dpi"], log)

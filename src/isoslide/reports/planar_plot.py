@@ -14,12 +14,10 @@
 from __future__ import annotations
 
 import logging
-from pathlib import Path
 
 import numpy as np
 
-from ..datasets import open_dataset
-from .figures import WIDTH, _colors, _render
+from .figures import WIDTH, _colors, render_stems
 
 log = logging.getLogger(__name__)
 
@@ -199,18 +197,8 @@ def draw_all(datasets: dict, outputs, settings: dict) -> dict:
     dict of str -> str
         Caption of each figure drawn.
     """
-    outputs = [Path(p) for p in outputs]
-    unknown = sorted({p.stem for p in outputs} - set(FIGURES))
-    if unknown:
-        raise ValueError(f"outputs = {unknown!r} are not planar figures; allowed stems: {list(FIGURES)}")
-    data = {k: open_dataset(v) if isinstance(v, (str, Path)) else v for k, v in datasets.items()}
-    captions = {}
-    for name in FIGURES:
-        mine = [p for p in outputs if p.stem == name]
-        if not mine:
-            continue
+    def drawer_of(name, data):
         drawer, source = DRAWERS[name]
-        caption = _render(drawer, (data[source],), mine, settings["dpi"])
-        log.info("%s: %s", name, caption)
-        captions[name] = caption
-    return captions
+        return drawer, (data[source],)
+
+    return render_stems(outputs, FIGURES, "planar figures", datasets, drawer_of, settings["dpi"], log)
