@@ -218,17 +218,22 @@ def draw_planar_curves(datasets: dict, outputs=(), dpi: int = 150):
                        _MOTION_STYLES[motion], c, MOTION_LABELS[motion])
                 px, pf = planar_fractions(ds, motion, float(limit), floor)
                 ax.plot(px, pf, "o", color=c, markersize=4)
-            ax.set_title(f"{label}, u > {limit:g} m", fontsize=9)
-            ax.set_xlabel(IM_LABELS.get(im, im))
-            ax.set_ylabel("P(u > limit | IM)")
-            ax.set_ylim(-0.02, 1.02)
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=6, loc="upper left")
+            _probability_axes(ax, f"{label}, u > {limit:g} m", im, 0.02, "upper left")
     fig.suptitle("Sliding in the plane against one component at a time: fitted curves, observed fractions (dots)",
                  fontsize=9)
     for path in outputs:
         fig.savefig(path, dpi=dpi)
     return fig
+
+def _probability_axes(ax, title: str, im: str, margin: float, legend_loc: str) -> None:
+    """Title, labels, limits 0 - ``margin`` ... 1 + ``margin``, grid and legend of a panel of exceedance probabilities."""
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel(IM_LABELS.get(im, im))
+    ax.set_ylabel("P(u > limit | IM)")
+    ax.set_ylim(-margin, 1.0 + margin)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=6, loc=legend_loc)
+
 
 
 def draw_suite_curves(ds: xr.Dataset, im: str, motion: str = "planar", outputs=(), dpi: int = 150):
@@ -255,12 +260,7 @@ def draw_suite_curves(ds: xr.Dataset, im: str, motion: str = "planar", outputs=(
             keep = (ds["record_suite"].values.astype(str) == name) & (ds["contents_floor"].values.astype(str) == floor)
             ax.plot(ds[im].values[keep], (ds["u_max"].values[keep] > limit) * 1.0 + (k - 1) * 0.01, "|",
                     color=c, markersize=6, alpha=0.6)
-        ax.set_title(f"u > {limit:g} m ({MOTION_LABELS[motion]})", fontsize=9)
-        ax.set_xlabel(IM_LABELS.get(im, im))
-        ax.set_ylabel("P(u > limit | IM)")
-        ax.set_ylim(-0.05, 1.05)
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=6, loc="center right")
+        _probability_axes(ax, f"u > {limit:g} m ({MOTION_LABELS[motion]})", im, 0.05, "center right")
     fig.suptitle(f"Suites compared at equal {IM_LABELS.get(im, im)} (ticks: each analysis, at 0 or 1)", fontsize=9)
     for path in outputs:
         fig.savefig(path, dpi=dpi)

@@ -42,6 +42,15 @@ def _grid_text(ds) -> str:
             f"contents Pi5 = {float(ds['pi5']):g}, Pi6 = {float(ds['pi6']):g}, Pi7 = {float(ds['pi7']):g}, "
             f"Pi8 = {float(ds['pi8']):g}; isolator Pi4 = {float(ds['pi4'].max()):g}")
 
+def _grid_axes(ax, bottom_row: bool, first_column: bool, ylabel: str) -> None:
+    """Start the y axis at 0; label y in the first column and Pi2 along the bottom row."""
+    ax.set_ylim(bottom=0.0)
+    if first_column:
+        ax.set_ylabel(ylabel)
+    if bottom_row:
+        ax.set_xlabel(r"$\Pi_2 = \mu_k g / a_p$")
+
+
 
 def master(ds):
     """Pi1 over Pi2 per Pi14; rows Pi15, columns Pi3 (Pi17 = 0).  Returns the figure and its caption."""
@@ -60,11 +69,7 @@ def master(ds):
                 ax.plot(ds["pi2"], sub.sel(pi3=pi3, pi15=pi15, pi14=pi14), marker="o", markersize=2.2, color=color,
                         label=label)
             ax.set_title(f"{_building(pi3)}, Π₁₅ = {pi15:g}", fontsize=7.5)
-            ax.set_ylim(bottom=0.0)
-            if c == 0:
-                ax.set_ylabel(r"$\Pi_1 = u_{max}/(a_p T_p^2)$")
-            if r == len(pi15s) - 1:
-                ax.set_xlabel(r"$\Pi_2 = \mu_k g / a_p$")
+            _grid_axes(ax, r == len(pi15s) - 1, c == 0, r"$\Pi_1 = u_{max}/(a_p T_p^2)$")
     axs[0, -1].legend(loc="best")
     caption = ("Planar. Peak Euclidean sliding Pi1 over Pi2, one curve per Pi14 = a_py/a_p (0: the main component "
                "alone, the 1-D model); columns: fixed base and linear isolators (Pi3 = T_b/T_p), rows: Pi15 = "
@@ -162,11 +167,7 @@ def pi5(ds5):
             rel = float(ds5["relative_spread"].sel(pi3=pi3, pi14=pi14))
             where = "1-D" if pi14 == 0.0 else f"Π₁₄ = {pi14:g}"
             ax.set_title(f"{where}, Π₃ = {pi3:g}: spread {rel:.3f}", fontsize=7.5)
-            ax.set_ylim(bottom=0.0)
-            if c == 0:
-                ax.set_ylabel(r"$\Pi_1$")
-            if r == len(pi14s) - 1:
-                ax.set_xlabel(r"$\Pi_2 = \mu_k g / a_p$")
+            _grid_axes(ax, r == len(pi14s) - 1, c == 0, r"$\Pi_1$")
     axs[0, -1].legend(loc="best")
     caption = ("Planar Pi5. Pi1 over Pi2 per Pi5 = mu_k/mu_s (Stribeck friction, Pi6 = "
                f"{float(ds5['pi6']):g}), in the 1-D model (Pi14 = 0) and in the plane (Pi15 = {float(ds5['pi15']):g}); "
