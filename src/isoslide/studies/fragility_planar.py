@@ -64,8 +64,8 @@ import numpy as np
 import xarray as xr
 
 from . import fragility as _fit
-from .fragility_study import (T_SCALE, _increasing, add_curves, add_outputs, check_building, chunk_indices,
-                              merge_chunks, n_chunks, stem_base)
+from .fragility_study import (T_SCALE, _increasing, add_curves, add_outputs, check_building, check_chunk_size,
+                              check_level, chunk_indices, merge_chunks, n_chunks, stem_base)
 from .intensity import align_pair, pair_peaks, pair_sa, peak_abs
 from ..datasets import global_attrs
 from ..pulses import sampled
@@ -277,13 +277,8 @@ def check_settings(settings: dict) -> PlanarStudy:
     damping = float(p["sa_damping"])
     if not 0.0 <= damping < 1.0:
         raise ValueError(f"fragility.planar.sa_damping = {damping!r} is out of range; allowed range: 0 <= sa_damping < 1")
-    chunk_size = int(p["chunk_size"])
-    if chunk_size < 1:
-        raise ValueError(f"fragility.planar.chunk_size = {chunk_size!r} is out of range; allowed range: >= 1")
-    boot = f["bootstrap"]
-    level = float(boot["level"])
-    if not 0.0 < level < 1.0:
-        raise ValueError(f"fragility.bootstrap.level = {level!r} is out of range; allowed range: 0 < level < 1")
+    chunk_size = check_chunk_size("fragility.planar.chunk_size", p["chunk_size"])
+    level = check_level(f)
     seed = int(f["seed"])
     c = f["contents"]
     n_gm, n_j, n_a = len(motions), levels.size, angles_cfg.size
@@ -297,7 +292,7 @@ def check_settings(settings: dict) -> PlanarStudy:
                        floors=floors, im=SCALING_IMS[im], levels=levels, angles=angles, mu_k=mu_k,
                        limit_states=limits, building=dict(b), contents=copy.deepcopy(c),
                        sa_period=float(b["T_b"]), sa_damping=damping, sampled_angles=sampled_angles, seed=seed,
-                       n_boot=int(boot["n_boot"]), level=level, chunk_size=chunk_size,
+                       n_boot=int(f["bootstrap"]["n_boot"]), level=level, chunk_size=chunk_size,
                        rtol=settings["solver"]["rtol"])
 
 

@@ -165,6 +165,34 @@ def _increasing(key: str, values) -> np.ndarray:
         raise ValueError(f"fragility.{key} = {list(values)!r} is invalid; allowed: strictly increasing values")
     return arr
 
+def check_level(f: dict) -> float:
+    """The confidence level ``fragility.bootstrap.level`` of the bootstrap intervals, checked.
+
+    Raises
+    ------
+    ValueError
+        Unless 0 < level < 1.
+    """
+    level = float(f["bootstrap"]["level"])
+    if not 0.0 < level < 1.0:
+        raise ValueError(f"fragility.bootstrap.level = {level!r} is out of range; allowed range: 0 < level < 1")
+    return level
+
+
+def check_chunk_size(key: str, value) -> int:
+    """A chunk size ``value`` (the setting ``key``), checked.
+
+    Raises
+    ------
+    ValueError
+        Unless it is 1 or more.
+    """
+    chunk_size = int(value)
+    if chunk_size < 1:
+        raise ValueError(f"{key} = {chunk_size!r} is out of range; allowed range: >= 1")
+    return chunk_size
+
+
 
 def check_building(f: dict) -> None:
     """Check ``fragility.building`` and ``fragility.contents`` (schema-completed).
@@ -246,15 +274,10 @@ def check_settings(settings: dict) -> Study:
     rng = np.random.default_rng(seed)
     z = rng.standard_normal((len(recs), levels.size, n_s))
     mu_k = float(c["mu_k"]["median"]) * np.exp(float(c["mu_k"]["log_std"]) * z)
-    boot = f["bootstrap"]
-    level = float(boot["level"])
-    if not 0.0 < level < 1.0:
-        raise ValueError(f"fragility.bootstrap.level = {level!r} is out of range; allowed range: 0 < level < 1")
-    chunk_size = int(f["chunk_size"])
-    if chunk_size < 1:
-        raise ValueError(f"fragility.chunk_size = {chunk_size!r} is out of range; allowed range: >= 1")
+    level = check_level(f)
+    chunk_size = check_chunk_size("fragility.chunk_size", f["chunk_size"])
     return Study(records=tuple(recs), im=im, levels=levels, n_samples=n_s, limit_states=limits, mu_k=mu_k,
-                 building=dict(b), contents=copy.deepcopy(c), seed=seed, n_boot=int(boot["n_boot"]),
+                 building=dict(b), contents=copy.deepcopy(c), seed=seed, n_boot=int(f["bootstrap"]["n_boot"]),
                  level=level, chunk_size=chunk_size, rtol=settings["solver"]["rtol"])
 
 
