@@ -64,7 +64,7 @@ import numpy as np
 import xarray as xr
 
 from . import fragility as _fit
-from .fragility_study import (T_SCALE, _increasing, add_curves, add_outputs, check_building, check_chunk_size,
+from .fragility_study import (REFERENCE_FRAGILITY, T_SCALE, _increasing, add_curves, add_outputs, check_building, check_chunk_size,
                               check_level, chunk_indices, merge_chunks, n_chunks, stem_base)
 from .intensity import align_pair, pair_peaks, pair_sa, peak_abs
 from ..datasets import global_attrs
@@ -679,8 +679,7 @@ def planar_dataset(analyses: xr.Dataset, study: PlanarStudy, settings: dict, bas
                  f"(isoslide.studies.fragility), {study.n_boot} bootstrap resamples of the ground motions per suite; "
                  f"no timestamps are stored"),
         config=settings,
-        references_fragility=("Baker, J. W. (2015): Efficient analytical fragility function fitting using "
-                              "dynamic structural analysis, Earthquake Spectra 31(1), 579-599"),
+        references_fragility=REFERENCE_FRAGILITY,
         references_rotd=("Boore, D. M. (2010): Orientation-independent, nongeometric-mean measures of seismic "
                          "intensity from two horizontal components of motion, BSSA 100(4), 1830-1835"),
         base=base, scaling_im=study.im, suites=", ".join(study.suites), reference_suite=ref,

@@ -62,6 +62,10 @@ T_SCALE = 1.0
 FIT_STATUS = ("ok", "none_exceeded", "all_exceeded", "not_identifiable")
 """Meanings of the ``fit_status`` flag (0 ... 3)."""
 
+REFERENCE_FRAGILITY = ("Baker, J. W. (2015): Efficient analytical fragility function fitting using dynamic "
+                       "structural analysis, Earthquake Spectra 31(1), 579-599")
+"""The ``references_fragility`` attribute of the datasets: the fitting method."""
+
 
 def dataset_name(base: str) -> str:
     """``fragility`` (isolated) or ``fragility_fixed_base``: the file stem of a base's dataset."""
@@ -663,8 +667,7 @@ def fragility_dataset(analyses: xr.Dataset, study: Study, settings: dict, base: 
                  f"(isoslide.solve with history), fitted by maximum likelihood (isoslide.studies.fragility), "
                  f"{study.n_boot} bootstrap resamples of the records; no timestamps are stored"),
         config=settings,
-        references_fragility=("Baker, J. W. (2015): Efficient analytical fragility function fitting using "
-                              "dynamic structural analysis, Earthquake Spectra 31(1), 579-599"),
+        references_fragility=REFERENCE_FRAGILITY,
         base=base, scaling_im=study.im, T_b=0.0 if base == "fixed_base" else float(b["T_b"]),
         xi_b=float(b["xi_b"]), M_b=float(b["M_b"]), m_ec=float(c["mass"]), Q_d=float(b["Q_d"]),
         D_y=float(b["D_y"]), m_st=float(b["m_st"]), T_s=float(b["T_s"]), xi_s=float(b["xi_s"]), floor=b["floor"],
