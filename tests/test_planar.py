@@ -104,8 +104,7 @@ def test_under_a_constant_floor_acceleration_the_speed_follows_its_closed_form_a
     U = y0.size - 4
     y0[U + 3] = 0.2                    # sliding across (+y) at the start
     modes = np.array([1.0, 0.0, 1.0, 0.0, 1.0, 0.0])       # the block sliding, the base held
-    sol = solver._solve_planar(dataclass_replace_angle(scene), 1e-10, True, 200.0, "auto", 0.002, True,
-                               state=(y0, modes))
+    sol = solver._solve_planar(scene, 1e-10, True, 200.0, "auto", 0.002, True, state=(y0, modes))
     h = sol.history
     sliding = (h.phase != 0) & (h.tau < 1.0)
     ux, uy = h.ud[sliding, 0], h.ud[sliding, 1]
@@ -118,13 +117,6 @@ def test_under_a_constant_floor_acceleration_the_speed_follows_its_closed_form_a
     assert np.ptp(invariant) / invariant[0] < 1e-7
     # and it stops within the rectangular pulse, at the speed's closed-form end (v -> 0 as psi -> 0)
     assert h.phase[np.searchsorted(h.tau, 0.99)] == 0
-
-
-def dataclass_replace_angle(scene):
-    """``scene`` with a negligible second component, so that it is planar (the planar kernel runs)."""
-    import dataclasses
-
-    return dataclasses.replace(scene, pulse_y="ricker", pi14=1e-300, pi16=50.0)
 
 
 @pytest.mark.parametrize("kw", [dict(pi3=0.0), dict(pi3=2.0, pi4=0.1, pi8=0.2)])
@@ -198,6 +190,16 @@ def test_planar_scenes_refuse_a_bilinear_bearing_naming_the_group():
     scene = isoslide.Scene(pi2=0.2, pi3=2.0, pi9=0.05, pi10=0.01, pulse_y="antisymmetric_ricker", pi14=0.5)
     with pytest.raises(ValueError, match="pi10 = 0.01"):
         isoslide.solve(scene)
+
+
+def test_a_planar_scene_refuses_an_unknown_model_and_unexpected_options():
+    scene = isoslide.Scene(pi2=0.2, pi3=0.0, pulse_y="antisymmetric_ricker", pi14=0.5)
+    with pytest.raises(ValueError, match="model = 'bogus' is invalid"):
+        isoslide.solve(scene, model="bogus")
+    with pytest.raises(TypeError, match="unexpected options"):
+        isoslide.solve(scene, stiffness=1e4)
+    with pytest.raises(ValueError, match="max_step = 0"):
+        isoslide.solve(scene, max_step=0)
 
 
 def test_the_regularized_peer_refuses_two_components_naming_them():

@@ -464,13 +464,16 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be an isoslide.Scene, got {type(scene).__name__}")
-    if not scene.in_line:
-        return _solve_horizontal(scene, rtol, history, method, horizon, model, max_step, settle, piecewise_path,
-                                 options)
     if method != "exact":
         if method not in SCENE_SOLVERS:
             raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', "
                              + ", ".join(repr(m) for m in SCENE_SOLVERS))
+        if not scene.in_line:
+            if method != "reference":
+                raise ValueError(f"method = {method!r} does not model two horizontal ground components or an angle "
+                                 f"(pulse_y = {getattr(scene.pulse_y, 'name', None)!r}, angle = {scene.angle!r}); "
+                                 "allowed: method='exact' or 'reference', or the main pulse alone along x")
+            return _from_peer(scene, solve_reference_planar(scene, history=history, **options))
         if scene.vertical and method != "reference":
             raise ValueError(f"method = {method!r} does not model vertical ground motion (pi17 = {scene.pi17!r} "
                              "with a pulse_z); allowed: method='exact', or pi17 = 0")
@@ -484,6 +487,8 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     if not (max_step > 0):
         raise ValueError(f"max_step = {max_step!r} is out of range; allowed range: 0 < max_step <= inf")
     rtol = _check_rtol(rtol)
+    if not scene.in_line:
+        return _solve_horizontal(scene, rtol, history, horizon, model, max_step, settle, piecewise_path)
     if not scene.paper_model:
         return _solve_building(scene, rtol, history, horizon, model, max_step, settle, piecewise_path)
     pl = plan(scene)
@@ -558,9 +563,7 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     stop = _horizon(scene, horizon)
     budget = step_budget(scene, horizon)
     h_free = min(building.free_step(scene), max_step)
-    breakpoints = pulse.breakpoint_array
-    if scene.vertical:
-        breakpoints = np.union1d(breakpoints, scene.pulse_z.breakpoint_array)
+    breakpoints = _breakpoints(scene)
 
     def run(irtol, many=False):
         res = building_kernel.run(P, pulse.code, pulse.param_array, breakpoints, pulse.tau_start,
@@ -577,25 +580,19 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     return sol
 
 
-def _solve_horizontal(scene: Scene, rtol, history: bool, method: str, horizon: float, model: str,
-                      max_step: float, settle: bool, piecewise_path: bool, options: dict) -> Solution:
-    """:func:`solve` for an excitation that is not the main pulse along x alone.
+def _solve_horizontal(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
+                      settle: bool, piecewise_path: bool) -> Solution:
+    """:func:`solve` (exact, arguments checked) for an excitation that is not the main pulse along x alone.
 
     In the plane (:attr:`isoslide.Scene.planar`, or any such scene with ``model="full"``) the
     planar kernel integrates it; along one line the 1-D model runs along that line
     (:func:`along_line`), the building and the contents being isotropic.
     """
-    if method != "exact":
-        if method == "reference":
-            return _from_peer(scene, solve_reference_planar(scene, history=history, **options))
-        raise ValueError(f"method = {method!r} does not model two horizontal ground components or an angle "
-                         f"(pulse_y = {getattr(scene.pulse_y, 'name', None)!r}, angle = {scene.angle!r}); allowed: "
-                         "method='exact' or 'reference', or the main pulse alone along x")
     if model == "static-kinetic":
         raise ValueError("model = 'static-kinetic' is available for the paper's model only "
                          "(pi9 = 0, pi12 = 0, the main pulse alone along x)")
     if scene.planar or model == "full":
-        return _solve_planar(scene, _check_rtol(rtol), history, horizon, model, max_step, settle)
+        return _solve_planar(scene, rtol, history, horizon, model, max_step, settle)
     line, lam, theta = along_line(scene)
     sol = solve(line, rtol=rtol, history=history, horizon=horizon, model=model, max_step=max_step,
                 settle=settle, piecewise_path=piecewise_path)
@@ -669,8 +666,6 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
         raise ValueError(f"pi10 = {scene.pi10!r} (a bilinear bearing): planar sliding runs on a fixed base, a linear "
                          "isolator or a sliding bearing; allowed: pi10 = 0 (or pi9 = 0) with two horizontal ground "
                          "components or an angle")
-    if not (math.isfinite(horizon) and horizon > 0):
-        raise ValueError(f"horizon = {horizon!r} is out of range; allowed range: 0 < horizon < inf")
     coulomb = scene.rate_independent and model == "auto"
     P = building.parameters(scene, pi8=scene.pi8, coulomb=coulomb)
     modal = building.modal_data(scene, P)
