@@ -645,9 +645,9 @@ def excitation(scene: Scene) -> tuple:
 
 
 def _breakpoints(scene: Scene) -> np.ndarray:
-    """Every component's breakpoints on the main pulse's time axis (the second pulse's mapped)."""
+    """Every acting component's breakpoints on the main pulse's time axis (the second pulse's mapped)."""
     b = scene.pulse.breakpoint_array
-    if scene.pulse_y is not None:
+    if scene.bidirectional:
         py = scene.pulse_y
         b = np.union1d(b, scene.pi16 + scene.pi15 * np.append(py.breakpoint_array, py.tau_start))
     if scene.vertical:
