@@ -662,14 +662,11 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
     ``state``, when given, is ``(y0, md0)``: the initial state and modes (see the kernel's
     :func:`~isoslide.engine.planar_kernel.deriv`).
     """
-    if scene.pi9 > 0.0 and scene.pi10 > 0.0 and not scene.fixed_base:
-        raise ValueError(f"pi10 = {scene.pi10!r} (a bilinear bearing): planar sliding runs on a fixed base, a linear "
-                         "isolator or a sliding bearing; allowed: pi10 = 0 (or pi9 = 0) with two horizontal ground "
-                         "components or an angle")
     coulomb = scene.rate_independent and model == "auto"
     P = building.parameters(scene, pi8=scene.pi8, coulomb=coulomb)
-    modal = building.modal_data(scene, P)
     n = int(P[building_kernel.P_N])
+    hyst = P[building_kernel.P_KIND] == building_kernel.KIND_BILINEAR
+    modal = _planar_modal(building.modal_data(scene, P), n, hyst)
     start, _ = scene.span
     hist_cap = 200_000 if history else 0
     stop = _horizon(scene, horizon)
@@ -677,7 +674,7 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
     h_free = min(building.free_step(scene), max_step)
     ex = excitation(scene)
     bps = _breakpoints(scene)
-    y0, md0 = (np.zeros(planar_kernel.state_size(n)), np.array([0.0, 1.0, 0.0, 0.0, 1.0, 0.0])) \
+    y0, md0 = (np.zeros(planar_kernel.state_size(n, hyst)), np.array([0.0, 1.0, 0.0, 0.0, 1.0, 0.0])) \
         if state is None else state
 
     def run(irtol, many=False):
@@ -693,14 +690,25 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
                                  contact="plane")
     sol = _solution(scene, out, facets)
     if history:
-        sol = dataclasses.replace(sol, history=_planar_history(out.hist, n, scene))
+        sol = dataclasses.replace(sol, history=_planar_history(out.hist, n, scene, hyst))
     return sol
 
 
-def _planar_history(h: np.ndarray, n: int, scene: Scene) -> History:
-    """The planar kernel's rows as a :class:`History` whose ``x, xd, u, ud`` have two columns (x, y)."""
-    c = planar_kernel.history_columns(n)
-    nb = planar_kernel.axis_size(n)
+def _planar_modal(modal: tuple, n: int, hyst: bool) -> tuple:
+    """The general kernel's modal data ``(Wm, Cm, Wh, Ch)`` with ``W``'s columns in the planar kernel's axis order.
+
+    An axis of the planar state is ``[x, x', xs.., xs'..]`` and a bilinear bearing's ``fh``, which
+    the general kernel's state holds last (after the block's ``u, u'``).
+    """
+    Wm, Cm, Wh, Ch = modal
+    cols = list(range(2 + 2 * n)) + ([Wm.shape[1] - 1] if hyst else [])
+    return np.ascontiguousarray(Wm[:, cols]), Cm, np.ascontiguousarray(Wh[:, cols]), Ch
+
+
+def _planar_history(h: np.ndarray, n: int, scene: Scene, hyst: bool = False) -> History:
+    """The planar kernel's rows as a :class:`History` whose ``x, xd, u, ud`` (and ``fh``) have two columns (x, y)."""
+    c = planar_kernel.history_columns(n, hyst)
+    nb = planar_kernel.axis_size(n, hyst)
 
     def pair(k):
         return np.column_stack([h[:, c["x"] + k], h[:, c["y"] + k]])
@@ -711,6 +719,7 @@ def _planar_history(h: np.ndarray, n: int, scene: Scene) -> History:
     return History(tau=h[:, c["tau"]].copy(), x=pair(0), xd=pair(1), u=h[:, c["u"]:c["u"] + 2].copy(),
                    ud=h[:, c["w"]:c["w"] + 2].copy(), phase=h[:, c["phase"]].astype(np.int8),
                    xs=xs if scene.flexible else None, xsd=xsd if scene.flexible else None,
+                   fh=pair(nb - 1) if hyst else None,
                    iso_phase=h[:, c["iso_phase"]].astype(np.int8) if bearing else None)
 
 

@@ -63,8 +63,9 @@ from numba import njit
 
 from .. import jit_cache
 from ..pulses import accel_at, jerk_at
-from .building_kernel import (KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR, P_KD, P_KIND, P_M,
-                              P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness, _storey_force, friction, normal)
+from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
+                              P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness,
+                              _storey_force, friction, normal)
 from .kernel import ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step, _step_factor, hermite_root
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
@@ -79,10 +80,11 @@ FLOAT_RESULTS = ("umax", "tpeak", "angle", "ures", "tend", "vmax", "ux", "uy", "
 """The float results of :func:`run`, in order: peak ``|u|``, its time and direction, the final ``|u|``,
 the end time, the largest speed, the final ``u``, the largest slab displacement ``|x|``."""
 
-EV_DEMAND, EV_RATE, EV_PEAK, EV_STOP, EV_BDEMAND, EV_BRATE, EV_BSTOP = range(7)
+EV_DEMAND, EV_RATE, EV_PEAK, EV_STOP, EV_BDEMAND, EV_BRATE, EV_BSTOP, EV_YIELD, EV_YRATE, EV_UNLOAD = range(10)
 """Event kinds: a stuck block's demand ``|A_F| - thr nz``, its rate, ``u . w`` (the rate of
 ``|u|^2 / 2``), the signed speed ``sg sigma`` of a slow slide (mode ``+-2``); a held sliding
-bearing's demand ``|f_need| - q nz``, its rate, and its slow slide's signed speed."""
+bearing's demand ``|f_need| - q nz``, its rate, and its slow slide's signed speed; an elastic
+bilinear bearing's ``|fh| - q``, its rate, and a yielding one's loading rate ``fh . x'/|fh|``."""
 
 STOP_FRACTION = 0.9
 """Fraction of the predicted time to a stop that one step may take."""
@@ -108,19 +110,19 @@ def slaved_speed(rtol: float) -> float:
     return SLAVED_FACTOR * rtol ** (2.0 / 3.0)
 
 
-def state_size(n: int) -> int:
-    """Length of the state vector of a building of ``n`` floors."""
-    return 2 * axis_size(n) + 4
+def state_size(n: int, hysteretic: bool = False) -> int:
+    """Length of the state vector of a building of ``n`` floors (``hysteretic``: on a bilinear bearing)."""
+    return 2 * axis_size(n, hysteretic) + 4
 
 
-def axis_size(n: int) -> int:
-    """States of one axis of a building of ``n`` floors: the slab's and the floors'."""
-    return 2 + 2 * n
+def axis_size(n: int, hysteretic: bool = False) -> int:
+    """States of one axis of a building of ``n`` floors: the slab's, the floors', a bilinear bearing's force."""
+    return 2 + 2 * n + (1 if hysteretic else 0)
 
 
-def history_columns(n: int) -> dict:
+def history_columns(n: int, hysteretic: bool = False) -> dict:
     """Column of each quantity in a history row: ``tau``, the axes' first columns, ``u``, ``w``, the phases."""
-    nb = axis_size(n)
+    nb = axis_size(n, hysteretic)
     return {"tau": 0, "x": 1, "y": 1 + nb, "u": 1 + 2 * nb, "w": 3 + 2 * nb, "phase": 5 + 2 * nb,
             "iso_phase": 6 + 2 * nb}
 
@@ -161,6 +163,18 @@ def _sliding_bearing(P):
 def _held(im, P):
     """True while the slab is held to the ground (a fixed base, or a stuck sliding bearing)."""
     return P[P_KIND] == KIND_FIXED or (P[P_KIND] == KIND_SLIDING and im == 0.0)
+
+
+@njit(cache=True, inline="always")
+def _hysteretic(P):
+    """True for a bilinear (lead-rubber) bearing: an elastic-plastic force with a circular yield surface."""
+    return P[P_KIND] == KIND_BILINEAR
+
+
+@njit(cache=True, inline="always")
+def _axis_len(P):
+    """States of one axis: ``[x, x', xs_1 .. xs_n, xs_1' .. xs_n']`` and a bilinear bearing's force ``fh``."""
+    return 2 + 2 * int(P[P_N]) + (1 if _hysteretic(P) else 0)
 
 
 @njit(cache=True, inline="always")
@@ -226,7 +240,7 @@ def _unit(x, y, f0, f1):
 @njit(cache=True, inline="always")
 def _stuck_accels(y, gx, gy, P, A, held, rbx, rby, nz):
     """The floor's acceleration ``(A_Fx, A_Fy)`` with the block stuck on it (``A`` scratch space)."""
-    nb = 2 + 2 * int(P[P_N])
+    nb = _axis_len(P)
     return (_axis(0, True, 0.0, gx, y, P, A, held, rbx, nz)[1],
             _axis(nb, True, 0.0, gy, y, P, A, held, rby, nz)[1])
 
@@ -265,7 +279,7 @@ def _bearing_need(md, y, gx, gy, P, nz, tmp):
     mode with the slab held).
     """
     n = int(P[P_N])
-    nb = 2 + 2 * n
+    nb = _axis_len(P)
     mb = P[P_MB]
     kd = _stiffness(nz, P)
     rx = 0.0
@@ -292,12 +306,17 @@ def _bearing_force(md, tau, y, P, ex, nz, tmp):
     """A sliding bearing's friction force on the slab ``(rb_x, rb_y)`` and its slaved direction.
 
     Returns ``(rbx, rby, dx, dy)``: ``q nz`` along the slab's velocity (mode 1) or along
-    ``sg d_b`` (mode ``+-2``, ``d_b`` the held need's direction); zero while held.
+    ``sg d_b`` (mode ``+-2``, ``d_b`` the held need's direction); zero while held.  A bilinear
+    bearing's is its elastic-plastic force ``fh`` (a state) in either mode, with its direction.
     """
     im = md[M_IM]
+    if _hysteretic(P):
+        nb = _axis_len(P)
+        dx, dy = _unit(y[nb - 1], y[2 * nb - 1], md[M_I0], md[M_I1])
+        return y[nb - 1], y[2 * nb - 1], dx, dy
     if im == 0.0 or not _sliding_bearing(P):
         return 0.0, 0.0, md[M_I0], md[M_I1]
-    nb = 2 + 2 * int(P[P_N])
+    nb = _axis_len(P)
     qn = P[P_Q] * nz
     if im == 1.0:
         dx, dy = _unit(y[1], y[nb + 1], md[M_I0], md[M_I1])
@@ -328,10 +347,39 @@ def _axis_rates(o, stuck, r, p, y, P, out, held, rb, nz):
 
 
 @njit(cache=True, inline="always")
+def _hysteretic_rates(im, y, P, out, nb):
+    """A bilinear bearing's force rates into ``out``: ``fh' = k_e x'`` elastic (mode 0); yielding (mode 1)
+    ``k_e`` times the part of ``x'`` across ``fh``, the plastic flow taking the part along it, so
+    that ``|fh| = q`` holds (a circular yield surface, perfectly plastic)."""
+    vx = y[1]
+    vy = y[nb + 1]
+    if im != 0.0:
+        fx = y[nb - 1]
+        fy = y[2 * nb - 1]
+        f2 = fx * fx + fy * fy
+        if f2 > 0.0:
+            a = (vx * fx + vy * fy) / f2
+            vx -= a * fx
+            vy -= a * fy
+    out[nb - 1] = P[P_KE] * vx
+    out[2 * nb - 1] = P[P_KE] * vy
+
+
+@njit(cache=True, inline="always")
+def _yield_surface(y, P):
+    """Put a yielding bilinear bearing's force back on its yield circle ``|fh| = q`` (the steps' round-off)."""
+    nb = _axis_len(P)
+    f = math.sqrt(y[nb - 1] ** 2 + y[2 * nb - 1] ** 2)
+    if f > 0.0:
+        y[nb - 1] *= P[P_Q] / f
+        y[2 * nb - 1] *= P[P_Q] / f
+
+
+@njit(cache=True, inline="always")
 def _rates(md, tau, y, P, ex, out, tmp):
     """The state's rates in the modes ``md`` without the slaved lines' turning terms; ``(A_Fx, A_Fy)``."""
     n = int(P[P_N])
-    nb = 2 + 2 * n
+    nb = _axis_len(P)
     U = 2 * nb
     gx, gy = ground(tau, ex)
     nz, _ = normal(tau, P)
@@ -342,6 +390,8 @@ def _rates(md, tau, y, P, ex, out, tmp):
     m = P[P_M]
     AFx = _axis_rates(0, stuck, m * ph * fx, gx, y, P, out, held, rbx, nz)
     AFy = _axis_rates(nb, stuck, m * ph * fy, gy, y, P, out, held, rby, nz)
+    if _hysteretic(P):
+        _hysteretic_rates(md[M_IM], y, P, out, nb)
     out[U] = y[U + 2]
     out[U + 1] = y[U + 3]
     if stuck:
@@ -367,7 +417,7 @@ def deriv(md, tau, y, P, ex, out, tmp):
     demand).  ``tmp`` is scratch space of at least ``n`` entries.
     """
     n = int(P[P_N])
-    nb = 2 + 2 * n
+    nb = _axis_len(P)
     U = 2 * nb
     AFx, AFy = _rates(md, tau, y, P, ex, out, tmp)
     bm = md[M_BM]
@@ -387,7 +437,8 @@ def deriv(md, tau, y, P, ex, out, tmp):
                 ddx, ddy = _turning(0, md, tau, y, P, ex, out, tmp, dx, dy)
             else:
                 jx, jy = ground_rate(tau, ex)
-                rx, ry = _stuck_accels(out, jx, jy, P, tmp, held, 0.0, 0.0, nz)
+                hx, hy = (out[nb - 1], out[2 * nb - 1]) if _hysteretic(P) else (0.0, 0.0)
+                rx, ry = _stuck_accels(out, jx, jy, P, tmp, held, hx, hy, nz)
                 along = (rx * ax + ry * ay) / amag
                 ddx = -(rx - along * ax / amag) / amag
                 ddy = -(ry - along * ay / amag) / amag
@@ -535,6 +586,21 @@ def _event(kind, md, tau, y, P, ex, work):
         dx, dy = _slaved_dir(1, md, tau, y, P, ex, tmp)
         sg = 0.5 * md[M_IM]
         return sg * (y[1] * dx + y[nb + 1] * dy), sg * (rate[1] * dx + rate[nb + 1] * dy)
+    if kind == EV_YIELD or kind == EV_YRATE or kind == EV_UNLOAD:
+        fx, fy = y[nb - 1], y[2 * nb - 1]
+        dfx, dfy = rate[nb - 1], rate[2 * nb - 1]
+        f = math.sqrt(fx * fx + fy * fy)
+        if kind == EV_UNLOAD:
+            if f == 0.0:
+                return 0.0, math.nan
+            vx, vy = y[1], y[nb + 1]
+            g = (fx * vx + fy * vy) / f
+            dg = (dfx * vx + dfy * vy + fx * rate[1] + fy * rate[nb + 1]) / f - g * (fx * dfx + fy * dfy) / (f * f)
+            return g, dg
+        df = (fx * dfx + fy * dfy) / f if f > 0.0 else math.sqrt(dfx * dfx + dfy * dfy)
+        if kind == EV_YRATE:
+            return df, math.nan
+        return f - P[P_Q], df
     base = EV_DEMAND if (kind == EV_DEMAND or kind == EV_RATE) else EV_BDEMAND
     if _sliding_bearing(P):
         # central differences along the motion (the bearing's friction and stiffness make the
@@ -555,8 +621,9 @@ def _event(kind, md, tau, y, P, ex, work):
         jx, jy = ground_rate(tau, ex)
         A_ = work[ny:ny + n]
         held = _held(md[M_IM], P)
-        dAx = _axis(0, True, 0.0, jx, rate, P, A_, held, 0.0, nz)[1]
-        dAy = _axis(nb, True, 0.0, jy, rate, P, A_, held, 0.0, nz)[1]
+        hx, hy = (rate[nb - 1], rate[2 * nb - 1]) if _hysteretic(P) else (0.0, 0.0)
+        dAx = _axis(0, True, 0.0, jx, rate, P, A_, held, hx, nz)[1]
+        dAy = _axis(nb, True, 0.0, jy, rate, P, A_, held, hy, nz)[1]
         mag = math.sqrt(AFx * AFx + AFy * AFy)
         dg = (AFx * dAx + AFy * dAy) / mag if mag > 0.0 else math.sqrt(dAx * dAx + dAy * dAy)
         dg -= P[P_THR] * dnz
@@ -626,10 +693,10 @@ def locate(kind, md, tau, y, ha, ga, hb, gb, h0, check, P, ex, atol, rtol, K, yo
 def _breakaway(kind, limit, md, tau, y, y1, h, t_end, P, ex, atol, rtol, check, K, ye, work, cnt):
     """First point of the accepted step where a held interface's demand reaches its limit: ``(found, hs, herr)``.
 
-    ``kind`` is EV_DEMAND (the block) or EV_BDEMAND (a sliding bearing); ``limit`` its static limit
-    (for the margin of the interior-peak test).
+    ``kind`` is EV_DEMAND (the block), EV_BDEMAND (a sliding bearing) or EV_YIELD (an elastic
+    bilinear bearing); ``limit`` its static limit (for the margin of the interior-peak test).
     """
-    rate = EV_RATE if kind == EV_DEMAND else EV_BRATE
+    rate = EV_RATE if kind == EV_DEMAND else (EV_BRATE if kind == EV_BDEMAND else EV_YRATE)
     g0, r0 = _event(kind, md, tau, y, P, ex, work)
     g1, r1 = _event(kind, md, t_end, y1, P, ex, work)
     if g1 > 0.0:
@@ -648,6 +715,24 @@ def _breakaway(kind, limit, md, tau, y, y1, h, t_end, P, ex, atol, rtol, check, 
     if gm <= 0.0:
         return False, 0.0, 0.0
     hs, herr = locate(kind, md, tau, y, 0.0, g0, hm, gm, -1.0, check, P, ex, atol, rtol, K, ye, work, cnt)
+    return True, hs, herr
+
+
+@njit(cache=True)
+def _unload(md, tau, y, y1, h, t_end, check, P, ex, atol, rtol, K, ye, work, cnt):
+    """First point of the accepted step where a yielding bilinear bearing unloads (``fh . x'`` turns negative).
+
+    Returns ``(found, hs, herr)``; ``ye`` holds the state there.
+    """
+    g1, r1 = _event(EV_UNLOAD, md, t_end, y1, P, ex, work)
+    if g1 >= 0.0:
+        return False, 0.0, 0.0
+    g0, r0 = _event(EV_UNLOAD, md, tau, y, P, ex, work)
+    if g0 <= 0.0:
+        _copy(ye, y)
+        return True, 0.0, 0.0
+    hs, herr = locate(EV_UNLOAD, md, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, ex, atol,
+                      rtol, K, ye, work, cnt)
     return True, hs, herr
 
 
@@ -708,7 +793,7 @@ def _settled(md, y, P, Wm, Cm, Wh, Ch):
     if md[M_BM] != 0.0 or md[M_IM] != 0.0:
         return False
     n = int(P[P_N])
-    nb = 2 + 2 * n
+    nb = _axis_len(P)
     held = _held(0.0, P)
     start = 2 if held else 0
     moving = False
@@ -726,7 +811,8 @@ def _settled(md, y, P, Wm, Cm, Wh, Ch):
     by = _modal_bound(W, Cd, 0, y, nb, nb)
     if bx < 0.0 or by < 0.0 or math.sqrt(bx * bx + by * by) > P[P_THR]:
         return False
-    if sliding:
+    if sliding or _hysteretic(P):
+        # the force holding a sliding bearing, or an elastic bilinear bearing's force, within its strength
         bx = _modal_bound(W, Cd, 1, y, 0, nb)
         by = _modal_bound(W, Cd, 1, y, nb, nb)
         if bx < 0.0 or by < 0.0 or static + math.sqrt(bx * bx + by * by) > P[P_Q]:
@@ -863,10 +949,11 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         Rows ``[tau, y..., bm, im]``.
     """
     nfl = int(P[P_N])
-    nb_ = 2 + 2 * nfl
+    nb_ = _axis_len(P)
     ny = 2 * nb_ + 4
     U = ny - 4
     bearing = _sliding_bearing(P)
+    hyst = _hysteretic(P)
     y = y0.copy()
     md = md0.copy()
     y1 = np.empty(ny)
@@ -1023,6 +1110,17 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                 if found and hs < hbest:
                     best, hbest, herr_best = EV_BDEMAND, hs, herr
                     _copy(yb, ye)
+            if hyst and md[M_IM] == 0.0:
+                found, hs, herr = _breakaway(EV_YIELD, P[P_Q], md, tau, y, y1, h, t_end_step, P, ex, atol, rtol,
+                                             check, K, ye, work, cnt)
+                if found and hs < hbest:
+                    best, hbest, herr_best = EV_YIELD, hs, herr
+                    _copy(yb, ye)
+        if hyst and md[M_IM] == 1.0:
+            found, hs, herr = _unload(md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol, K, ye, work, cnt)
+            if found and hs < hbest:
+                best, hbest, herr_best = EV_UNLOAD, hs, herr
+                _copy(yb, ye)
         if md[M_BM] == 2.0 or md[M_BM] == -2.0:
             found, hs, herr = _slow_stop(EV_STOP, just_b, md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol,
                                          K, ye, work, cnt)
@@ -1076,6 +1174,12 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                 y[nb_ + 1] = 0.0
                 md[M_IM] = 2.0
                 md[M_I0], md[M_I1] = _slaved_dir(1, md, tau, y, P, ex, work[ny:4 * ny])
+            elif best == EV_YIELD:
+                # rate-independent plasticity: every force stays continuous, the block keeps its mode
+                md[M_IM] = 1.0
+                _yield_surface(y, P)
+            elif best == EV_UNLOAD:
+                md[M_IM] = 0.0
             elif not hold:
                 _select(md, md[M_BM] == 0.0, bearing and md[M_IM] == 0.0, tau, y, P, ex, work)
             if md[M_BM] != bm0:
@@ -1110,6 +1214,9 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         if _held(md[M_IM], P):
             for a in range(2):
                 y[a * nb_ + 1] = 0.0
+        elif hyst:
+            if md[M_IM] == 1.0:
+                _yield_surface(y, P)
         elif bearing:
             _line_switch(1, md, tau, y, P, ex, work, slaved)
         if P[P_KIND] == KIND_FIXED:
