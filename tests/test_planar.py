@@ -30,6 +30,9 @@ BUILDINGS = {
                                             pi8=0.1),
     "friction-pendulum-stribeck-vertical": dict(pi2=0.12, pi3=2.5, pi9=0.06, pi8=0.2, pi5=0.7, pi6=20.0, pi17=0.4,
                                                 pulse_z="ricker"),
+    "bilinear-two-way": dict(pi2=0.15, pi3=2.0, pi4=0.1, pi9=0.05, pi10=0.02, pi8=0.2),
+    "bilinear-flexible-roof-stribeck": dict(pi2=0.12, pi3=2.5, pi4=0.05, pi9=0.06, pi10=0.03, pi11=0.5, pi12=0.3,
+                                            pi13=0.05, storeys=2, floor="roof", pi8=0.1, pi5=0.7, pi6=20.0),
 }
 
 
@@ -186,10 +189,23 @@ def test_the_peak_of_the_planar_slide_is_the_largest_distance_of_the_history():
     assert abs(angle_difference(sol.peak_angle, math.atan2(sol.history.u[k, 1], sol.history.u[k, 0]))) < 1e-3
 
 
-def test_planar_scenes_refuse_a_bilinear_bearing_naming_the_group():
-    scene = isoslide.Scene(pi2=0.2, pi3=2.0, pi9=0.05, pi10=0.01, pulse_y="antisymmetric_ricker", pi14=0.5)
-    with pytest.raises(ValueError, match="pi10 = 0.01"):
-        isoslide.solve(scene)
+def test_a_bilinear_bearing_in_the_plane_yields_on_its_circle_and_unloads_inside_it():
+    """Under two components the bilinear bearing's force ``fh`` never leaves the circle ``|fh| <= Pi9``; it
+    yields (``|fh| = Pi9`` while its phase is 1) and unloads (elastic again, inside the circle), and it
+    turns: the force points in more than one direction while yielding."""
+    scene = isoslide.Scene(pi2=0.15, pi3=2.0, pi4=0.1, pi9=0.05, pi10=0.02, pi8=0.2, pulse_y="antisymmetric_ricker",
+                           pi14=0.7)
+    sol = isoslide.solve(scene, rtol=1e-10, history=True)
+    fh, phase = sol.history.fh, sol.history.iso_phase
+    size = np.hypot(fh[:, 0], fh[:, 1])
+    assert sol.model.startswith("bilinear+") and sol.model.endswith("+planar")
+    assert size.max() <= 0.05 * (1.0 + 1e-12)
+    yielding = phase == 1
+    assert yielding.any() and (~yielding[np.argmax(yielding):]).any()
+    assert np.allclose(size[yielding], 0.05, rtol=1e-12, atol=0.0)
+    directions = np.arctan2(fh[yielding, 1], fh[yielding, 0])
+    assert np.ptp(np.unwrap(directions)) > 0.5
+    assert size[-1] < 0.05
 
 
 def test_a_planar_scene_refuses_an_unknown_model_and_unexpected_options():

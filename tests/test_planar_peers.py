@@ -2,7 +2,8 @@
 
 The SciPy event-driven peer :mod:`isoslide.peers.reference_planar` shares no code with the compiled
 planar kernel; both integrate the same model (planar Stribeck contents, the building in x and y,
-vertical motion through the normal force, a friction pendulum as a second planar friction interface)
+vertical motion through the normal force, a friction pendulum as a second planar friction interface,
+a bilinear bearing with a circular yield surface)
 to far below the tolerance compared here.
 """
 
@@ -27,6 +28,13 @@ SCENES = {
                                                      pulse_y="ricker", pi14=0.9, pi15=0.7, pi16=0.25),
     "three-storeys-roof": dict(pi2=0.15, pi3=2.0, pi4=0.1, pi11=0.5, pi12=0.3, pi13=0.05, storeys=3, floor="roof",
                                pi8=0.1, pulse_y="antisymmetric_ricker", pi14=0.9, pi16=-0.2),
+    "bilinear-two-way": dict(pi2=0.15, pi3=2.0, pi4=0.1, pi9=0.05, pi10=0.02, pi8=0.2, pulse_y="antisymmetric_ricker",
+                             pi14=0.7),
+    "bilinear-stribeck-shifted": dict(pi2=0.1, pi3=3.0, pi4=0.05, pi9=0.08, pi10=0.05, pi8=0.1, pi5=0.7, pi6=20.0,
+                                      pulse_y="ricker", pi14=1.0, pi15=1.3, pi16=0.2),
+    "bilinear-three-storeys-roof-vertical": dict(pi2=0.2, pi3=2.0, pi4=0.1, pi9=0.05, pi10=0.03, pi8=0.3, pi11=0.5,
+                                                 pi12=0.3, pi13=0.05, storeys=3, floor="roof", pi17=0.3,
+                                                 pulse_z="ricker", pulse_y="antisymmetric_ricker", pi14=0.8),
 }
 
 

@@ -9,7 +9,8 @@ segment by segment with :func:`scipy.integrate.solve_ivp` (``DOP853``, and ``Rad
 slips, see below) and every transition located with ``solve_ivp``'s events; nothing comes from the
 compiled kernel (:mod:`isoslide.engine`), so the two can check each other.  The sliding bearing
 (friction pendulum, ``Pi9 > 0`` with ``Pi10 = 0``) is a second friction interface in the plane,
-with true stick; the bilinear bearing (``Pi10 > 0``) is not modelled (refused).
+with true stick; the bilinear bearing (``Pi9 > 0``, ``Pi10 > 0``) an elastic-plastic force with a
+circular yield surface (below).
 
 Model (dimensionless: ``tau = t/T_p``, lengths ``a_p T_p**2``, accelerations ``a_p``, masses ``M_b``)
 ---------------------------------------------------------------------------------------------------
@@ -80,6 +81,18 @@ its friction:
   ``f_need/|f_need|`` (force-continuous: the friction ``-f_need`` held becomes ``q nz`` along the
   same line, and the contents keep their mode); a slab whose ``|x'|`` returns to zero stops, and the
   modes of the interfaces at rest are chosen (below).
+
+Bilinear bearing (lead-rubber), ``q = Pi9``, ``D_y = Pi10``: the linear isolator (post-yield
+stiffness ``kd`` in ``K``) plus a hysteretic force ``fh = (fh_x, fh_y)`` on the slab, a state:
+``-fh`` joins the slab's row of ``-(K d + C d')``.  Elastic (``|fh| < q``, or unloading):
+``fh' = ke x'`` with ``ke = q/D_y``; yielding (``|fh| = q`` and ``fh . x' > 0``): perfectly plastic
+flow along ``fh``, ``fh' = ke (x' - (n_h . x') n_h)`` with ``n_h = fh/|fh|``, which keeps ``|fh| =
+q``.  It yields at the root of ``q - |fh|`` and unloads at the root of ``fh . x'`` (terminal
+events); after the pulses, with the contents stuck and the bearing elastic, the plastic offset
+``x_p = x - fh/ke`` is fixed, the free system is linear about the displacement ``d*`` that
+``K' d* = ke x_p e_0`` gives (``K' = K + ke e_0 e_0^T``), and settlement is the energy bound below
+with ``K'`` and ``d - d*``, and ``|fh| <= ke |d*_0 - x_p| + ke |d_0 - d*_0|`` within ``q``.  It
+does not act on contents on a fixed base (``Pi3 = 0``).
 
 Joint modes
 -----------
@@ -262,6 +275,9 @@ class PlanarBuilding:
     q : float
         Strength ``Pi9`` of a sliding bearing under the slab (units ``M_b a_p``, times ``nz``);
         0 without one (a linear isolator or a fixed base).
+    qy, ke : float
+        A bilinear bearing's yield strength ``Pi9`` (units ``M_b a_p``) and the elastic stiffness
+        of its hysteretic force ``Pi9/Pi10`` (units ``M_b / T_p**2``); 0 without one.
     kd : float
         The pendulum's stiffness ``(2 pi/Pi3)**2`` with a sliding bearing (units
         ``M_b / T_p**2``, times ``nz``; also in ``K[0, 0]``), else 0.
@@ -278,6 +294,21 @@ class PlanarBuilding:
     pi7: float
     q: float = 0.0
     kd: float = 0.0
+    qy: float = 0.0
+    ke: float = 0.0
+
+    @property
+    def hysteretic(self) -> bool:
+        """True for a bilinear bearing: a hysteretic force ``fh`` on the slab with a circular yield surface."""
+        return self.ke > 0.0
+
+    @property
+    def elastic_K(self) -> np.ndarray:
+        """``K`` with a bilinear bearing's elastic stiffness on the slab (``K'`` of the module docstring)."""
+        K = self.K.copy()
+        if self.hysteretic:
+            K[0, 0] += self.ke
+        return K
 
     @property
     def bearing(self) -> bool:
@@ -307,34 +338,25 @@ class PlanarBuilding:
         """Natural periods of the stuck building (units ``T_p``), to bound the step."""
         if not self.nd:
             return []
-        lam = list(scipy.linalg.eigh(self.K, np.diag(self.stuck_masses), eigvals_only=True))
+        lam = list(scipy.linalg.eigh(self.elastic_K, np.diag(self.stuck_masses), eigvals_only=True))
         if self.bearing and self.nd > 1:   # the floors above a held slab
             lam += list(scipy.linalg.eigh(self.K[1:, 1:], np.diag(self.stuck_masses[1:]), eigvals_only=True))
         return [2.0 * math.pi / math.sqrt(v) for v in lam if v > 0.0]
 
 
 def planar_building(scene: Scene) -> PlanarBuilding:
-    """The building of a scene (module docstring); refuses a bilinear bearing.
+    """The building of a scene (module docstring).
 
     Parameters
     ----------
     scene : Scene
-        A fixed base (``Pi3 = 0``), a linear isolator (``Pi9 = 0``) or a sliding bearing
-        (``Pi9 > 0``, ``Pi10 = 0``).
+        A fixed base (``Pi3 = 0``), a linear isolator (``Pi9 = 0``), a sliding bearing
+        (``Pi9 > 0``, ``Pi10 = 0``) or a bilinear bearing (``Pi9 > 0``, ``Pi10 > 0``).
 
     Returns
     -------
     PlanarBuilding
-
-    Raises
-    ------
-    ValueError
-        ``pi10 > 0`` with ``pi9 > 0`` and ``pi3 > 0`` (a bilinear bearing), which this peer does not
-        model.
     """
-    if scene.pi9 > 0.0 and scene.pi10 > 0.0 and scene.pi3 > 0.0:
-        raise ValueError(f"pi10 = {scene.pi10!r} (a bilinear bearing) is not modelled by the planar reference peer; "
-                         "allowed: pi10 = 0 (a sliding bearing with pi9 > 0, or a linear isolator with pi9 = 0)")
     flexible = scene.pi12 > 0.0
     floor = scene.floor_index if flexible else 0
     if flexible:
@@ -351,7 +373,9 @@ def planar_building(scene: Scene) -> PlanarBuilding:
         return PlanarBuilding(masses=np.zeros(0), K=np.zeros((0, 0)), C=np.zeros((0, 0)), k=-1, **common)
     wb = 2.0 * math.pi / scene.pi3
     kd, cb = wb * wb, 2.0 * scene.pi4 * wb
-    if scene.pi9 > 0.0:
+    if scene.pi9 > 0.0 and scene.pi10 > 0.0:
+        common.update(qy=float(scene.pi9), ke=float(scene.pi9 / scene.pi10))
+    elif scene.pi9 > 0.0:
         common.update(q=float(scene.pi9), kd=kd)
     if not flexible:
         return PlanarBuilding(masses=np.ones(1), K=np.array([[kd]]), C=np.array([[cb]]), k=0, **common)
@@ -513,9 +537,8 @@ def solve_reference_planar(scene: Scene, history: bool = False, rtol: float = 1e
     Parameters
     ----------
     scene : Scene
-        Any scene without a bilinear bearing (a fixed base, a linear isolator or a sliding
-        bearing, ``Pi10 = 0``; rigid or flexible superstructure; one or two horizontal components
-        at any angle; vertical motion).
+        Any scene: a fixed base, a linear isolator, a sliding bearing or a bilinear bearing; rigid
+        or flexible superstructure; one or two horizontal components at any angle; vertical motion.
     history : bool
         Must be False: a planar response has no one-dimensional
         :class:`~isoslide.store.history.History`; :func:`run_planar` samples its trajectory.
@@ -542,7 +565,7 @@ def solve_reference_planar(scene: Scene, history: bool = False, rtol: float = 1e
     Raises
     ------
     ValueError
-        ``pi10 > 0`` (a bilinear bearing), ``history = True``, or a bad ``horizon``.
+        ``history = True``, or a bad ``horizon``.
     """
     if history:
         raise ValueError("history = True is not available for a planar response (no one-dimensional History); "
@@ -593,7 +616,9 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
     rec_t, rec_y = [], []
 
     tau = ex.tau_start
-    y = np.zeros(4 * nd + 4)
+    i_h = 4 * nd + 4                        # a bilinear bearing's force fh
+    y = np.zeros(i_h + (2 if B.hysteretic else 0))
+    plastic = False                         # the bilinear bearing yielding
     # the interfaces: 0 the contents on their floor, 1 the sliding bearing (_NONE without one)
     modes = [_STUCK, _STUCK if B.bearing else _NONE]
     implicit = [False, False]               # sliding: Radau (slow, stiff) or DOP853
@@ -651,7 +676,7 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
                     n_events += 1
                     from_rest[j] = True
             modes = chosen
-        free = modes[0] == _STUCK and modes[1] in (_STUCK, _NONE) and tau >= tau_end
+        free = modes[0] == _STUCK and modes[1] in (_STUCK, _NONE) and not plastic and tau >= tau_end
         settle_g = settle_of(y) if free and settle_of is not None else None
         if free and settle and (settle_g is None or settle_g(tau, y) >= 0.0):
             settled = True
@@ -661,7 +686,8 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
         # ---- this segment -------------------------------------------------------------------
         gears = [(2.0 * stiff[j], 1.0) if implicit[j] else (stiff[j], -1.0) for j in (0, 1)]
         method = "Radau" if any(modes[j] == _SLIDING and implicit[j] for j in (0, 1)) else "DOP853"
-        seg = _segment(P, ground, nz, tuple(modes), dirs, tau, y, from_rest, atol, lims, slow, gears, settle_g)
+        seg = _segment(P, ground, nz, tuple(modes), dirs, tau, y, from_rest, atol, lims, slow, gears, settle_g,
+                       plastic)
         rhs, specs = seg.rhs, seg.events
         sol = solve_ivp(counted(rhs, max_work, "reference", used), (tau, t_end), y, method=method, rtol=rtol,
                         atol=atol, events=[s[0] for s in specs], max_step=hmax_pulse if tau < tau_end else hmax_free,
@@ -702,6 +728,11 @@ def run_planar(scene: Scene, rtol: float = 1e-11, atol: float = 1e-13, horizon: 
         if kind == "settle":
             settled = True
             break
+        if kind in ("yield", "unload"):     # the bilinear bearing: nothing else changes
+            plastic = kind == "yield"
+            if plastic:
+                y[i_h:i_h + 2] *= B.qy / math.hypot(y[i_h], y[i_h + 1])
+            continue
         a, b = slots[j]
         if kind == "break":             # slides from rest along its slaved direction
             modes[j], from_rest[j] = _SLAVED, True
@@ -812,6 +843,8 @@ class _Planar:
                 V = V.copy()
                 V[0] = 0.0
             F = -(B.C @ V + B.K @ D)
+            if B.hysteretic:
+                F[0] -= yy[4 * nd + 4:4 * nd + 6]
             if bm != _NONE:
                 if z != 1.0:            # the pendulum's stiffness scales with the normal force
                     F[0] -= (z - 1.0) * B.kd * D[0]
@@ -849,8 +882,8 @@ class _Planar:
         s = self.state(g, z, yy, modes, dirs)
         return s.nc, s.nb
 
-    def rates(self, yy, s: _State, modes) -> np.ndarray:
-        """The state's rates from :meth:`state`'s ``s`` in the modes ``modes``."""
+    def rates(self, yy, s: _State, modes, plastic: bool = False) -> np.ndarray:
+        """The state's rates from :meth:`state`'s ``s`` in the modes ``modes`` (``plastic``: a bilinear bearing yields)."""
         nd = self.nd
         i_u, i_w = 4 * nd, 4 * nd + 2
         cm, bm = modes
@@ -868,6 +901,12 @@ class _Planar:
         elif cm == _SLIDING:
             d[i_u:i_u + 2] = yy[i_w:i_w + 2]
             d[i_w:i_w + 2] = -s.AF - s.fr * s.nc
+        if self.B.hysteretic:
+            v = np.array(s.V[0], dtype=float)
+            if plastic:
+                n_h = _unit(yy[4 * nd + 4:4 * nd + 6], v)
+                v -= float(n_h @ v) * n_h
+            d[4 * nd + 4:4 * nd + 6] = self.B.ke * v
         return d
 
     @staticmethod
@@ -939,7 +978,7 @@ class _Segment:
 
 
 def _segment(P: _Planar, ground, nz, modes: tuple, dirs, t0: float, y0, from_rest, atol: float, lims,
-             slow, gears, settle_g) -> _Segment:
+             slow, gears, settle_g, plastic: bool = False) -> _Segment:
     """One segment in the modes ``modes = (contents, bearing)`` (module docstring).
 
     Events of an interface, by mode: stuck ``"break"`` (its need reaches its limit); slaved
@@ -948,7 +987,8 @@ def _segment(P: _Planar, ground, nz, modes: tuple, dirs, t0: float, y0, from_res
     deg) |v| + atol`` to zero), ``"slow"`` (``|v|`` down to ``slow[j]``; none when None) and
     ``"gear"`` (``|v|`` through ``gears[j][0]`` in the direction ``gears[j][1]``), all terminal;
     the contents' ``"peak"`` (``u . w`` from positive to negative) is not.  ``settle_g``, when
-    given, adds ``"settle"``.
+    given, adds ``"settle"``.  A bilinear bearing adds ``"yield"`` (``|fh|`` up to ``q``) while
+    elastic, ``"unload"`` (``fh . x'`` to zero) while yielding (``plastic``).
     """
     nd = P.nd
     i_u, i_w, i_v = 4 * nd, 4 * nd + 2, 2 * nd
@@ -964,7 +1004,7 @@ def _segment(P: _Planar, ground, nz, modes: tuple, dirs, t0: float, y0, from_res
         return s
 
     def rhs(t, yy):
-        return P.rates(yy, state(t, yy), modes)
+        return P.rates(yy, state(t, yy), modes, plastic)
 
     y0 = np.asarray(y0, dtype=float)
     d0 = rhs(t0, y0)
@@ -1025,6 +1065,18 @@ def _segment(P: _Planar, ground, nz, modes: tuple, dirs, t0: float, y0, from_res
                     return yy[i_u] * yy[i_w] + yy[i_u + 1] * yy[i_w + 1]
 
                 events.append((g_peak, (0, "peak"), False, -1.0))
+    if P.B.hysteretic:
+        i_h = 4 * nd + 4
+        if plastic:
+            def g_unload(t, yy):
+                return float(state(t, yy).V[0] @ yy[i_h:i_h + 2])
+
+            events.append((g_unload, (2, "unload"), True, -1.0))
+        else:
+            def g_yield(t, yy, q=P.B.qy):
+                return q - math.hypot(yy[i_h], yy[i_h + 1])
+
+            events.append((g_yield, (2, "yield"), True, -1.0))
     if settle_g is not None:
         events.append((settle_g, (0, "settle"), True, 1.0))
     for fn, _, terminal, direction in events:
@@ -1052,6 +1104,8 @@ def _settle_margin(B: PlanarBuilding, lim_b: float):
     contents on a floor that moves with the ground, on a fixed base).
     """
     n, k, thr = B.nd, B.k, B.thr
+    if B.hysteretic:
+        return _hysteretic_margin(B)
     if not B.bearing:
         if k < 0:
             return None
@@ -1093,6 +1147,42 @@ def _settle_margin(B: PlanarBuilding, lim_b: float):
             else:
                 r = 0.0
             return min(lim - (held if bearing else 0.0) - r * s for lim, bearing, s in scales)
+
+        return g
+
+    return margin
+
+
+def _hysteretic_margin(B: PlanarBuilding):
+    """The settlement margin on an elastic bilinear bearing (module docstring): ``y -> g(tau, y)``.
+
+    With the plastic offset ``x_p`` of the state at the free segment's start, ``g`` is the least of
+    ``thr - sqrt(2 E c^T P^-1 c)`` and ``q - ke |d*_0 - x_p| - sqrt(2 E c_h^T P^-1 c_h)``, ``E`` the
+    energy of ``d - d*`` with ``K'``, ``c_h = ke e_0``.
+    """
+    n, k = B.nd, B.k
+    K, Ms = B.elastic_K, B.stuck_masses
+    P = np.zeros((2 * n, 2 * n))
+    P[:n, :n], P[n:, n:] = K, np.diag(Ms)
+    cc = -np.concatenate([K[k], B.C[k]]) / Ms[k]
+    ch = np.zeros(2 * n)
+    ch[0] = B.ke
+    sc = math.sqrt(float(cc @ np.linalg.solve(P, cc)))
+    sh = math.sqrt(float(ch @ np.linalg.solve(P, ch)))
+    e0 = np.zeros(n)
+    e0[0] = 1.0
+    r = B.ke * np.linalg.solve(K, e0)       # d* = r x_p^T
+    i_h = 4 * n + 4
+
+    def margin(y):
+        xp = np.asarray(y[0:2], dtype=float) - np.asarray(y[i_h:i_h + 2], dtype=float) / B.ke
+        dstar = np.outer(r, xp)
+        off = B.ke * math.hypot(*(dstar[0] - xp))
+
+        def g(t, yy):
+            D = yy[:2 * n].reshape(n, 2) - dstar
+            e = math.sqrt(_largest_energy(D, yy[2 * n:4 * n].reshape(n, 2), K, Ms))
+            return min(B.thr - e * sc, B.qy - off - e * sh)
 
         return g
 
