@@ -2,18 +2,19 @@
 
 Contents slide in the plane of their floor under two horizontal ground components (and the
 vertical one through the normal force).  The building is the general building of
-:mod:`isoslide.engine.building_kernel` (a fixed base or a linear isolator, a rigid superstructure
-or a shear building of ``n`` floors, the contents on floor ``k``), isotropic in the plane: it
-moves in x and in y with the same equations, coupled only through the contents' friction force,
-a vector.  Units: time ``T_p``, lengths ``a_p T_p^2``, accelerations ``a_p``, masses ``M_b``;
+:mod:`isoslide.engine.building_kernel` (a fixed base, a linear isolator, a sliding bearing or a
+bilinear bearing, a rigid superstructure or a shear building of ``n`` floors, the contents on
+floor ``k``), isotropic in the plane: it moves in x and in y with the same equations, coupled
+only through the friction forces and a bilinear bearing's force, vectors.  Units: time ``T_p``, lengths ``a_p T_p^2``, accelerations ``a_p``, masses ``M_b``;
 primes are ``d/dtau``.  The model parameters ``P`` are the building kernel's
 (:func:`isoslide.engine.building.parameters`).
 
-State ``y`` (length ``2 (2 + 2 n) + 4``, :func:`state_size`): for each axis (x, then y) the
-slab's displacement and velocity relative to the ground and the floors' displacements and
-velocities relative to the slab (``[x, x', xs_1 .. xs_n, xs_1' .. xs_n']``, the building kernel's
-order), then the block's displacement ``u = (u_x, u_y)`` and velocity ``w = (w_x, w_y)`` relative
-to its floor.
+State ``y`` (length ``2 (2 + 2 n) + 4``, :func:`state_size`; one more per axis on a bilinear
+bearing): for each axis (x, then y) the slab's displacement and velocity relative to the ground
+and the floors' displacements and velocities relative to the slab (``[x, x', xs_1 .. xs_n, xs_1'
+.. xs_n']``, the building kernel's order) and a bilinear bearing's force ``fh`` (a circular yield
+surface ``|fh| <= q``: elastic ``fh' = k_e x'``, yielding along ``fh``), then the block's
+displacement ``u = (u_x, u_y)`` and velocity ``w = (w_x, w_y)`` relative to its floor.
 
 Excitation (``ex = (code, params, code_y, params_y, G)``): the ground acceleration in the
 building's axes is ``R(angle) (p(tau), Pi14 p_y((tau - Pi16) / Pi15))`` with ``G = [Pi14, Pi15,
@@ -348,9 +349,12 @@ def _axis_rates(o, stuck, r, p, y, P, out, held, rb, nz):
 
 @njit(cache=True, inline="always")
 def _hysteretic_rates(im, y, P, out, nb):
-    """A bilinear bearing's force rates into ``out``: ``fh' = k_e x'`` elastic (mode 0); yielding (mode 1)
-    ``k_e`` times the part of ``x'`` across ``fh``, the plastic flow taking the part along it, so
-    that ``|fh| = q`` holds (a circular yield surface, perfectly plastic)."""
+    """A bilinear bearing's force rates into ``out``.
+
+    Elastic (mode 0) ``fh' = k_e x'``; yielding (mode 1) ``k_e`` times the part of ``x'`` across
+    ``fh``, the plastic flow taking the part along it, so that ``|fh| = q`` holds (a circular yield
+    surface, perfectly plastic).
+    """
     vx = y[1]
     vy = y[nb + 1]
     if im != 0.0:
@@ -378,7 +382,6 @@ def _yield_surface(y, P):
 @njit(cache=True, inline="always")
 def _rates(md, tau, y, P, ex, out, tmp):
     """The state's rates in the modes ``md`` without the slaved lines' turning terms; ``(A_Fx, A_Fy)``."""
-    n = int(P[P_N])
     nb = _axis_len(P)
     U = 2 * nb
     gx, gy = ground(tau, ex)
@@ -416,7 +419,6 @@ def deriv(md, tau, y, P, ex, out, tmp):
     ``md[1:3]``, ``md[4:6]`` are the directions used where one is undefined (a zero speed or
     demand).  ``tmp`` is scratch space of at least ``n`` entries.
     """
-    n = int(P[P_N])
     nb = _axis_len(P)
     U = 2 * nb
     AFx, AFy = _rates(md, tau, y, P, ex, out, tmp)
@@ -792,7 +794,6 @@ def _settled(md, y, P, Wm, Cm, Wh, Ch):
     """True when, after the pulses, with the block stuck and the slab held or elastic, nothing slides again."""
     if md[M_BM] != 0.0 or md[M_IM] != 0.0:
         return False
-    n = int(P[P_N])
     nb = _axis_len(P)
     held = _held(0.0, P)
     start = 2 if held else 0
@@ -948,7 +949,6 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     hist : ndarray, shape (ints[4], state_size(n) + 3)
         Rows ``[tau, y..., bm, im]``.
     """
-    nfl = int(P[P_N])
     nb_ = _axis_len(P)
     ny = 2 * nb_ + 4
     U = ny - 4
