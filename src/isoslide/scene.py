@@ -437,6 +437,20 @@ class Scene:
         c, s = math.cos(self.angle), math.sin(self.angle)
         return c * ax - s * ay, s * ax + c * ay
 
+    def ground_velocity(self, tau) -> tuple:
+        """Horizontal ground velocity ``(v_gx, v_gy) / (a_p T_p)`` in the building's axes at ``tau``.
+
+        The integral of :meth:`ground` from rest: ``(V(tau), Pi14 Pi15 V_y((tau - Pi16) / Pi15))``
+        with ``V``, ``V_y`` the pulses' velocities (:meth:`isoslide.pulses.Pulse.velocity`), rotated
+        by :attr:`angle`; vectorised numpy.
+        """
+        tau = np.asarray(tau, dtype=float)
+        vx = np.asarray(self.pulse.velocity(tau), dtype=float)
+        vy = (self.pi14 * self.pi15 * np.asarray(self.pulse_y.velocity((tau - self.pi16) / self.pi15), dtype=float)
+              if self.pulse_y is not None else np.zeros_like(vx))
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        return c * vx - s * vy, s * vx + c * vy
+
     def pis(self) -> dict:
         """The input groups as a dict ``{"pi2": ..., ..., "pi13": ...}``."""
         return {k: getattr(self, k) for k in INPUT_NAMES}

@@ -723,6 +723,39 @@ def _planar_history(h: np.ndarray, n: int, scene: Scene, hyst: bool = False) -> 
                    iso_phase=h[:, c["iso_phase"]].astype(np.int8) if bearing else None)
 
 
+def planar_floor_motion(scene: Scene, history: History) -> np.ndarray:
+    """The contents' floor's motion at the rows of a planar history (``solve(scene, history=True)``).
+
+    Parameters
+    ----------
+    scene : Scene
+        A scene that ran in the plane (``Solution.facets.contact == "plane"``).
+    history : History
+        Its history: ``x, xd, u, ud`` (and ``xs, xsd``, ``fh``) with two columns (x, y).
+
+    Returns
+    -------
+    ndarray, shape (rows, 4)
+        The floor's absolute acceleration ``(A_x, A_y)`` (units ``a_p``) and its velocity relative
+        to the ground ``(V_x, V_y)`` (units ``a_p T_p``) in the building's axes
+        (:func:`isoslide.engine.planar_kernel.floor_motion`).
+    """
+    if history.x.ndim != 2:
+        raise ValueError("history is one-dimensional; allowed: the history of a scene that ran in the plane")
+    P = building.parameters(scene, pi8=scene.pi8, coulomb=scene.rate_independent)
+    n = int(P[building_kernel.P_N])
+    hyst = P[building_kernel.P_KIND] == building_kernel.KIND_BILINEAR
+    rows = history.tau.size
+    zeros = np.zeros((rows, 2, n))
+    xs = zeros if history.xs is None else history.xs
+    xsd = zeros if history.xsd is None else history.xsd
+    axes = [np.column_stack([history.x[:, a], history.xd[:, a], xs[:, a, :], xsd[:, a, :]]
+                            + ([history.fh[:, a]] if hyst else [])) for a in range(2)]
+    iso = np.zeros(rows) if history.iso_phase is None else history.iso_phase
+    table = np.column_stack([history.tau, *axes, history.u, history.ud, history.phase, iso]).astype(float)
+    return planar_kernel.floor_motion(P, excitation(scene), np.ascontiguousarray(table))
+
+
 def _building_history(h: np.ndarray, scene: Scene) -> History:
     """The general kernel's history rows as a :class:`History` (building states included)."""
     n = scene.storeys if scene.flexible else 1

@@ -1278,5 +1278,41 @@ def _peak_in(md, tau, y, y1, h, umax, tpeak, angle, P, ex, atol, rtol, K, ye, wo
     return umax, tpeak, angle
 
 
+@njit(cache=True)
+def floor_motion(P, ex, rows):
+    """The contents' floor's motion at history rows ``[tau, y..., bm, im]`` (:func:`run`'s ``hist``).
+
+    Returns an array of shape ``(rows, 4)``: the floor's absolute acceleration ``(A_Fx, A_Fy)``
+    (units ``a_p``; :func:`deriv` in the row's modes) and its velocity relative to the ground
+    ``(V_Fx, V_Fy)`` (units ``a_p T_p``: the slab's, plus the floor's relative to the slab when the
+    contents stand on a floor of a flexible superstructure).
+    """
+    nr = rows.shape[0]
+    ny = rows.shape[1] - 3
+    nb = ny // 2 - 2
+    n = int(P[P_N])
+    md = np.array([0.0, 1.0, 0.0, 0.0, 1.0, 0.0])
+    y = np.empty(ny)
+    out = np.empty(ny)
+    tmp = np.empty(3 * ny)
+    res = np.empty((nr, 4))
+    upstairs = P[P_ROOF] != 0.0 and P[P_FLEX] != 0.0
+    fl = int(P[P_FLOOR]) - 1
+    for r in range(nr):
+        for i in range(ny):
+            y[i] = rows[r, 1 + i]
+        md[M_BM] = rows[r, 1 + ny]
+        md[M_IM] = rows[r, 2 + ny]
+        ax, ay = deriv(md, rows[r, 0], y, P, ex, out, tmp)
+        res[r, 0] = ax
+        res[r, 1] = ay
+        for a in range(2):
+            v = y[a * nb + 1]
+            if upstairs:
+                v += y[a * nb + 2 + n + fl]
+            res[r, 2 + a] = v
+    return res
+
+
 # numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
 jit_cache.seed(run)

@@ -16,7 +16,9 @@ error is ``O(h^4)``.  The floor acceleration of an isolated slab is taken with i
 :func:`ground_peaks` gives PGA [m/s^2] and PGV [m/s] of a record; :func:`floor_peaks` the peak
 absolute acceleration and velocity of the floor the contents stand on, from the history of a
 solve (isolated slab: ``a_g + x_b''`` and ``v_g + x_b'`` of the coupled solve, the friction of
-the contents acting back on the slab; a fixed base: the ground's).
+the contents acting back on the slab; a fixed base: the ground's); :func:`planar_floor_peaks` the
+same for a floor moving in the plane, the peak lengths of its absolute acceleration and velocity
+vectors over the history rows of a planar solve.
 
 Intensity measures of a pair of horizontal components (``a_x``, ``a_y`` on one time axis), by
 the orientation-independent definition of Boore (2010): the component along the direction at
@@ -44,12 +46,13 @@ import numpy as np
 from scipy.linalg import expm
 from scipy.signal import lfilter
 
-from ..store.history_io import history_table
 from ..records import G
+from ..solver import planar_floor_motion
+from ..store.history_io import history_table
 
 __all__ = ["IM_NAMES", "IM_UNITS", "ROTD_ANGLES", "align_pair", "floor_jerk", "floor_peaks", "ground_peaks",
-           "oscillator_displacement", "pair_peaks", "pair_sa", "peak_abs", "peak_of_integral", "rotated_peaks",
-           "rotated_velocity_peaks", "rotd"]
+           "oscillator_displacement", "pair_peaks", "pair_sa", "peak_abs", "peak_of_integral", "planar_floor_peaks",
+           "rotated_peaks", "rotated_velocity_peaks", "rotd"]
 
 IM_NAMES = ("pga", "pgv", "pfa", "pfv")
 """Intensity measures: peak ground acceleration and velocity, peak floor acceleration and velocity."""
@@ -195,6 +198,34 @@ def floor_peaks(solution, scene) -> tuple[float, float]:
     if scene.fixed_base:
         return peak_abs(a_floor), pfv
     return peak_of_integral(t, a_floor, floor_jerk(c, scene)), pfv
+
+
+def planar_floor_peaks(solution, scene) -> tuple[float, float]:
+    """PFA [m/s^2] and PFV [m/s] of a floor moving in the plane: the peaks of the vectors' lengths.
+
+    Parameters
+    ----------
+    solution : isoslide.Solution
+        ``isoslide.solve(scene, history=True)`` of a scene that ran in the plane, built with
+        :meth:`isoslide.Scene.from_physical`.
+    scene : isoslide.Scene
+        The scene solved.
+
+    Returns
+    -------
+    (float, float)
+        ``max |a_F|`` and ``max |v_g + v_F|`` over the history rows (every sample of a record, every
+        step and every stick/slip transition), ``a_F`` the floor's absolute acceleration
+        (:func:`isoslide.solver.planar_floor_motion`) and ``v_g + v_F`` its absolute velocity
+        (:meth:`isoslide.Scene.ground_velocity` plus the floor's relative to the ground).  On a fixed
+        base the floor is the ground: the peak lengths of the ground's vectors.
+    """
+    motion = planar_floor_motion(scene, solution.history)
+    sc = scene.scale
+    vgx, vgy = scene.ground_velocity(solution.history.tau)
+    pfa = float(np.max(np.hypot(motion[:, 0], motion[:, 1]))) * sc.a_p
+    pfv = float(np.max(np.hypot(vgx + motion[:, 2], vgy + motion[:, 3]))) * sc.a_p * sc.T_p
+    return pfa, pfv
 
 
 # ----------------------------------------------------------------------------------------------
