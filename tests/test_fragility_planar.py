@@ -99,6 +99,23 @@ def test_the_building_and_contents_are_isotropic_so_the_planar_slide_does_not_de
     assert analyses["fixed_base"].u_max.max() > 0.01     # the contents do slide here
 
 
+def test_the_floor_peaks_in_the_plane_are_the_ground_vectors_on_a_fixed_base_and_isotropic(analyses, study):
+    """On a fixed base PFA is the largest length of the scaled ground-acceleration vector (at a sample: the
+    record is linear between samples); on the isolated slab the floor peaks do not depend on the angle and
+    the isolation keeps PFA below it."""
+    fixed, iso = analyses["fixed_base"], analyses["isolated"]
+    for k in range(0, fixed.sizes["analysis"], 7):
+        row = fixed.isel(analysis=k)
+        gm = next(g for g in study.motions if g.name == str(row.ground_motion.values))
+        ax, ay = align_pair(gm.x.accel * G, gm.y.accel * G, gm.x.dt, gm.x.t_start, gm.y.t_start)
+        assert float(row.pfa) == pytest.approx(float(row.scale_factor) * np.max(np.hypot(ax, ay)), rel=1e-12)
+    o = iso.orientation.values
+    for name in ("pfa", "pfv"):
+        np.testing.assert_allclose(iso[name].values[o == 1], iso[name].values[o == 0], rtol=1e-3)
+    assert np.all(iso.pfa.values < fixed.pfa.values)
+    assert np.all(fixed.pfv.values > 0.0) and np.all(iso.pfv.values > 0.0)
+
+
 def test_one_component_at_90_degrees_is_the_other_component_at_0(analyses):
     """At 90 degrees the building's x axis sees -a_y and its y axis a_x: the 1-D answers swap (a sign flip
     leaves a 1-D peak slide unchanged)."""
@@ -125,7 +142,8 @@ def test_the_x_analysis_is_the_1d_solve_of_the_recorded_x_component(analyses, st
 # ---- the fits and the comparisons -----------------------------------------------------------------
 
 def test_fits_cover_floor_group_motion_limit_state_and_im(dataset, study):
-    assert dict(dataset.theta.sizes) == {"floor": 1, "group": 3, "motion": 3, "limit_state": 2, "im": 3}
+    assert dict(dataset.theta.sizes) == {"floor": 1, "group": 3, "motion": 3, "limit_state": 2, "im": 5}
+    assert dataset.im.values.tolist() == ["pga_rotd50", "pgv_rotd50", "sa_rotd50", "pfa", "pfv"]
     assert dataset.group.values.tolist() == ["all", "fema-p695-far-field", "fema-p695-near-field-pulse"]
     assert dataset.n_outcomes.sel(motion="one_component").values.tolist() == [[32, 16, 16]]
     assert dataset.n_outcomes.sel(motion="planar").values.tolist() == [[16, 8, 8]]
@@ -204,7 +222,6 @@ def test_the_planar_settings_leave_out_the_1d_records_and_the_1d_settings_leave_
     ({"floors": ["roof"]}, {}, r"'roof' with a rigid superstructure"),
     ({"angles": [0.0, 0.0]}, {}, r"fragility\.planar\.angles = \[0\.0, 0\.0\] is invalid; allowed: distinct"),
     ({"stripes": {"levels": [8.0, 3.0]}}, {}, r"fragility\.planar\.stripes\.levels"),
-    ({}, {"building": {"Q_d": 1e5, "D_y": 0.01}}, r"fragility\.building\.D_y = 0\.01 .* bilinear bearing"),
 ])
 def test_bad_settings_are_refused_naming_the_key(planar, fragility, pattern):
     with pytest.raises(ValueError, match=pattern):
@@ -226,3 +243,17 @@ def test_floors_of_a_flexible_superstructure_are_compared():
     t = ds.theta.values
     np.testing.assert_allclose(r, t[1] / t[0], rtol=1e-12)
     assert math.isfinite(float(ds.u_max.max()))
+
+
+def test_a_lead_rubber_bearing_runs_in_the_plane_and_its_slides_do_not_depend_on_the_angle():
+    """The bilinear bearing's circular yield surface is isotropic: the planar slides and floor peaks at 0 and
+    90 degrees agree, and the bearing yields (the floor's PFA above the elastic bearing's would not tell)."""
+    s = _settings({"pairs": 2, "angles": [0.0, 90.0], "suites": ["fema-p695-near-field-pulse"]},
+                  building={"Q_d": 0.04 * 9.81 * 1.0e6, "D_y": 0.01})
+    study = fp.check_settings(s)
+    ds = fp.solve_all(study, "isolated")
+    o = ds.orientation.values
+    assert str(ds.model_isolator.attrs["flag_meanings"]).split()[int(ds.model_isolator[0])] == "bilinear"
+    for name in ("u_max", "pfa", "pfv"):
+        np.testing.assert_allclose(ds[name].values[o == 1], ds[name].values[o == 0], rtol=2e-3, atol=1e-6)
+    assert ds.u_max.max() > 0.0

@@ -17,15 +17,21 @@ analysis with ``sampled_angles``), stripe and kinetic friction draw, three analy
   ``a_x sin(theta) + a_y cos(theta)``, alone: ``u_max_x``, ``u_max_y`` [m].
 
 The building and the contents are isotropic in the plane (a fixed base, a linear isolator, a
-friction pendulum), so the planar answer does not depend on ``theta`` (it only turns the
-direction; the analyses at several angles measure that the solver agrees with itself), while the
-one-component answers do: the orientation is what one component at a time leaves to chance.
+friction pendulum, a lead-rubber bearing with its circular yield surface), so the planar answer does
+not depend on ``theta`` (it only turns the direction; the analyses at several angles measure that
+the solver agrees with itself), while the one-component answers do: the orientation is what one
+component at a time leaves to chance.
 
 Curves ``P(u > limit | IM) = Phi(ln(IM / theta) / beta)`` are fitted by maximum likelihood
 (:func:`isoslide.studies.fragility.fit_lognormal`) for each floor, group of ground motions (all of
 them, and each suite), **motion** and limit state, against three IMs of the scaled pair:
 ``pga_rotd50``, ``pgv_rotd50`` and ``sa_rotd50`` (5 %-damped pseudo-spectral acceleration at the
-isolation period ``building.T_b``); the scaling IM by its stripe counts, the others per analysis.
+isolation period ``building.T_b``), and two of the floor the pair drives in the plane, ``pfa`` and
+``pfv`` (the peak lengths of its absolute acceleration and velocity vectors under the planar
+analysis, :func:`isoslide.studies.intensity.planar_floor_peaks`; on a fixed base the ground's); the
+scaling IM by its stripe counts, the others per analysis.  The floor IMs are those of the shaking
+in the plane: the one-component outcomes are fitted against the same values, so that every motion
+is compared at one intensity.
 The motions (:data:`MOTIONS`): ``planar``; ``one_component``, the x and y analyses pooled (each an
 analysis of the 1-D model); ``max_component``, the larger of the two 1-D answers of an analysis (an
 engineer who runs both directions and keeps the worse).
@@ -38,9 +44,6 @@ the suites' draws.  The same resamples give the intervals of the comparisons:
 dispersion minus the one-component one), ``suite_theta_ratio`` (each suite's median over the
 reference suite's, resampled independently) and ``floor_theta_ratio`` (each floor's median over
 the first floor's).
-
-Floor motions in the plane (PFA, PFV) are not among the IMs: :func:`isoslide.studies.intensity.floor_peaks`
-reads 1-D histories only.
 
 Reproducibility: friction coefficients (per ground motion, stripe and draw, shared by the angles,
 floors, bases and the three motions: the comparisons are paired) and sampled angles are drawn up
@@ -66,7 +69,7 @@ import xarray as xr
 from . import fragility as _fit
 from .fragility_study import (REFERENCE_FRAGILITY, T_SCALE, _increasing, add_curves, add_outputs, check_building, check_chunk_size,
                               check_level, chunk_indices, merge_chunks, n_chunks, stem_base)
-from .intensity import align_pair, pair_peaks, pair_sa, peak_abs
+from .intensity import align_pair, pair_peaks, pair_sa, peak_abs, planar_floor_peaks
 from ..datasets import global_attrs
 from ..pulses import sampled
 from ..records import G, suite
@@ -83,10 +86,10 @@ BASES = ("isolated", "fixed_base")
 MOTIONS = ("planar", "one_component", "max_component")
 """Fitted outcomes: both components at once; one at a time (x and y pooled); the larger of x and y."""
 
-PLANAR_IMS = ("pga_rotd50", "pgv_rotd50", "sa_rotd50")
-"""Intensity measures of the scaled pair the curves are fitted against."""
+PLANAR_IMS = ("pga_rotd50", "pgv_rotd50", "sa_rotd50", "pfa", "pfv")
+"""Intensity measures the curves are fitted against: of the scaled pair, and of the floor it drives in the plane."""
 
-IM_UNITS = {"pga_rotd50": "m s-2", "pgv_rotd50": "m s-1", "sa_rotd50": "m s-2"}
+IM_UNITS = {"pga_rotd50": "m s-2", "pgv_rotd50": "m s-1", "sa_rotd50": "m s-2", "pfa": "m s-2", "pfv": "m s-1"}
 """CF units of each intensity measure."""
 
 SCALING_IMS = {"pga": "pga_rotd50", "pgv": "pgv_rotd50"}
@@ -232,10 +235,6 @@ def check_settings(settings: dict) -> PlanarStudy:
     p = f["planar"]
     check_building(f)
     b = f["building"]
-    if float(b["Q_d"]) > 0.0 and float(b["D_y"]) > 0.0:
-        raise ValueError(f"fragility.building.D_y = {b['D_y']!r} with Q_d = {b['Q_d']!r} (a bilinear bearing) cannot "
-                         "run in the plane; allowed with fragility.planar: D_y = 0 (a linear isolator, Q_d = 0, or a "
-                         "friction pendulum, Q_d > 0)")
     names = list(p["suites"])
     if not names or len(set(names)) != len(names):
         raise ValueError(f"fragility.planar.suites = {names!r} is invalid; allowed: one or more distinct suites")
@@ -333,8 +332,8 @@ def _scene(study: PlanarStudy, base: str, floor: str, a_ref: float, mu_k: float,
                                Q_d=b["Q_d"], D_y=b["D_y"], m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], floor=floor)
 
 
-_OUT = ("scale_factor", "pga_rotd50", "pgv_rotd50", "sa_rotd50", "pga_x", "pga_y", "u_max", "u_max_x", "u_max_y",
-        "peak_angle")
+_OUT = ("scale_factor", "pga_rotd50", "pgv_rotd50", "sa_rotd50", "pfa", "pfv", "pga_x", "pga_y", "u_max", "u_max_x",
+        "u_max_y", "peak_angle")
 
 
 def solve_analyses(study: PlanarStudy, indices, base: str) -> xr.Dataset:
@@ -353,7 +352,8 @@ def solve_analyses(study: PlanarStudy, indices, base: str) -> xr.Dataset:
         Dimension ``analysis`` (global indices): ``ground_motion`` (name), ``record_suite``,
         ``pulse`` (1, 0, or -1 not classified), ``contents_floor``, ``orientation``, ``angle``
         [degree], ``stripe``, ``friction_sample``, ``mu_k``, ``scale_factor``, the IMs of the
-        scaled pair (``pga_rotd50``, ``pgv_rotd50`` [m/s^2, m/s], ``sa_rotd50``), the PGA of the
+        scaled pair (``pga_rotd50``, ``pgv_rotd50`` [m/s^2, m/s], ``sa_rotd50``), the planar floor
+        peaks (``pfa`` [m/s^2], ``pfv`` [m/s]), the PGA of the
         components along the building's axes (``pga_x``, ``pga_y``), ``u_max`` (planar),
         ``u_max_x``, ``u_max_y`` (one component) [m], ``peak_angle`` [degree] and the facets of the
         planar model (``model_<facet>`` flags).
@@ -377,7 +377,9 @@ def solve_analyses(study: PlanarStudy, indices, base: str) -> xr.Dataset:
         dt = gm.x.dt / T_SCALE
         px = sampled(ax * (factor / a_ref), dt, t0 / T_SCALE, name=gm.x.name)
         py = sampled(ay * (factor / a_ref), dt, t0 / T_SCALE, name=gm.y.name)
-        sol = solver.solve(_scene(study, base, fl, a_ref, mu, px, py, theta), rtol=study.rtol)
+        scene = _scene(study, base, fl, a_ref, mu, px, py, theta)
+        sol = solver.solve(scene, rtol=study.rtol, history=True)
+        out["pfa"][k], out["pfv"][k] = planar_floor_peaks(sol, scene)
         for label, comp in (("x", c * ax - s * ay), ("y", s * ax + c * ay)):
             one = sampled(comp * (factor / a_ref), dt, t0 / T_SCALE, name=f"{gm.name}@{label}")
             out[f"u_max_{label}"][k] = solver.solve(_scene(study, base, fl, a_ref, mu, one), rtol=study.rtol).u_max
@@ -401,6 +403,10 @@ _ANALYSIS_META = {
     "pga_rotd50": ("RotD50 peak ground acceleration of the scaled pair (Boore 2010)", "m s-2"),
     "pgv_rotd50": ("RotD50 peak ground velocity of the scaled pair (exact between samples)", "m s-1"),
     "sa_rotd50": ("RotD50 pseudo-spectral acceleration of the scaled pair at sa_period, sa_damping", "m s-2"),
+    "pfa": ("peak length of the absolute acceleration of the floor carrying the contents, in the plane "
+            "(max over the history rows of the planar analysis)", "m s-2"),
+    "pfv": ("peak length of the absolute velocity of the floor carrying the contents, in the plane "
+            "(max over the history rows of the planar analysis)", "m s-1"),
     "pga_x": ("peak ground acceleration of the scaled pair along the building's x axis", "m s-2"),
     "pga_y": ("peak ground acceleration of the scaled pair along the building's y axis", "m s-2"),
     "u_max": ("peak Euclidean sliding displacement, both components at once (planar)", "m"),
@@ -610,7 +616,7 @@ def fit_curves(ds: xr.Dataset, study: PlanarStudy) -> xr.Dataset:
                        {"long_name": "the one-component outcome the planar one is compared with"}),
     })
     dims = ("floor", "group", "motion", "limit_state", "im")
-    u_txt = "m s-2 (pga_rotd50, sa_rotd50) or m s-1 (pgv_rotd50): see im_units"
+    u_txt = "m s-2 (pga_rotd50, sa_rotd50, pfa) or m s-1 (pgv_rotd50, pfv): see im_units"
     pct = f"{study.level:.0%}"
     add_curves(out, dims, res, status, failed, u="u", u_txt=u_txt, pct=pct, resampled="ground motions")
     out["n_exceeded"] = (dims[:4], n_exc, {"long_name": "outcomes with u > limit_state", "units": "1"})
@@ -689,8 +695,9 @@ def planar_dataset(analyses: xr.Dataset, study: PlanarStudy, settings: dict, bas
         xi_s=float(b["xi_s"]), mu_k_median=float(c["mu_k"]["median"]), mu_k_log_std=float(c["mu_k"]["log_std"]),
         mu_s_over_mu_k=float(c["mu_s_over_mu_k"]), sa_period=study.sa_period, sa_damping=study.sa_damping,
         seed=study.seed, n_boot=study.n_boot, confidence_level=study.level,
-        floor_ims=("PFA and PFV of the floor in the plane are not computed: the floor peaks "
-                   "(isoslide.studies.intensity.floor_peaks) read 1-D histories only"),
+        floor_ims=("pfa, pfv: the peak lengths of the floor's absolute acceleration and velocity vectors over the "
+                   "history rows of the planar analysis (every record sample, step and transition; "
+                   "isoslide.studies.intensity.planar_floor_peaks)"),
         sources="; ".join(licences),
     )
     return ds
