@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import isoslide
-from isoslide import solver
+from isoslide.engine.planar import floor_motion
 from isoslide.studies.intensity import floor_peaks, planar_floor_peaks
 
 ISOLATED = dict(a_p=3.0, T_p=1.0, M_b=1e6, T_b=2.5, xi_b=0.1, m_ec=2e5, mu_s=0.05, mu_k=0.05)
@@ -54,4 +54,4 @@ def test_the_ground_velocity_is_the_integral_of_the_ground_acceleration():
 def test_a_one_dimensional_history_is_refused():
     scene = isoslide.Scene(pi2=0.2, pi3=2.0, pulse="ricker")
     with pytest.raises(ValueError, match="one-dimensional"):
-        solver.planar_floor_motion(scene, isoslide.solve(scene, history=True).history)
+        floor_motion(scene, isoslide.solve(scene, history=True).history)

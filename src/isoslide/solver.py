@@ -60,6 +60,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .engine import building, building_kernel, kernel, piecewise, planar_kernel
+from .engine.planar import excitation
 from .store.history import History
 from .model.parts import building_of
 from .models import BEARING_REDUCTIONS, Facets
@@ -635,15 +636,6 @@ def along_line(scene: Scene) -> tuple:
     return line, lam, theta
 
 
-def excitation(scene: Scene) -> tuple:
-    """The planar kernel's excitation ``(code, params, code_y, params_y, G)`` of a scene."""
-    has_y = scene.pulse_y is not None
-    py = scene.pulse_y if has_y else scene.pulse
-    G = np.array([scene.pi14, scene.pi15, scene.pi16, math.cos(scene.angle), math.sin(scene.angle),
-                  1.0 if has_y else 0.0])
-    return (scene.pulse.code, scene.pulse.param_array, py.code, py.param_array, G)
-
-
 def _breakpoints(scene: Scene) -> np.ndarray:
     """Every acting component's breakpoints on the main pulse's time axis (the second pulse's mapped)."""
     b = scene.pulse.breakpoint_array
@@ -721,39 +713,6 @@ def _planar_history(h: np.ndarray, n: int, scene: Scene, hyst: bool = False) -> 
                    xs=xs if scene.flexible else None, xsd=xsd if scene.flexible else None,
                    fh=pair(nb - 1) if hyst else None,
                    iso_phase=h[:, c["iso_phase"]].astype(np.int8) if bearing else None)
-
-
-def planar_floor_motion(scene: Scene, history: History) -> np.ndarray:
-    """The contents' floor's motion at the rows of a planar history (``solve(scene, history=True)``).
-
-    Parameters
-    ----------
-    scene : Scene
-        A scene that ran in the plane (``Solution.facets.contact == "plane"``).
-    history : History
-        Its history: ``x, xd, u, ud`` (and ``xs, xsd``, ``fh``) with two columns (x, y).
-
-    Returns
-    -------
-    ndarray, shape (rows, 4)
-        The floor's absolute acceleration ``(A_x, A_y)`` (units ``a_p``) and its velocity relative
-        to the ground ``(V_x, V_y)`` (units ``a_p T_p``) in the building's axes
-        (:func:`isoslide.engine.planar_kernel.floor_motion`).
-    """
-    if history.x.ndim != 2:
-        raise ValueError("history is one-dimensional; allowed: the history of a scene that ran in the plane")
-    P = building.parameters(scene, pi8=scene.pi8, coulomb=scene.rate_independent)
-    n = int(P[building_kernel.P_N])
-    hyst = P[building_kernel.P_KIND] == building_kernel.KIND_BILINEAR
-    rows = history.tau.size
-    zeros = np.zeros((rows, 2, n))
-    xs = zeros if history.xs is None else history.xs
-    xsd = zeros if history.xsd is None else history.xsd
-    axes = [np.column_stack([history.x[:, a], history.xd[:, a], xs[:, a, :], xsd[:, a, :]]
-                            + ([history.fh[:, a]] if hyst else [])) for a in range(2)]
-    iso = np.zeros(rows) if history.iso_phase is None else history.iso_phase
-    table = np.column_stack([history.tau, *axes, history.u, history.ud, history.phase, iso]).astype(float)
-    return planar_kernel.floor_motion(P, excitation(scene), np.ascontiguousarray(table))
 
 
 def _building_history(h: np.ndarray, scene: Scene) -> History:

@@ -4,6 +4,7 @@
 :mod:`isoslide.engine.building_kernel` (the general event-driven engine of a slab, N floors and
 the contents on any floor); :mod:`isoslide.engine.kernel` (the paper's model) and
 :mod:`isoslide.engine.piecewise` (exact propagation of sampled records) are fast paths the
-planner in :mod:`isoslide.solver` chooses; :mod:`isoslide.engine.dop853` holds the Runge-Kutta
-tableau.  Nothing is imported here.
+planner in :mod:`isoslide.solver` chooses; :mod:`isoslide.engine.planar_kernel` integrates the
+same buildings with the contents sliding in the plane, from the inputs :mod:`isoslide.engine.planar`
+assembles; :mod:`isoslide.engine.dop853` holds the Runge-Kutta tableau.  Nothing is imported here.
 """

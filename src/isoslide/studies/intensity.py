@@ -47,7 +47,7 @@ from scipy.linalg import expm
 from scipy.signal import lfilter
 
 from ..records import G
-from ..solver import planar_floor_motion
+from ..engine.planar import floor_motion
 from ..store.history_io import history_table
 
 __all__ = ["IM_NAMES", "IM_UNITS", "ROTD_ANGLES", "align_pair", "floor_jerk", "floor_peaks", "ground_peaks",
@@ -216,11 +216,11 @@ def planar_floor_peaks(solution, scene) -> tuple[float, float]:
     (float, float)
         ``max |a_F|`` and ``max |v_g + v_F|`` over the history rows (every sample of a record, every
         step and every stick/slip transition), ``a_F`` the floor's absolute acceleration
-        (:func:`isoslide.solver.planar_floor_motion`) and ``v_g + v_F`` its absolute velocity
+        (:func:`isoslide.engine.planar.floor_motion`) and ``v_g + v_F`` its absolute velocity
         (:meth:`isoslide.Scene.ground_velocity` plus the floor's relative to the ground).  On a fixed
         base the floor is the ground: the peak lengths of the ground's vectors.
     """
-    motion = planar_floor_motion(scene, solution.history)
+    motion = floor_motion(scene, solution.history)
     sc = scene.scale
     vgx, vgy = scene.ground_velocity(solution.history.tau)
     pfa = float(np.max(np.hypot(motion[:, 0], motion[:, 1]))) * sc.a_p
