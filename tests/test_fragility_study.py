@@ -1,6 +1,7 @@
 """The fragility study (isoslide.studies.fragility_study, isoslide.studies.intensity): analyses, IMs, fits, datasets."""
 
 import copy
+import logging
 
 import numpy as np
 import pytest
@@ -59,6 +60,16 @@ def test_the_merged_analyses_do_not_depend_on_the_chunking(analyses, study):
 def test_a_chunk_alone_reproduces_its_analyses(analyses, study):
     part = fs.solve_chunk(study, 2, "isolated")
     xr.testing.assert_identical(part, analyses["isolated"].isel(analysis=slice(10, 15)))
+
+
+def test_the_chunk_jobs_and_the_dataset_job_give_the_fitted_dataset(tmp_path, study, settings, dataset):
+    """The pipeline's jobs: each chunk solved and written, then merged and fitted, equal the dataset."""
+    job_log = logging.getLogger("isoslide.test")
+    paths = [write_netcdf(fs.chunk_job(fs, "fragility", c, settings, job_log), tmp_path / f"{c}.nc")
+             for c in range(fs.n_chunks(study))]
+    for chunks in (paths, []):      # no chunk files: the study is solved in the dataset job
+        got = fs.dataset_job(fs, fs.fragility_dataset, chunks, "fragility", settings, job_log)
+        xr.testing.assert_identical(got, dataset)
 
 
 def test_friction_draws_follow_the_configured_lognormal():

@@ -55,6 +55,29 @@ def phase(name: str, logger: logging.Logger | None = None):
         (logger or log).info("phase %s %.3f s", name, time.perf_counter() - t0)
 
 
+def compile_and_solve(logger: logging.Logger | None, warm_up, solve):
+    """Run ``warm_up()`` as the phase ``compilation``, then ``solve()`` as the phase ``solving``.
+
+    Parameters
+    ----------
+    logger : logging.Logger or None
+        Receives the seconds of each phase (:func:`phase`).
+    warm_up : callable
+        Readies the compiled kernels (:func:`isoslide.solver.warm_up` with the job's options).
+    solve : callable
+        The job's work; its result is returned.
+
+    Returns
+    -------
+    object
+        What ``solve()`` returns.
+    """
+    with phase("compilation", logger):
+        warm_up()
+    with phase("solving", logger):
+        return solve()
+
+
 def seconds_since_process_start() -> float | None:
     """Wall-clock seconds since this process started (Linux ``/proc``; None elsewhere)."""
     try:

@@ -2,19 +2,12 @@
 
 from isoslide.budget import phase
 from isoslide.datasets import write_netcdf
-from isoslide.studies.fragility_study import base_of, check_settings, solve_chunk
+from isoslide.studies import fragility_study
 from isoslide.store.provenance import log_to
-from isoslide.solver import warm_up
 
 with log_to(snakemake.log[0]) as log:
-    chunk = int(snakemake.wildcards.chunk)
-    base = base_of(snakemake.wildcards.frag)
-    study = check_settings(snakemake.params.settings)
-    log.info("%s, chunk %d (%s base)", snakemake.wildcards.frag, chunk, base)
-    with phase("compilation", log):
-        warm_up(records=True)
-    with phase("solving", log):
-        ds = solve_chunk(study, chunk, base)
+    ds = fragility_study.chunk_job(fragility_study, snakemake.wildcards.frag, int(snakemake.wildcards.chunk),
+                                   snakemake.params.settings, log)
     log.info("%d analyses", ds.sizes["analysis"])
     with phase("writing", log):
         write_netcdf(ds, snakemake.output[0])

@@ -2,27 +2,12 @@
 (isoslide.studies.fragility_study); a study of one chunk is solved here."""
 
 from isoslide.budget import phase
-from isoslide.datasets import open_dataset, write_netcdf
-from isoslide.studies.fragility_study import (base_of, check_settings, fragility_dataset, merge_chunks,
-                                              solve_all)
+from isoslide.datasets import write_netcdf
+from isoslide.studies import fragility_study
 from isoslide.store.provenance import log_to
-from isoslide.solver import warm_up
 
 with log_to(snakemake.log[0]) as log:
-    settings = snakemake.params.settings
-    base = base_of(snakemake.wildcards.frag)
-    study = check_settings(settings)
-    if snakemake.input.chunks:
-        log.info("merging %d chunk files of %s", len(snakemake.input.chunks), snakemake.wildcards.frag)
-        with phase("writing", log):
-            analyses = merge_chunks([open_dataset(p) for p in snakemake.input.chunks])
-    else:
-        log.info("%s is one chunk (%d analyses): solved in this job", snakemake.wildcards.frag, study.size)
-        with phase("compilation", log):
-            warm_up(records=True)
-        with phase("solving", log):
-            analyses = solve_all(study, base)
-    with phase("solving", log):  # maximum-likelihood fits and the bootstrap
-        ds = fragility_dataset(analyses, study, settings, base)
+    ds = fragility_study.dataset_job(fragility_study, fragility_study.fragility_dataset, snakemake.input.chunks,
+                                     snakemake.wildcards.frag, snakemake.params.settings, log)
     with phase("writing", log):
         write_netcdf(ds, snakemake.output[0])

@@ -33,6 +33,7 @@ Pipeline functions: :func:`fragility_settings`, :func:`check_settings`, :func:`n
 from __future__ import annotations
 
 import copy
+import functools
 import math
 from dataclasses import dataclass
 
@@ -40,7 +41,8 @@ import numpy as np
 import xarray as xr
 
 from . import fragility as _fit
-from ..datasets import encode_facets, global_attrs
+from ..budget import compile_and_solve, phase
+from ..datasets import encode_facets, global_attrs, open_dataset
 from .intensity import IM_NAMES, IM_UNITS, floor_peaks, ground_peaks
 from ..pulses import sampled
 from .record_study import resolve_record
@@ -49,7 +51,7 @@ from ..scene import FLOORS, Scene
 from .. import solver
 
 __all__ = ["BASES", "FIT_STATUS", "Study", "analysis_table", "base_of", "check_building", "check_settings",
-           "chunk_indices",
+           "chunk_indices", "chunk_job", "dataset_job",
            "dataset_name", "dataset_names", "fit_curves", "fragility_dataset", "fragility_settings", "merge_chunks",
            "n_chunks", "scatter_contributions", "solve_all", "solve_analyses", "solve_chunk", "scaled_pulse"]
 
@@ -465,6 +467,74 @@ def merge_chunks(parts) -> xr.Dataset:
 def solve_all(study: Study, base: str) -> xr.Dataset:
     """Every analysis of the study on ``base``, chunk by chunk (the merge job of a one-chunk study)."""
     return merge_chunks([solve_chunk(study, c, base) for c in range(n_chunks(study))])
+
+
+def chunk_job(module, name: str, chunk: int, settings: dict, job_log) -> xr.Dataset:
+    """The pipeline's chunk job of a fragility dataset: the analyses of one chunk, solved.
+
+    Parameters
+    ----------
+    module : module
+        The study: :mod:`isoslide.studies.fragility_study` or :mod:`isoslide.studies.fragility_planar`
+        (its ``base_of``, ``check_settings`` and ``solve_chunk``).
+    name : str
+        The dataset stem (``fragility``, ``fragility_planar_fixed_base``, ...), which names the base.
+    chunk : int
+        The chunk (0-based).
+    settings : dict
+        The study's settings (``fragility_settings`` or ``planar_settings``).
+    job_log : logging.Logger
+        Receives the chunk and the seconds of each phase (:func:`isoslide.budget.phase`).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``module.solve_chunk`` of the chunk.
+    """
+    base = module.base_of(name)
+    study = module.check_settings(settings)
+    job_log.info("%s, chunk %d (%s base)", name, chunk, base)
+    return compile_and_solve(job_log, functools.partial(solver.warm_up, records=True),
+                             functools.partial(module.solve_chunk, study, chunk, base))
+
+
+def dataset_job(module, make_dataset, paths, name: str, settings: dict, job_log) -> xr.Dataset:
+    """The pipeline's dataset job of a fragility dataset: its chunks merged (or solved here), then fitted.
+
+    Parameters
+    ----------
+    module : module
+        The study: :mod:`isoslide.studies.fragility_study` or :mod:`isoslide.studies.fragility_planar`
+        (its ``base_of``, ``check_settings`` and ``solve_all``).
+    make_dataset : callable
+        ``(analyses, study, settings, base) -> xarray.Dataset``: :func:`fragility_dataset` or
+        :func:`isoslide.studies.fragility_planar.planar_dataset`.
+    paths : sequence of path-like
+        The chunk files of the dataset; none for a dataset of one chunk.
+    name : str
+        The dataset stem, which names the base.
+    settings : dict
+        The study's settings.
+    job_log : logging.Logger
+        Receives what the job does and the seconds of each phase (:func:`isoslide.budget.phase`).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``make_dataset`` of the analyses.
+    """
+    base = module.base_of(name)
+    study = module.check_settings(settings)
+    if paths:
+        job_log.info("merging %d chunk files of %s", len(paths), name)
+        with phase("writing", job_log):
+            analyses = merge_chunks([open_dataset(p) for p in paths])
+    else:
+        job_log.info("%s is one chunk (%d analyses): solved in this job", name, study.size)
+        analyses = compile_and_solve(job_log, functools.partial(solver.warm_up, records=True),
+                                     functools.partial(module.solve_all, study, base))
+    with phase("solving", job_log):  # maximum-likelihood fits and the bootstrap
+        return make_dataset(analyses, study, settings, base)
 
 
 def _exceeded(u: np.ndarray, limit: float) -> np.ndarray:

@@ -49,7 +49,7 @@ import numpy as np
 import xarray as xr
 
 from .. import solver
-from ..budget import phase
+from ..budget import compile_and_solve, phase
 from ..config import ConfigError
 from ..datasets import chunk_dataset, merge_chunks, open_dataset
 from ..groups import BUILDING_NAMES, INPUT_NAMES, group
@@ -503,7 +503,4 @@ def study_dataset(paths, spec: dict, job_log: logging.Logger | None = None) -> x
         with phase("writing", job_log):
             return merge_chunk_files(paths, spec)
     log.info("study %s is one chunk: solved in this job", spec["study"])
-    with phase("compilation", job_log):
-        solver.warm_up()
-    with phase("solving", job_log):
-        return solve_study(spec)
+    return compile_and_solve(job_log, solver.warm_up, lambda: solve_study(spec))
