@@ -26,7 +26,9 @@ recorded on the same time axis with the first one's scales.
 A second horizontal component (``--pulse-y`` or ``--record-y``) not along the
 first one's line makes the contents slide in the plane: ``pi1`` is then the
 peak of ``|u|`` and ``peak_angle`` its direction in the building's axes
-(``--angle`` turns the excitation's axes against the building's).
+(``--angle`` turns the excitation's axes against the building's); ``--history``
+then writes every motion along both axes (``slide_disp_x``, ``slide_disp_y``, ...)
+and ``--plot`` adds the contents' path on their floor.
 
 Bad input prints one line naming the parameter and its value, and
 exits with code 2.
@@ -262,11 +264,6 @@ def _solve(args) -> int:
     _check_outputs(args)
     scene, info = _scene(args)
     want_history = bool(args.history or args.plot)
-    if want_history and scene.planar:
-        which = "history" if args.history else "plot"
-        raise ValueError(f"{which} = {getattr(args, which)!r} is not available for a scene sliding in the plane "
-                         "(the history table holds one horizontal line); allowed: --history/--plot without a "
-                         "second horizontal component, or one proportional to the first")
     sol = solve(scene, rtol=args.rtol, history=want_history)
     slid = math.isfinite(sol.peak_angle)
     out = {"pi1": sol.pi1, "pi1_residual": sol.pi1_residual, "tau_peak": sol.tau_peak,

@@ -1140,8 +1140,11 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             _copy(ye, yb)
             # the peak of |u| before the transition, inside the slide
             if md[M_BM] != 0.0:
+                t_old = tpeak
                 umax, tpeak, angle = _peak_in(md, tau, y, ye, hbest, umax, tpeak, angle, P, ex, atol, rtol, K, y1,
                                               work, cnt)
+                if tpeak != t_old and tau < tpeak < tau + hbest:
+                    nh = _record(hist, nh, hist_cap, tpeak, y1, md)   # the peak of |u| is a history row
             tau += hbest
             _copy(y, ye)
             if best == EV_STOP or best == EV_BSTOP:
@@ -1197,7 +1200,10 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             nh = _record(hist, nh, hist_cap, tau, y, md)
             continue
         if md[M_BM] != 0.0:
+            t_old = tpeak
             umax, tpeak, angle = _peak_in(md, tau, y, y1, h, umax, tpeak, angle, P, ex, atol, rtol, K, ye, work, cnt)
+            if tpeak != t_old and tau < tpeak < tnew:
+                nh = _record(hist, nh, hist_cap, tpeak, ye, md)
         # --- accept -----------------------------------------------------------------------
         tau = tnew
         _copy(y, y1)

@@ -2,7 +2,8 @@
 
 :func:`plot_history` draws a :class:`~isoslide.store.history_io.HistoryTable`
 (ground and floor accelerations above, sliding displacement below with the
-stick and slip phases shaded); :func:`plot_fit` a record with its fitted pulse
+stick and slip phases shaded; a planar history: the lengths of the acceleration
+vectors, both sliding components and the path of the contents on the floor); :func:`plot_fit` a record with its fitted pulse
 (acceleration and velocity).  Both write PNG, PDF or SVG by the file
 extension (:data:`PLOT_SUFFIXES`).  The figures of the paper are
 :mod:`isoslide.reports.figures`'.
@@ -74,6 +75,8 @@ def plot_history(table: HistoryTable, path, title: str = "") -> Path:
     Path
     """
     path = check_plot_path(path)
+    if "slide_disp_x" in table.columns:
+        return _plot_planar(table, path, title)
     c, u = table.columns, table.units
     phys = bool(table.attrs.get("physical"))
     t = c["time"]
@@ -95,6 +98,52 @@ def plot_history(table: HistoryTable, path, title: str = "") -> Path:
     ax2.set_ylabel(f"sliding [{u['slide_disp']}]" if phys else "sliding / (a_p T_p^2)")
     ax2.set_xlabel(f"time [{u['time']}]" if phys else "time / T_p")
     ax2.legend(loc="best", fontsize=8, title="unshaded: stuck", title_fontsize=8)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.savefig(path)
+    plt.close(fig)
+    return path
+
+
+def _plot_planar(table: HistoryTable, path: Path, title: str) -> Path:
+    """:func:`plot_history` of a planar history.
+
+    The lengths ``|a|`` of the ground's and the floor's accelerations; ``u_x``, ``u_y`` and ``|u|``
+    with the slides shaded; the path ``(u_x, u_y)`` of the contents on their floor.
+    """
+    c, u = table.columns, table.units
+    phys = bool(table.attrs.get("physical"))
+    t = c["time"]
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig = plt.figure(figsize=(7.0, 7.8), layout="constrained")
+    grid = fig.add_gridspec(3, 1)
+    ax1 = fig.add_subplot(grid[0])
+    ax2 = fig.add_subplot(grid[1], sharex=ax1)
+    ax3 = fig.add_subplot(grid[2])
+    ax1.plot(t, np.hypot(c["ground_accel_x"], c["ground_accel_y"]), lw=0.9, color="0.45", label="ground")
+    ax1.plot(t, np.hypot(c["floor_accel_x"], c["floor_accel_y"]), lw=1.1, color="C0", label="floor (absolute)")
+    ax1.set_ylabel(f"|acceleration| [{u['ground_accel_x']}]" if phys else "|acceleration| / a_p")
+    ax1.legend(loc="upper right", fontsize=8)
+    for a, b, ph in _spans(c["phase"]):
+        if ph != 0:
+            ax2.axvspan(t[a], t[b], color="C3", alpha=0.18, lw=0)
+    ax2.plot(t, c["slide_disp_x"], lw=1.0, color="C0", label="x")
+    ax2.plot(t, c["slide_disp_y"], lw=1.0, color="C2", label="y")
+    ax2.plot(t, np.hypot(c["slide_disp_x"], c["slide_disp_y"]), lw=1.3, color="k", label="|u|")
+    ax2.axhline(0.0, color="0.8", lw=0.6)
+    ax2.set_ylabel(f"sliding [{u['slide_disp_x']}]" if phys else "sliding / (a_p T_p^2)")
+    ax2.set_xlabel(f"time [{u['time']}]" if phys else "time / T_p")
+    ax2.legend(loc="best", fontsize=8, title="shaded: sliding", title_fontsize=8)
+    ax3.plot(c["slide_disp_x"], c["slide_disp_y"], lw=1.2, color="k")
+    ax3.plot([0.0], [0.0], "o", color="0.5", ms=4)
+    ax3.set_aspect("equal", adjustable="datalim")
+    unit = f" [{u['slide_disp_x']}]" if phys else " / (a_p T_p^2)"
+    ax3.set_xlabel("sliding along x" + unit)
+    ax3.set_ylabel("sliding along y" + unit)
     if title:
         fig.suptitle(title, fontsize=10)
     fig.savefig(path)

@@ -33,7 +33,16 @@ A general building (:mod:`isoslide.engine.building`) has its contents' floor (th
 or the superstructure's roof) in ``floor_*``, its floor acceleration from
 :mod:`isoslide.engine.building_kernel`'s equations, and six more columns
 (:data:`BUILDING_COLUMNS`): the slab's and the superstructure's motion, the
-hysteretic isolator force and the isolator's phase.
+hysteretic isolator force and the isolator's phase.  A superstructure of ``N > 1``
+storeys has one ``super_disp_k``, ``super_vel_k`` per floor ``k = 1 .. N`` (relative to
+the slab).
+
+A scene that ran in the plane (``Solution.facets.contact == "plane"``) has every
+motion column twice, ``<name>_x`` and ``<name>_y`` along the building's axes (a
+floor's index before the axis: ``super_disp_2_x``), its floor acceleration from
+:func:`isoslide.engine.planar.floor_motion`, and its phases ``0`` stuck (held, or
+elastic) and ``1`` sliding (or yielding), the direction being in the velocities
+(:func:`table_columns` lists the columns of each kind of history).
 """
 
 from __future__ import annotations
@@ -49,14 +58,15 @@ import numpy as np
 
 from ..engine import building
 from ..engine import building_kernel as bk
+from ..engine.planar import floor_motion
 from .history import History
 from ..model.friction import stribeck
 from ..model.parts import building_of
 from ..models import Facets
 from ..scene import Scene
 
-__all__ = ["BUILDING_COLUMNS", "COLUMNS", "FORMATS", "HistoryTable", "history_format", "history_table", "read_history",
-           "write_history"]
+__all__ = ["AXES", "BUILDING_COLUMNS", "COLUMNS", "FORMATS", "HistoryTable", "history_format", "history_table",
+           "read_history", "table_columns", "write_history"]
 
 COLUMNS = (
     ("time", "time", "s", "T_p"),
@@ -85,8 +95,56 @@ BUILDING_COLUMNS = (
 FORMATS = {".csv": "csv", ".h5": "hdf5", ".hdf5": "hdf5"}
 """File extensions :func:`write_history` and :func:`read_history` understand."""
 
-_NAMES = tuple(c[0] for c in COLUMNS)
-_BUILDING_NAMES = tuple(c[0] for c in BUILDING_COLUMNS)
+AXES = ("x", "y")
+"""The building's horizontal axes, the suffixes of a planar history's columns."""
+
+_PLANAR_PHASES = {"phase": "stick/slip phase: 0 stuck, 1 sliding (the direction: slide_vel_x, slide_vel_y)",
+                  "isolator_phase": "isolator phase: 0 stuck or elastic, 1 sliding or yielding"}
+_STOREY_COLUMNS = ("super_disp", "super_vel")
+
+
+def table_columns(planar: bool = False, general: bool = False, storeys: int = 1) -> tuple:
+    """``(name, long name, SI unit, dimensionless scale)`` of the columns of one kind of history, in file order.
+
+    Parameters
+    ----------
+    planar : bool
+        The contents slid in the plane: every motion column along each of :data:`AXES`.
+    general : bool
+        A general building: :data:`BUILDING_COLUMNS` follow :data:`COLUMNS`.
+    storeys : int
+        Floors of the superstructure (``>= 1``); above one, a ``super_*`` column per floor.
+    """
+    out = []
+    for name, long_name, unit, scale in COLUMNS + (BUILDING_COLUMNS if general else ()):
+        if name in ("time",):
+            out.append((name, long_name, unit, scale))
+            continue
+        if name.endswith("phase"):
+            out.append((name, _PLANAR_PHASES[name] if planar else long_name, unit, scale))
+            continue
+        floors = ([(name, long_name)] if storeys == 1 or name not in _STOREY_COLUMNS else
+                  [(f"{name}_{k}", f"{long_name}, floor {k}") for k in range(1, storeys + 1)])
+        for fname, flong in floors:
+            if planar:
+                out.extend((f"{fname}_{a}", f"{flong}, along the building's {a} axis", unit, scale) for a in AXES)
+            else:
+                out.append((fname, flong, unit, scale))
+    return tuple(out)
+
+
+def _kind_of(names, ordered: bool = True):
+    """``(planar, general, storeys)`` of a history with the columns ``names`` (in that order when ``ordered``).
+
+    None when no kind of :func:`table_columns` has them.
+    """
+    names = tuple(names)
+    planar = "slide_disp_x" in names
+    general = "isolator_phase" in names
+    storeys = max(1, sum(1 for n in names if n.startswith("super_disp")) // (2 if planar else 1))
+    kind = (planar, general, storeys)
+    expected = tuple(c[0] for c in table_columns(*kind))
+    return kind if (names == expected if ordered else set(names) == set(expected)) else None
 
 
 @dataclass(frozen=True)
@@ -188,6 +246,8 @@ def history_table(solution, scene: Scene) -> HistoryTable:
     h = solution.history
     if h is None:
         raise ValueError("solution has no history; solve with isoslide.solve(scene, history=True)")
+    if h.x.ndim == 2:
+        return _planar_table(solution, scene)
     ground = np.asarray(scene.pulse.accel(h.tau), dtype=float)
     general = h.xs is not None or h.fh is not None
     if general:
@@ -204,20 +264,75 @@ def history_table(solution, scene: Scene) -> HistoryTable:
     if general:
         zeros = np.zeros_like(h.tau)
         F = sc.M_b * sc.a_p if sc is not None else 1.0
-        cols.update({"slab_disp": h.x * L, "slab_vel": h.xd * V,
-                     "super_disp": (h.xs if h.xs is not None else zeros) * L,
-                     "super_vel": (h.xsd if h.xsd is not None else zeros) * V,
-                     "isolator_force": (h.fh if h.fh is not None else zeros) * F,
+        cols.update({"slab_disp": h.x * L, "slab_vel": h.xd * V})
+        cols.update(_storey_columns(h.xs, h.xsd, h.tau.size, L, V))
+        cols.update({"isolator_force": (h.fh if h.fh is not None else zeros) * F,
                      "isolator_phase": (h.iso_phase if h.iso_phase is not None
                                         else zeros.astype(np.int8)).astype(np.int8)})
-        columns = COLUMNS + BUILDING_COLUMNS
+        columns = table_columns(False, True, _storeys(h))
+    return _table(cols, columns, solution, scene)
+
+
+def _storeys(h: History) -> int:
+    """Floors of a history's superstructure (1 for a rigid one)."""
+    return 1 if h.xs is None or np.ndim(h.xs) == 1 or (np.ndim(h.xs) == 3 and h.xs.shape[2] == 1) else h.xs.shape[-1]
+
+
+def _storey_columns(xs, xsd, rows: int, L: float, V: float, axis: str = "") -> dict:
+    """``super_disp``, ``super_vel`` (one per floor above one storey), scaled by ``L``, ``V``."""
+    out = {}
+    for name, v, scale in (("super_disp", xs, L), ("super_vel", xsd, V)):
+        v = np.zeros((rows, 1)) if v is None else np.asarray(v).reshape(rows, -1)
+        n = v.shape[1]
+        for k in range(n):
+            out[f"{name}_{k + 1}{axis}" if n > 1 else f"{name}{axis}"] = v[:, k] * scale
+    return out
+
+
+def _table(cols: dict, columns: tuple, solution, scene: Scene) -> HistoryTable:
+    """The :class:`HistoryTable` of ``cols`` in the order of ``columns``, with the units and the attributes."""
+    sc = scene.scale
+    cols = {name: cols[name] for name, _, _, _ in columns}
     units = {name: (unit if sc is not None else "1") for name, _, unit, _ in columns}
     attrs = {"physical": sc is not None, "pulse": scene.pulse.name, "model": solution.model,
              **scene.pis(), "floor": scene.floor, "pi1": solution.pi1, "pi1_residual": solution.pi1_residual}
+    if scene.pulse_y is not None:
+        attrs.update({"pulse_y": scene.pulse_y.name, "angle": scene.angle,
+                      "peak_angle": solution.peak_angle})
     if sc is not None:
         attrs.update({"a_p": sc.a_p, "T_p": sc.T_p, "M_b": sc.M_b, "g": sc.g,
                       "u_max": solution.u_max, "u_residual": solution.u_residual})
     return HistoryTable(columns=cols, units=units, attrs=attrs)
+
+
+def _planar_table(solution, scene: Scene) -> HistoryTable:
+    """:func:`history_table` of a scene that ran in the plane (columns along each of :data:`AXES`)."""
+    h = solution.history
+    motion = floor_motion(scene, h)
+    gx, gy = scene.ground(h.tau)
+    sc = scene.scale
+    T, A = (sc.T_p, sc.a_p) if sc is not None else (1.0, 1.0)
+    L, V = A * T * T, A * T
+    F = sc.M_b * sc.a_p if sc is not None else 1.0
+    general = h.xs is not None or h.fh is not None or h.iso_phase is not None
+    k = building_of(scene).contents.floor
+    n = _storeys(h)
+    cols = {"time": h.tau * T, "phase": (h.phase != 0).astype(np.int8)}
+    for a, axis in enumerate(AXES):
+        sfx = f"_{axis}"
+        fdisp = h.x[:, a] + (h.xs[:, a, k - 1] if k > 0 and h.xs is not None else 0.0)
+        cols.update({f"ground_accel{sfx}": (gx, gy)[a] * A, f"floor_accel{sfx}": motion[:, a] * A,
+                     f"floor_disp{sfx}": fdisp * L, f"floor_vel{sfx}": motion[:, 2 + a] * V,
+                     f"slide_disp{sfx}": h.u[:, a] * L, f"slide_vel{sfx}": h.ud[:, a] * V})
+        if general:
+            cols.update({f"slab_disp{sfx}": h.x[:, a] * L, f"slab_vel{sfx}": h.xd[:, a] * V,
+                         f"isolator_force{sfx}": (h.fh[:, a] if h.fh is not None else np.zeros_like(h.tau)) * F})
+            cols.update(_storey_columns(None if h.xs is None else h.xs[:, a, :],
+                                        None if h.xsd is None else h.xsd[:, a, :], h.tau.size, L, V, sfx))
+    if general:
+        cols["isolator_phase"] = ((h.iso_phase != 0) if h.iso_phase is not None
+                                  else np.zeros(h.tau.size, dtype=bool)).astype(np.int8)
+    return _table(cols, table_columns(True, general, n), solution, scene)
 
 
 def write_history(solution, scene: Scene, path) -> Path:
@@ -243,9 +358,7 @@ def write_history(solution, scene: Scene, path) -> Path:
     table = history_table(solution, scene)
     if fmt == "hdf5":
         with h5py.File(path, "w") as f:
-            for name, long_name, _, scale in COLUMNS + BUILDING_COLUMNS:
-                if name not in table.columns:
-                    continue
+            for name, long_name, _, scale in table_columns(*_kind_of(table.columns)):
                 d = f.create_dataset(name, data=table.columns[name])
                 d.attrs["units"] = table.units[name]
                 d.attrs["long_name"] = long_name
@@ -284,7 +397,11 @@ def read_history(path) -> HistoryTable:
     path = Path(path)
     if fmt == "hdf5":
         with h5py.File(path, "r") as f:
-            names = _NAMES + (_BUILDING_NAMES if _BUILDING_NAMES[0] in f else ())
+            kind = _kind_of(list(f), ordered=False)
+            if kind is None:
+                raise ValueError(f"path = {str(path)!r} has datasets {sorted(f)}; expected the columns of "
+                                 "isoslide.store.history_io.table_columns")
+            names = [c[0] for c in table_columns(*kind)]
             cols = {name: f[name][()] for name in names}
             units = {name: str(f[name].attrs["units"]) for name in names}
             attrs = {k: _plain(v) for k, v in f.attrs.items()}
@@ -302,13 +419,15 @@ def read_history(path) -> HistoryTable:
                 continue
             if line.strip():
                 rows.append(line)
+    base = [c[0] for c in COLUMNS]
     if header is None:
         raise ValueError(f"path = {str(path)!r} has no header row; expected: "
-                         + ", ".join(f"{n} [unit]" for n in _NAMES))
+                         + ", ".join(f"{n} [unit]" for n in base))
     names = [h.split(" [")[0] for h in header]
-    if tuple(names) not in (_NAMES, _NAMES + _BUILDING_NAMES):
-        raise ValueError(f"path = {str(path)!r} has columns {names}; expected {list(_NAMES)}, "
-                         f"optionally followed by {list(_BUILDING_NAMES)}")
+    if _kind_of(names) is None:
+        raise ValueError(f"path = {str(path)!r} has columns {names}; expected {base}, optionally followed by "
+                         f"{[c[0] for c in BUILDING_COLUMNS]} (isoslide.store.history_io.table_columns: in the "
+                         "plane each motion column along x and y, a super_* column per floor)")
     units = {n: h.split(" [", 1)[1].rstrip("]") for n, h in zip(names, header, strict=True)}
     data = np.array([[float(x) for x in r] for r in csv.reader(rows)], dtype=float).reshape(-1, len(names))
     cols = {n: data[:, i] for i, n in enumerate(names)}
