@@ -730,6 +730,49 @@ def render_stems(outputs, figures, what: str, datasets: dict, drawer_of, dpi: in
     return captions
 
 
+_DRAW_DOC = """Draw every figure of :data:`FIGURES` into the ``outputs`` whose stem is its name.
+
+    Parameters
+    ----------
+    datasets : dict of str -> path or xarray.Dataset
+        {datasets}
+    outputs : sequence of path
+        Files to write (``<figure>.<png|pdf|svg>``).
+    settings : dict
+        The ``figures`` section of a complete configuration (``dpi``).
+
+    Returns
+    -------
+    dict of str -> str
+        Caption of each figure drawn.
+    """
+
+
+def stems_drawer(name: str, figures, what: str, drawer_of, datasets_doc: str, logger=log):
+    """The ``draw(datasets, outputs, settings)`` of a module's figures: :func:`render_stems` at ``settings["dpi"]``.
+
+    Parameters
+    ----------
+    name : str
+        The function's name in its module (``draw_all``).
+    figures, what, drawer_of, logger
+        As for :func:`render_stems`.
+    datasets_doc : str
+        The datasets the figures read, for the function's docstring.
+
+    Returns
+    -------
+    callable
+        ``draw(datasets, outputs, settings) -> {figure: caption}``.
+    """
+    def draw(datasets: dict, outputs, settings: dict) -> dict:
+        return render_stems(outputs, figures, what, datasets, drawer_of, settings["dpi"], logger)
+
+    draw.__name__ = draw.__qualname__ = name
+    draw.__doc__ = _DRAW_DOC.format(datasets=datasets_doc)
+    return draw
+
+
 def _render(drawer, args, outputs, dpi: int) -> str:
     """Draw ``drawer(*args)`` -> ``(fig, caption)`` in :data:`STYLE`, save it into every path of ``outputs``.
 

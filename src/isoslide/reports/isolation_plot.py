@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..datasets import open_dataset
-from .figures import LABELS, WIDTH, _colors, _fixed_text, render_stems, master_curves
+from .figures import LABELS, WIDTH, _colors, _fixed_text, stems_drawer, master_curves
 
 log = logging.getLogger(__name__)
 
@@ -188,23 +188,6 @@ def _list(da) -> str:
     return ", ".join(f"{float(v):g}" for v in np.asarray(da).ravel())
 
 
-def draw_all(datasets: dict, outputs, settings: dict) -> dict:
-    """Draw every figure of :data:`FIGURES` into the ``outputs`` whose stem is its name.
-
-    Parameters
-    ----------
-    datasets : dict of str -> path or xarray.Dataset
-        ``iso_fp``, ``iso_lrb``, ``iso_flex_base``, ``iso_flex_roof``, ``isolation_rigid``,
-        ``isolation_design``.
-    outputs : sequence of path
-        Files to write (``<figure>.<png|pdf|svg>``).
-    settings : dict
-        The ``figures`` section of a complete configuration (``dpi``).
-
-    Returns
-    -------
-    dict of str -> str
-        Caption of each figure.
-    """
-    return render_stems(outputs, FIGURES, "isolation figures", datasets, lambda name, data: (DRAWERS[name], (data,)),
-                        settings["dpi"], log)
+draw_all = stems_drawer("draw_all", FIGURES, "isolation figures", lambda name, data: (DRAWERS[name], (data,)),
+                        "``iso_fp``, ``iso_lrb``, ``iso_flex_base``, ``iso_flex_roof``, ``isolation_rigid``, "
+                        "``isolation_design``.", log)

@@ -17,7 +17,7 @@ import logging
 
 import numpy as np
 
-from .figures import WIDTH, _colors, render_stems
+from .figures import WIDTH, _colors, stems_drawer
 
 log = logging.getLogger(__name__)
 
@@ -181,25 +181,10 @@ DRAWERS = {"planar": (master, "planar"), "planar_ratio": (ratio, "planar"),
 """``{figure: (drawer, dataset it reads)}``."""
 
 
-def draw_all(datasets: dict, outputs, settings: dict) -> dict:
-    """Draw every figure of :data:`FIGURES` into the ``outputs`` whose stem is its name.
+def _drawer_of(name, data):
+    drawer, source = DRAWERS[name]
+    return drawer, (data[source],)
 
-    Parameters
-    ----------
-    datasets : dict of str -> path or xarray.Dataset
-        ``planar`` and ``planar_pi5`` (:data:`DATASETS`).
-    outputs : sequence of path
-        Files to write (``<figure>.<png|pdf|svg>``).
-    settings : dict
-        The ``figures`` section of a complete configuration (``dpi``).
 
-    Returns
-    -------
-    dict of str -> str
-        Caption of each figure drawn.
-    """
-    def drawer_of(name, data):
-        drawer, source = DRAWERS[name]
-        return drawer, (data[source],)
-
-    return render_stems(outputs, FIGURES, "planar figures", datasets, drawer_of, settings["dpi"], log)
+draw_all = stems_drawer("draw_all", FIGURES, "planar figures", _drawer_of,
+                        "``planar`` and ``planar_pi5`` (:data:`DATASETS`).", log)

@@ -17,7 +17,7 @@ import logging
 
 import numpy as np
 
-from .figures import WIDTH, _colors, render_stems
+from .figures import WIDTH, _colors, stems_drawer
 
 log = logging.getLogger(__name__)
 
@@ -147,22 +147,6 @@ DRAWERS = {"record_pairs": pairs_figure}
 """The function drawing each figure of :data:`FIGURES`."""
 
 
-def draw(datasets: dict, outputs, settings: dict) -> dict:
-    """Draw every figure of :data:`FIGURES` into the ``outputs`` whose stem is its name.
-
-    Parameters
-    ----------
-    datasets : dict of str -> path or xarray.Dataset
-        ``record_pairs`` (:data:`DATASETS`).
-    outputs : sequence of path
-        Files to write (``<figure>.<png|pdf|svg>``).
-    settings : dict
-        The ``figures`` section of a complete configuration (``dpi``).
-
-    Returns
-    -------
-    dict of str -> str
-        Caption of each figure drawn.
-    """
-    return render_stems(outputs, FIGURES, "figures of the recorded pairs", datasets,
-                        lambda name, data: (DRAWERS[name], (data["record_pairs"],)), settings["dpi"], log)
+draw = stems_drawer("draw", FIGURES, "figures of the recorded pairs",
+                    lambda name, data: (DRAWERS[name], (data["record_pairs"],)),
+                    "``record_pairs`` (:data:`DATASETS`).", log)
