@@ -1,6 +1,5 @@
 """Tests of isoslide.engine.kernel and its DOP853 tableau (isoslide.engine.dop853): coefficients, results layout."""
 
-import ast
 import math
 from fractions import Fraction
 from pathlib import Path
@@ -12,6 +11,7 @@ from scipy.integrate._ivp import dop853_coefficients as scipy_dop853
 import isoslide
 from isoslide.engine import dop853, kernel
 from isoslide.pulses import get_pulse
+from import_walk import import_targets  # tests/ is on sys.path
 
 PKG = Path(isoslide.__file__).resolve().parent
 
@@ -50,13 +50,7 @@ def test_package_imports_no_private_scipy_module():
     """The package uses SciPy's public API only (the tableau lives in isoslide.engine.dop853)."""
     offenders = []
     for path in PKG.rglob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.ImportFrom) and not node.level:
-                names = [f"{node.module}.{a.name}" for a in node.names]
-            elif isinstance(node, ast.Import):
-                names = [a.name for a in node.names]
-            else:
-                continue
+        for _, names in import_targets(path.read_text()):
             for n in names:
                 parts = n.split(".")
                 if parts[0] == "scipy" and any(p.startswith("_") for p in parts[1:]):

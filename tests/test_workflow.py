@@ -31,6 +31,7 @@ import isoslide.studies.sweep
 from isoslide import datasets
 from isoslide.store import provenance
 from isoslide.studies import imports, registry
+from import_walk import import_targets  # tests/ is on sys.path
 
 ROOT = Path(__file__).resolve().parents[1]
 TEST_CONFIG = ["--configfile", "config/test.yaml"]
@@ -225,24 +226,14 @@ def _module_file(name: str) -> Path | None:
 
 def _isoslide_imports(source: str, module: str | None = None) -> set:
     """Dotted names (relative to the package) of the isoslide modules ``source`` imports."""
-    is_pkg = module is not None and _module_file(module).name == "__init__.py"
+    package = None
+    if module is not None:
+        package = f"isoslide.{module}"
+        package = package if _module_file(module).name == "__init__.py" else package.rpartition(".")[0]
     found = set()
-    for node in ast.walk(ast.parse(source)):
-        if isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = ["isoslide", *module.split(".")]
-                base = base if is_pkg else base[:-1]
-                base = base[: len(base) - (node.level - 1)]
-                mod = ".".join(base + ([node.module] if node.module else []))
-            else:
-                mod = node.module or ""
-            targets = [mod] + [f"{mod}.{a.name}" for a in node.names]
-            if mod == "isoslide":      # the lazy package namespace: names defined in its modules
-                targets += [f"isoslide.{isoslide._EXPORTS[a.name]}" for a in node.names if a.name in isoslide._EXPORTS]
-        elif isinstance(node, ast.Import):
-            targets = [a.name for a in node.names]
-        else:
-            continue
+    for node, targets in import_targets(source, package):
+        if isinstance(node, ast.ImportFrom) and targets[0] == "isoslide":   # the lazy package namespace
+            targets += [f"isoslide.{isoslide._EXPORTS[a.name]}" for a in node.names if a.name in isoslide._EXPORTS]
         for t in targets:
             parts = t.split(".")
             if parts[0] != "isoslide":
