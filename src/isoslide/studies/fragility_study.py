@@ -474,17 +474,10 @@ def chunk_job(module, name: str, chunk: int, settings: dict, job_log) -> xr.Data
 
     Parameters
     ----------
-    module : module
-        The study: :mod:`isoslide.studies.fragility_study` or :mod:`isoslide.studies.fragility_planar`
-        (its ``base_of``, ``check_settings`` and ``solve_chunk``).
-    name : str
-        The dataset stem (``fragility``, ``fragility_planar_fixed_base``, ...), which names the base.
+    module, name, settings, job_log
+        As for :func:`dataset_job` (``module.solve_chunk`` solves).
     chunk : int
         The chunk (0-based).
-    settings : dict
-        The study's settings (``fragility_settings`` or ``planar_settings``).
-    job_log : logging.Logger
-        Receives the chunk and the seconds of each phase (:func:`isoslide.budget.phase`).
 
     Returns
     -------
@@ -512,9 +505,9 @@ def dataset_job(module, make_dataset, paths, name: str, settings: dict, job_log)
     paths : sequence of path-like
         The chunk files of the dataset; none for a dataset of one chunk.
     name : str
-        The dataset stem, which names the base.
+        The dataset stem (``fragility``, ``fragility_planar_fixed_base``, ...), which names the base.
     settings : dict
-        The study's settings.
+        The study's settings (:func:`fragility_settings` or ``planar_settings``).
     job_log : logging.Logger
         Receives what the job does and the seconds of each phase (:func:`isoslide.budget.phase`).
 
