@@ -165,6 +165,12 @@ def summarize(res: dict) -> dict:
     return out
 
 
+def _header(p, hdr: str) -> None:
+    """Print a table's column header ``hdr`` and a rule as long under it (``p`` prints a line)."""
+    p(hdr)
+    p("-" * len(hdr))
+
+
 def report(res: dict, summ: dict, file=sys.stdout) -> None:
     """Print the benchmark in plain text."""
     p = lambda *a: print(*a, file=file)  # noqa: E731
@@ -176,8 +182,7 @@ def report(res: dict, summ: dict, file=sys.stdout) -> None:
       "with Pi1 >= 1e-6 (below, relative error is not meaningful)")
     p("")
     hdr = f"{'method':40s} {'scenes':>6s} {'median ms':>10s} {'x isoslide':>10s} {'med err':>9s} {'max err':>9s} {'max* err':>9s}"
-    p(hdr)
-    p("-" * len(hdr))
+    _header(p, hdr)
     p(f"{'isoslide.solve (default rtol=1e-6)':40s} {summ['n']:6d} {summ['iso_median_ms']:10.3f} {1.0:10.1f} "
       f"{summ['iso_err_median']:9.1e} {summ['iso_err_max']:9.1e} {summ['iso_err_max_significant']:9.1e}")
     for peer, name in (("ref", res["reference"]), ("reg", res["regularized"])):
@@ -200,8 +205,7 @@ def report(res: dict, summ: dict, file=sys.stdout) -> None:
       f"verification steps)")
     p("")
     hdr = f"{'scene class':16s} {'n':>3s} {'median ms':>10s} {'max ms':>9s} {'med steps':>10s} {'max steps':>10s} {'med events':>10s} {'us/step':>8s} {'unsettled':>9s}"
-    p(hdr)
-    p("-" * len(hdr))
+    _header(p, hdr)
     for b in summ["by_class"]:
         p(f"{b['class']:16s} {b['n']:3d} {b['median_ms']:10.3f} {b['max_ms']:9.3f} {b['median_steps']:10.0f} "
           f"{b['max_steps']:10.0f} {b['median_events']:10.0f} {b['us_per_step']:8.2f} {b['unsettled']:9d}")
@@ -270,8 +274,7 @@ def report_records(res: dict, summ: dict, file=sys.stdout) -> None:
       f"rtol=1e-12 (model='full')")
     hdr = (f"{'path':40s} {'ns/sample med':>13s} {'ns/sample max':>13s} {'total ms':>9s} "
            f"{'med err':>9s} {'max err':>9s}")
-    p(hdr)
-    p("-" * len(hdr))
+    _header(p, hdr)
     for path, name in (("pw", "piecewise exact (solve default)"),
                        ("auto", "integrator (piecewise_path=False)"),
                        ("int", "integrator (model='full')")):
@@ -336,8 +339,7 @@ def report_buildings(res: dict, file=sys.stdout) -> dict:
     p(f"buildings: {len(res['points'])} Pi points (pi2 0.05-0.3, pi3 2-3, pi4 0.05, pi8 0.01) per building; median "
       f"of {res['repeats']} interleaved runs; errors relative to solve(rtol=1e-12)")
     hdr = f"{'building':48s} {'us/scene':>9s} {'x paper':>8s} {'med err':>9s} {'max err':>9s}  models"
-    p(hdr)
-    p("-" * len(hdr))
+    _header(p, hdr)
     summ = {}
     for name, r in rows.items():
         t = np.array([_median(x) for x in r["times"]])
@@ -432,8 +434,7 @@ def report_planar(res: dict, file=sys.stdout) -> dict:
       f"median of {res['repeats']} interleaved runs; errors of the planar scene relative to solve(rtol=1e-12)")
     hdr = (f"{'building':48s} {'us 1-D':>8s} {'us planar':>10s} {'planar/1-D':>10s} {'steps 1-D':>9s} "
            f"{'steps planar':>12s} {'med err':>9s} {'max err':>9s}  goal")
-    p(hdr)
-    p("-" * len(hdr))
+    _header(p, hdr)
     summ = {}
     for name, r in rows.items():
         t1 = np.array([_median(x) for x in r["t_1d"]])
@@ -522,8 +523,7 @@ def report_pairs(res: dict, file=sys.stdout) -> dict:
       f"median of {res['repeats']} interleaved runs; per sample = per analysis / samples of the x component")
     hdr = (f"{'pair':24s} {'base':10s} {'samples':>7s} {'steps':>7s} {'ms planar':>9s} {'us/sample':>9s} "
            f"{'1-D us/sample':>13s} {'planar/1-D':>10s}  models (planar | 1-D)")
-    p(hdr)
-    p("-" * len(hdr))
+    _header(p, hdr)
     for r in rows:
         p(f"{r['pair'][:24]:24s} {r['point']:10s} {r['samples']:7d} {r['steps']:7d} {1e3 * r['planar_s']:9.2f} "
           f"{1e6 * r['planar_s'] / r['samples']:9.3f} {1e6 * r['one_s'] / r['samples']:13.3f} "
