@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.shear_building import stiffness_matrix
 from ..store.history import History, phase_of
 from ..scene import Scene
 from .result import PeerResult
@@ -109,7 +110,7 @@ class OpenSeesModel:
             ``storeys x storeys`` (units ``M_b``, ``M_b / T_p^2``, ``M_b / T_p``), floor 1 first;
             empty arrays for a rigid superstructure.
         """
-        return (np.diag(self.masses), _storey_stiffness_matrix(np.asarray(self.stiffnesses, dtype=float)),
+        return (np.diag(self.masses), stiffness_matrix(self.stiffnesses),
                 np.array(self.damping, dtype=float).reshape(len(self.masses), len(self.masses)))
 
     def links(self) -> list:
@@ -154,19 +155,6 @@ class OpenSeesModel:
         return out
 
 
-def _storey_stiffness_matrix(k: np.ndarray) -> np.ndarray:
-    """Fixed-base stiffness matrix of a shear building with storey stiffnesses ``k`` (bottom first)."""
-    n = k.size
-    K = np.zeros((n, n))
-    for j in range(n):                     # storey j + 1 joins floor j (the slab for j = 0) and floor j + 1
-        K[j, j] += k[j]
-        if j > 0:
-            K[j - 1, j - 1] += k[j]
-            K[j - 1, j] -= k[j]
-            K[j, j - 1] -= k[j]
-    return K
-
-
 def _modes(M: np.ndarray, K: np.ndarray) -> tuple:
     """Eigenvalues ``omega^2`` (ascending) and mass-normalised modes of ``K phi = omega^2 M phi``, ``M`` diagonal."""
     s = 1.0 / np.sqrt(np.diag(M))
@@ -183,9 +171,9 @@ def _superstructure(scene: Scene) -> tuple:
     w = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses, dtype=float)
     r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses, dtype=float)
     M = np.diag(mst * w)
-    lam, _ = _modes(M, _storey_stiffness_matrix(r))
+    lam, _ = _modes(M, stiffness_matrix(r))
     k = r * (ws * ws / lam[0])                   # fundamental fixed-base period T_s = Pi12
-    lam, phi = _modes(M, _storey_stiffness_matrix(k))
+    lam, phi = _modes(M, stiffness_matrix(k))
     Mphi = M @ phi
     C = Mphi @ np.diag(2.0 * scene.pi13 * np.sqrt(lam)) @ Mphi.T
     C = 0.5 * (C + C.T)
