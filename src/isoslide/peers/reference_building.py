@@ -124,6 +124,21 @@ LEDGER_NAMES = ("work", "viscous", "isolator", "friction")
 _ULP4 = 4e-15   # relative slack of the stick limits (see isoslide.peers.reference)
 
 
+def storeys_of(scene: Scene) -> tuple:
+    """Floor masses and relative storey stiffnesses of a scene's flexible superstructure.
+
+    Returns
+    -------
+    ms, r : ndarray, shape (storeys,)
+        Floor masses, units of ``M_b`` (they add up to ``pi11``), and storey stiffnesses relative to
+        each other (bottom first; equal unless the scene gives them).
+    """
+    n = scene.storeys
+    shares = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses, dtype=float)
+    r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses, dtype=float)
+    return scene.pi11 * shares, r
+
+
 def shear_building(masses, stiffnesses, period: float, damping: float) -> tuple:
     """Fixed-base matrices of a shear chain scaled to a fundamental period.
 
@@ -323,10 +338,7 @@ def building_of(scene: Scene) -> Building:
         kd, cb = w * w, 2.0 * scene.pi4 * w
         kind = "linear" if scene.pi9 == 0.0 else ("bilinear" if scene.pi10 > 0.0 else "sliding")
     if flexible:
-        n = scene.storeys
-        shares = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses, dtype=float)
-        ms = scene.pi11 * shares
-        r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses, dtype=float)
+        ms, r = storeys_of(scene)
         Ks, Cs, omega = shear_building(ms, r, scene.pi12, scene.pi13)
         mst, floor = scene.pi11, scene.floor_index
     else:

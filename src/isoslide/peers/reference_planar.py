@@ -227,7 +227,7 @@ from scipy.integrate import solve_ivp
 
 from ..pulses import Pulse, accel_at
 from ..scene import Scene
-from .reference_building import shear_building
+from .reference_building import shear_building, storeys_of
 from .result import PeerResult, counted
 
 __all__ = ["PlanarBuilding", "PlanarRun", "SLOW_SPEED", "STIFF_SPEED", "TURN_ANGLE", "planar_building",
@@ -360,10 +360,7 @@ def planar_building(scene: Scene) -> PlanarBuilding:
     flexible = scene.pi12 > 0.0
     floor = scene.floor_index if flexible else 0
     if flexible:
-        n = scene.storeys
-        shares = np.full(n, 1.0 / n) if scene.floor_masses is None else np.asarray(scene.floor_masses, dtype=float)
-        ms = scene.pi11 * shares
-        r = np.ones(n) if scene.storey_stiffnesses is None else np.asarray(scene.storey_stiffnesses, dtype=float)
+        ms, r = storeys_of(scene)
         Ks, Cs, _ = shear_building(ms, r, scene.pi12, scene.pi13)
     common = dict(m=float(scene.pi8), thr=scene.pi2 / scene.pi5, pi2=float(scene.pi2), pi6=float(scene.pi6),
                   pi7=float(scene.pi7))
@@ -379,7 +376,7 @@ def planar_building(scene: Scene) -> PlanarBuilding:
         common.update(q=float(scene.pi9), kd=kd)
     if not flexible:
         return PlanarBuilding(masses=np.ones(1), K=np.array([[kd]]), C=np.array([[cb]]), k=0, **common)
-    T = np.hstack([-np.ones((n, 1)), np.eye(n)])
+    T = np.hstack([-np.ones((ms.size, 1)), np.eye(ms.size)])
     K = T.T @ Ks @ T
     C = T.T @ Cs @ T
     K[0, 0] += kd
