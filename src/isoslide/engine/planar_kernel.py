@@ -1098,23 +1098,19 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         if hold:
             hold = False
         else:
-            if md[M_BM] == 0.0:
-                found, hs, herr = _breakaway(EV_DEMAND, P[P_THR], md, tau, y, y1, h, t_end_step, P, ex, atol, rtol,
-                                             check, K, ye, work, cnt)
+            # a held interface reaching its limit: the block, a sliding bearing, an elastic bilinear one
+            for kind in (EV_DEMAND, EV_BDEMAND, EV_YIELD):
+                if kind == EV_DEMAND:
+                    held_here = md[M_BM] == 0.0
+                else:
+                    held_here = md[M_IM] == 0.0 and (bearing if kind == EV_BDEMAND else hyst)
+                if not held_here:
+                    continue
+                limit = P[P_THR] if kind == EV_DEMAND else P[P_Q]
+                found, hs, herr = _breakaway(kind, limit, md, tau, y, y1, h, t_end_step, P, ex, atol, rtol, check,
+                                             K, ye, work, cnt)
                 if found and hs < hbest:
-                    best, hbest, herr_best = EV_DEMAND, hs, herr
-                    _copy(yb, ye)
-            if bearing and md[M_IM] == 0.0:
-                found, hs, herr = _breakaway(EV_BDEMAND, P[P_Q], md, tau, y, y1, h, t_end_step, P, ex, atol, rtol,
-                                             check, K, ye, work, cnt)
-                if found and hs < hbest:
-                    best, hbest, herr_best = EV_BDEMAND, hs, herr
-                    _copy(yb, ye)
-            if hyst and md[M_IM] == 0.0:
-                found, hs, herr = _breakaway(EV_YIELD, P[P_Q], md, tau, y, y1, h, t_end_step, P, ex, atol, rtol,
-                                             check, K, ye, work, cnt)
-                if found and hs < hbest:
-                    best, hbest, herr_best = EV_YIELD, hs, herr
+                    best, hbest, herr_best = kind, hs, herr
                     _copy(yb, ye)
         if hyst and md[M_IM] == 1.0:
             found, hs, herr = _unload(md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol, K, ye, work, cnt)
