@@ -67,8 +67,9 @@ import numpy as np
 import xarray as xr
 
 from . import fragility as _fit
-from .fragility_study import (REFERENCE_FRAGILITY, T_SCALE, _increasing, add_curves, add_outputs, check_building, check_chunk_size,
-                              check_level, chunk_indices, merge_chunks, n_chunks, stem_base)
+from .fragility_study import (REFERENCE_FRAGILITY, T_SCALE, add_curves, add_outputs, base_label, base_stem,
+                              bootstrap_attrs, check_building, check_chunk_size, check_level, check_stripes, chunk_indices,
+                              design_attrs, merge_chunks, n_chunks, new_outputs, stem_base)
 from .intensity import align_pair, pair_peaks, pair_sa, peak_abs, planar_floor_peaks
 from ..datasets import global_attrs
 from ..pulses import sampled
@@ -100,12 +101,14 @@ BOOT_SEED_OFFSET = 2
 
 _SETTINGS_KEYS = ("building", "contents", "limit_states", "seed", "bootstrap", "planar")
 
+_NOT_STORED = ("D_y", "floor", "beta_stribeck", "gamma")
+"""Attributes of :func:`isoslide.studies.fragility_study.design_attrs` the planar datasets leave out
+(their floors are the attribute ``floors``)."""
+
 
 def dataset_name(base: str) -> str:
     """``fragility_planar`` (isolated) or ``fragility_planar_fixed_base``: the file stem of a base's dataset."""
-    if base not in BASES:
-        raise ValueError(f"base = {base!r} is invalid; allowed: {BASES}")
-    return "fragility_planar" if base == "isolated" else "fragility_planar_fixed_base"
+    return base_stem("fragility_planar", base)
 
 
 def base_of(name: str) -> str:
@@ -221,10 +224,18 @@ def _suite_motions(name: str, pairs: int, index: int) -> tuple:
 def check_settings(settings: dict) -> PlanarStudy:
     """Check ``fragility.planar`` and the sections it shares, read the suites and draw the tables.
 
+    The tables: a kinetic friction coefficient per ground motion, stripe and draw, and, with
+    ``sampled_angles``, an orientation per analysis.
+
     Parameters
     ----------
     settings : dict
         :func:`planar_settings` of a complete configuration.
+
+    Returns
+    -------
+    PlanarStudy
+        The checked settings with the suites read and every friction coefficient and sampled angle drawn.
 
     Raises
     ------
@@ -258,14 +269,7 @@ def check_settings(settings: dict) -> PlanarStudy:
     if "roof" in floors and float(b["T_s"]) == 0.0:
         raise ValueError("fragility.planar.floors has 'roof' with a rigid superstructure (building.T_s = 0), where "
                          "the roof moves with the slab; allowed: 'roof' with building.T_s > 0")
-    im = p["stripes"]["im"]
-    if im not in SCALING_IMS:
-        raise ValueError(f"fragility.planar.stripes.im = {im!r} is invalid; allowed: 'pga', 'pgv' (RotD50)")
-    levels = _increasing("planar.stripes.levels", p["stripes"]["levels"])
-    limits = _increasing("limit_states", f["limit_states"])
-    n_s = int(p["friction_samples"])
-    if n_s < 1:
-        raise ValueError(f"fragility.planar.friction_samples = {n_s!r} is out of range; allowed range: >= 1")
+    im, levels, limits, n_s = check_stripes(f, p, "planar.", "'pga', 'pgv' (RotD50)")
     angles_cfg = np.asarray(p["angles"], dtype=float)
     if angles_cfg.ndim != 1 or angles_cfg.size == 0 or not np.all((angles_cfg >= 0) & (angles_cfg < 180)):
         raise ValueError(f"fragility.planar.angles = {list(p['angles'])!r} is invalid; allowed: one or more angles "
@@ -343,7 +347,7 @@ def solve_analyses(study: PlanarStudy, indices, base: str) -> xr.Dataset:
     ----------
     study : PlanarStudy
     indices : array_like of int
-        Analysis indices (:func:`analysis_table` order).
+        Analysis indices (:func:`analysis_table` order: floor, ground motion, orientation, stripe, sample).
     base : {"isolated", "fixed_base"}
 
     Returns
@@ -361,9 +365,7 @@ def solve_analyses(study: PlanarStudy, indices, base: str) -> xr.Dataset:
     dataset_name(base)
     idx = np.asarray(indices, dtype=np.int64)
     tab = analysis_table(study)
-    n = idx.size
-    out = {k: np.full(n, np.nan) for k in _OUT}
-    models = np.empty(n, dtype=object)
+    out, models = new_outputs(idx.size, _OUT)
     key = (study.sa_period, study.sa_damping)
     for k, i in enumerate(idx):
         g, j, fl = int(tab["ground_motion"][i]), int(tab["stripe"][i]), study.floors[int(tab["floor"][i])]
@@ -653,15 +655,8 @@ def fit_curves(ds: xr.Dataset, study: PlanarStudy) -> xr.Dataset:
 def planar_dataset(analyses: xr.Dataset, study: PlanarStudy, settings: dict, base: str) -> xr.Dataset:
     """The dataset of the planar analyses: the analyses, the curves, the comparisons, CF attributes.
 
-    Parameters
-    ----------
-    analyses : xarray.Dataset
-        :func:`merge_chunks` of every chunk (or :func:`solve_all`).
-    study : PlanarStudy
-        :func:`check_settings` of ``settings``.
-    settings : dict
-        :func:`planar_settings` (stored as ``isoslide_config``).
-    base : {"isolated", "fixed_base"}
+    The arguments are those of :func:`isoslide.studies.fragility_study.fragility_dataset`, of the
+    planar analyses: a :class:`PlanarStudy` and :func:`planar_settings` (stored as ``isoslide_config``).
     """
     dataset_name(base)
     ds = analyses.copy()
@@ -672,11 +667,9 @@ def planar_dataset(analyses: xr.Dataset, study: PlanarStudy, settings: dict, bas
     fits = fit_curves(analyses, study)
     ref = fits.attrs.pop("reference_suite")
     ds = xr.merge([ds, fits], combine_attrs="override")
-    b, c = study.building, study.contents
     licences = sorted({r.licence for gm in study.motions for r in (gm.x, gm.y) if r.licence})
     ds.attrs = global_attrs(
-        title=f"isoslide fragility of sliding contents in the plane "
-              f"({'isolated slab' if base == 'isolated' else 'fixed base'})",
+        title=f"isoslide fragility of sliding contents in the plane ({base_label(base)})",
         history=(f"isoslide.studies.fragility_planar: {len(study.floors)} floor(s) x {len(study.motions)} ground "
                  f"motions ({', '.join(study.suites)}) x {study.angles.shape[1]} orientations"
                  f"{' drawn per analysis' if study.sampled_angles else ''} x {study.levels.size} stripes of "
@@ -690,11 +683,8 @@ def planar_dataset(analyses: xr.Dataset, study: PlanarStudy, settings: dict, bas
                          "intensity from two horizontal components of motion, BSSA 100(4), 1830-1835"),
         base=base, scaling_im=study.im, suites=", ".join(study.suites), reference_suite=ref,
         floors=", ".join(study.floors), sampled_angles=int(study.sampled_angles),
-        T_b=0.0 if base == "fixed_base" else float(b["T_b"]), xi_b=float(b["xi_b"]), M_b=float(b["M_b"]),
-        m_ec=float(c["mass"]), Q_d=float(b["Q_d"]), m_st=float(b["m_st"]), T_s=float(b["T_s"]),
-        xi_s=float(b["xi_s"]), mu_k_median=float(c["mu_k"]["median"]), mu_k_log_std=float(c["mu_k"]["log_std"]),
-        mu_s_over_mu_k=float(c["mu_s_over_mu_k"]), sa_period=study.sa_period, sa_damping=study.sa_damping,
-        seed=study.seed, n_boot=study.n_boot, confidence_level=study.level,
+        **{k: v for k, v in design_attrs(study, base).items() if k not in _NOT_STORED},
+        sa_period=study.sa_period, sa_damping=study.sa_damping, **bootstrap_attrs(study),
         floor_ims=("pfa, pfv: the peak lengths of the floor's absolute acceleration and velocity vectors over the "
                    "history rows of the planar analysis (every record sample, step and transition; "
                    "isoslide.studies.intensity.planar_floor_peaks)"),

@@ -71,9 +71,20 @@ REFERENCE_FRAGILITY = ("Baker, J. W. (2015): Efficient analytical fragility func
 
 def dataset_name(base: str) -> str:
     """``fragility`` (isolated) or ``fragility_fixed_base``: the file stem of a base's dataset."""
+    return base_stem("fragility", base)
+
+
+def base_stem(prefix: str, base: str) -> str:
+    """The file stem of a base's dataset: ``prefix`` (isolated) or ``prefix_fixed_base``.
+
+    Raises
+    ------
+    ValueError
+        Unless ``base`` is one of ``BASES``.
+    """
     if base not in BASES:
         raise ValueError(f"base = {base!r} is invalid; allowed: {BASES}")
-    return "fragility" if base == "isolated" else "fragility_fixed_base"
+    return prefix if base == "isolated" else f"{prefix}_fixed_base"
 
 
 def base_of(name: str) -> str:
@@ -200,6 +211,47 @@ def check_chunk_size(key: str, value) -> int:
 
 
 
+def check_stripes(f: dict, section: dict, key: str, allowed: str) -> tuple:
+    """The scaling IM, the stripes, the limit states and the friction draws of a study, checked in that order.
+
+    Parameters
+    ----------
+    f : dict
+        The ``fragility`` section (its ``limit_states``).
+    section : dict
+        The section with ``stripes`` and ``friction_samples``: ``f`` or ``f["planar"]``.
+    key : str
+        The path of ``section`` below ``fragility``, as the errors name it: ``""`` or ``"planar."``.
+    allowed : str
+        The allowed scaling IMs, as the error names them.
+
+    Returns
+    -------
+    im : {"pga", "pgv"}
+        The scaling IM.
+    levels : ndarray
+        Stripe levels, m/s^2 (pga) or m/s (pgv), increasing.
+    limits : ndarray
+        Sliding limits, m, increasing.
+    n_samples : int
+        Friction draws per ground motion and stripe.
+
+    Raises
+    ------
+    ValueError
+        Naming the key, its value and what is allowed.
+    """
+    im = section["stripes"]["im"]
+    if im not in ("pga", "pgv"):
+        raise ValueError(f"fragility.{key}stripes.im = {im!r} is invalid; allowed: {allowed}")
+    levels = _increasing(f"{key}stripes.levels", section["stripes"]["levels"])
+    limits = _increasing("limit_states", f["limit_states"])
+    n_s = int(section["friction_samples"])
+    if n_s < 1:
+        raise ValueError(f"fragility.{key}friction_samples = {n_s!r} is out of range; allowed range: >= 1")
+    return im, levels, limits, n_s
+
+
 def check_building(f: dict) -> None:
     """Check ``fragility.building`` and ``fragility.contents`` (schema-completed).
 
@@ -247,6 +299,11 @@ def check_settings(settings: dict) -> Study:
     settings : dict
         :func:`fragility_settings` of a complete configuration.
 
+    Returns
+    -------
+    Study
+        The checked settings with the records read and every friction coefficient drawn.
+
     Raises
     ------
     ValueError
@@ -255,14 +312,7 @@ def check_settings(settings: dict) -> Study:
     f = settings["fragility"]
     b, c = f["building"], f["contents"]
     check_building(f)
-    im = f["stripes"]["im"]
-    if im not in ("pga", "pgv"):
-        raise ValueError(f"fragility.stripes.im = {im!r} is invalid; allowed: 'pga', 'pgv'")
-    levels = _increasing("stripes.levels", f["stripes"]["levels"])
-    limits = _increasing("limit_states", f["limit_states"])
-    n_s = int(f["friction_samples"])
-    if n_s < 1:
-        raise ValueError(f"fragility.friction_samples = {n_s!r} is out of range; allowed range: >= 1")
+    im, levels, limits, n_s = check_stripes(f, f, "", "'pga', 'pgv'")
     names = list(f["records"])
     if len(names) < 2:
         raise ValueError(f"fragility.records = {names!r} is invalid; allowed: at least 2 records "
@@ -381,9 +431,7 @@ def solve_analyses(study: Study, indices, base: str, floor: bool = True) -> xr.D
     dataset_name(base)
     idx = np.asarray(indices, dtype=np.int64)
     tab = analysis_table(study)
-    n = idx.size
-    out = {k: np.full(n, np.nan) for k in ("pga", "pgv", "pfa", "pfv", "u_max")}
-    models = np.empty(n, dtype=object)
+    out, models = new_outputs(idx.size, ("pga", "pgv", "pfa", "pfv", "u_max"))
     cache: dict = {}
     for k, i in enumerate(idx):
         r, j, mu = int(tab["record"][i]), int(tab["stripe"][i]), float(tab["mu_k"][i])
@@ -398,6 +446,19 @@ def solve_analyses(study: Study, indices, base: str, floor: bool = True) -> xr.D
         out["pga"][k], out["pgv"][k], out["u_max"][k] = pga, pgv, sol.u_max
         models[k] = sol.facets
     return _analysis_dataset(study, idx, tab, out, models)
+
+
+def new_outputs(n: int, names) -> tuple:
+    """Empty outputs of ``n`` analyses: NaN arrays ``names`` and a column for their model facets.
+
+    Returns
+    -------
+    out : dict
+        Name -> float array of length ``n``, NaN until solved.
+    models : numpy.ndarray of object
+        Length ``n``, for the model facets of each analysis (:func:`add_outputs`).
+    """
+    return {k: np.full(n, np.nan) for k in names}, np.empty(n, dtype=object)
 
 
 _ANALYSIS_META = {
@@ -699,6 +760,41 @@ def scatter_contributions(ds: xr.Dataset, study: Study) -> xr.Dataset:
     return out
 
 
+def base_label(base: str) -> str:
+    """``isolated slab`` or ``fixed base``: the base as the title of a fragility dataset names it."""
+    return "isolated slab" if base == "isolated" else "fixed base"
+
+
+def design_attrs(study, base: str) -> dict:
+    """The global attributes of a fragility dataset that describe its building and contents, in stored order.
+
+    Parameters
+    ----------
+    study : Study or isoslide.studies.fragility_planar.PlanarStudy
+        Its ``building`` and ``contents`` sections.
+    base : {"isolated", "fixed_base"}
+
+    Returns
+    -------
+    dict
+        ``T_b`` [s] (0 on a fixed base), ``xi_b`` [1], ``M_b`` [kg], ``m_ec`` [kg], ``Q_d`` [N],
+        ``D_y`` [m], ``m_st`` [kg], ``T_s`` [s], ``xi_s`` [1], ``floor``, ``mu_k_median`` [1],
+        ``mu_k_log_std`` [1], ``mu_s_over_mu_k`` [1], ``beta_stribeck`` [s/m], ``gamma`` [s/m].
+    """
+    b, c = study.building, study.contents
+    return {"T_b": 0.0 if base == "fixed_base" else float(b["T_b"]), "xi_b": float(b["xi_b"]),
+            "M_b": float(b["M_b"]), "m_ec": float(c["mass"]), "Q_d": float(b["Q_d"]), "D_y": float(b["D_y"]),
+            "m_st": float(b["m_st"]), "T_s": float(b["T_s"]), "xi_s": float(b["xi_s"]), "floor": b["floor"],
+            "mu_k_median": float(c["mu_k"]["median"]), "mu_k_log_std": float(c["mu_k"]["log_std"]),
+            "mu_s_over_mu_k": float(c["mu_s_over_mu_k"]), "beta_stribeck": float(c["beta"]),
+            "gamma": float(c["gamma"])}
+
+
+def bootstrap_attrs(study) -> dict:
+    """The global attributes ``seed``, ``n_boot`` and ``confidence_level`` of a fragility dataset."""
+    return {"seed": study.seed, "n_boot": study.n_boot, "confidence_level": study.level}
+
+
 def fragility_dataset(analyses: xr.Dataset, study: Study, settings: dict, base: str) -> xr.Dataset:
     """The study dataset: the analyses, the fitted curves, the scatter shares, CF attributes.
 
@@ -719,24 +815,18 @@ def fragility_dataset(analyses: xr.Dataset, study: Study, settings: dict, base: 
     ds = xr.merge([ds, fit_curves(analyses, study), scatter_contributions(analyses, study)],
                   combine_attrs="override")
     ds["stripe"].attrs["long_name"] = "index of the stripe (into im_level) the record was scaled to"
-    b, c = study.building, study.contents
     betas = {k: ds["beta"].sel(im=k).values for k in IM_NAMES}
     mean_beta = ", ".join(f"{k} {float(np.mean(v[np.isfinite(v)])):.3g}" if np.isfinite(v).any() else f"{k} n/a"
                           for k, v in betas.items())
     ds.attrs = global_attrs(
-        title=f"isoslide fragility of sliding contents ({'isolated slab' if base == 'isolated' else 'fixed base'})",
+        title=f"isoslide fragility of sliding contents ({base_label(base)})",
         history=(f"isoslide.studies.fragility_study: {len(study.records)} records x {study.levels.size} stripes of "
                  f"{study.im} x {study.n_samples} friction draws = {study.size} analyses solved exactly "
                  f"(isoslide.solve with history), fitted by maximum likelihood (isoslide.studies.fragility), "
                  f"{study.n_boot} bootstrap resamples of the records; no timestamps are stored"),
         config=settings,
         references_fragility=REFERENCE_FRAGILITY,
-        base=base, scaling_im=study.im, T_b=0.0 if base == "fixed_base" else float(b["T_b"]),
-        xi_b=float(b["xi_b"]), M_b=float(b["M_b"]), m_ec=float(c["mass"]), Q_d=float(b["Q_d"]),
-        D_y=float(b["D_y"]), m_st=float(b["m_st"]), T_s=float(b["T_s"]), xi_s=float(b["xi_s"]), floor=b["floor"],
-        mu_k_median=float(c["mu_k"]["median"]), mu_k_log_std=float(c["mu_k"]["log_std"]),
-        mu_s_over_mu_k=float(c["mu_s_over_mu_k"]), beta_stribeck=float(c["beta"]), gamma=float(c["gamma"]),
-        seed=study.seed, n_boot=study.n_boot, confidence_level=study.level,
+        base=base, scaling_im=study.im, **design_attrs(study, base), **bootstrap_attrs(study),
         mean_beta_by_im=mean_beta,
         peaks=("pga: largest sample; pgv: exact integral of the linear-between-samples record; pfa: largest "
                "history row refined by a parabola through it and its neighbours; pfv: history rows and the "
@@ -744,3 +834,4 @@ def fragility_dataset(analyses: xr.Dataset, study: Study, settings: dict, base: 
         sources="; ".join(sorted({r.licence for r in study.records if r.licence})),
     )
     return ds
+
