@@ -50,6 +50,7 @@ by less than 1e-15, are ``tau_start`` and ``tau_end`` themselves).
 from __future__ import annotations
 
 import inspect
+import functools
 import math
 import numbers
 from dataclasses import dataclass, field
@@ -261,16 +262,16 @@ class Pulse:
     tau_end: float = 1.0
     breakpoints: tuple = field(default=(), repr=False)
 
-    @property
+    @functools.cached_property
     def param_array(self) -> np.ndarray:
-        """Shape parameters as a contiguous float64 array (kernel input)."""
+        """Shape parameters as a contiguous float64 array (kernel input; computed once, not to be written to)."""
         return np.asarray(self.params if self.params else (0.0,), dtype=np.float64)
 
-    @property
+    @functools.cached_property
     def breakpoint_array(self) -> np.ndarray:
-        """Sorted breakpoints inside the support, plus ``tau_end`` (kernel input)."""
-        b = sorted(set(float(x) for x in self.breakpoints) | {float(self.tau_end)})
-        return np.asarray([x for x in b if x > self.tau_start], dtype=np.float64)
+        """Sorted breakpoints inside the support, plus ``tau_end`` (kernel input; computed once, not to be written to)."""
+        b = np.unique(np.append(np.asarray(self.breakpoints, dtype=np.float64), float(self.tau_end)))
+        return np.ascontiguousarray(b[b > self.tau_start])
 
     def accel(self, tau):
         """Dimensionless ground acceleration ``a_g / a_p`` at ``tau`` (vectorised numpy).

@@ -59,8 +59,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .engine import building, building_kernel, kernel, piecewise, planar_kernel
-from .engine.planar import excitation
+from .engine import building, building_kernel, kernel, piecewise, planar_kernel, planar_piecewise
+from .engine.planar import excitation, pair_grid
 from .store.history import History
 from .model.parts import building_of
 from .models import BEARING_REDUCTIONS, Facets
@@ -669,16 +669,27 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
     y0, md0 = (np.zeros(planar_kernel.state_size(n, hyst)), np.array([0.0, 1.0, 0.0, 0.0, 1.0, 0.0])) \
         if state is None else state
 
+    grid = pair_grid(scene) if model == "auto" and state is None else None
+
     def run(irtol, many=False):
-        res = planar_kernel.run(P, ex, bps, start, _tau_end(scene), stop, min(H_MAX_PULSE, max_step), h_free, irtol,
-                                base_atol(scene, irtol, many), hist_cap, min(H_RESTART, max_step), settle, budget,
-                                *modal, np.asarray(y0, dtype=float), np.asarray(md0, dtype=float),
-                                planar_kernel.slaved_speed(irtol))
+        kernel_args = (min(H_MAX_PULSE, max_step), h_free, irtol, base_atol(scene, irtol, many))
+        if grid is not None:
+            # a recorded pair: the stick phases propagated exactly, the slides in the planar kernel
+            res = planar_piecewise.run(_model_array(scene, scene.pi8, 1.0), *grid, _tau_end(scene), stop, hist_cap,
+                                       settle, budget, P, ex, bps, *kernel_args, min(H_RESTART, max_step), *modal,
+                                       planar_kernel.slaved_speed(irtol))
+            return _checked(Run.of(planar_piecewise, res), scene, horizon, budget, "substeps and Runge-Kutta steps",
+                            rtol)
+        res = planar_kernel.run(P, ex, bps, start, _tau_end(scene), stop, *kernel_args, hist_cap,
+                                min(H_RESTART, max_step), settle, budget, *modal, np.asarray(y0, dtype=float),
+                                np.asarray(md0, dtype=float), planar_kernel.slaved_speed(irtol), False,
+                                np.empty(len(y0) + 6))
         return _checked(Run.of(planar_kernel, res), scene, horizon, budget, "Runge-Kutta steps", rtol)
 
     out = _refined(run(integrator_rtol(scene, rtol, horizon)), run, scene, rtol, horizon, demand_integrated=True)
     facets = dataclasses.replace(scene_facets(scene, friction="coulomb" if coulomb else "stribeck",
-                                              oneway=scene.pi8 == 0.0 or scene.fixed_base and not scene.flexible),
+                                              oneway=scene.pi8 == 0.0 or scene.fixed_base and not scene.flexible,
+                                              propagation="integrated" if grid is None else "piecewise"),
                                  contact="plane")
     sol = _solution(scene, out, facets)
     if history:
@@ -860,8 +871,9 @@ def warm_up(records: bool = False, building: bool = False) -> None:
 
     Solves three tiny scenes (isolated Coulomb, fixed-base Stribeck, viscous contact) and their
     stuck demand, so that the first timed or logged solve measures solving, not compilation.
-    ``records=True`` also readies the piecewise-exact path of record-driven scenes, ``building=True``
-    the general building's kernel (:mod:`isoslide.engine.building_kernel`).
+    ``records=True`` also readies the piecewise-exact path of record-driven scenes (a recorded pair's
+    in the plane too), ``building=True`` the general building's kernel
+    (:mod:`isoslide.engine.building_kernel`) and the planar kernel.
     """
     scenes = [Scene(pi2=0.2, pi3=1.0, pi4=0.1), Scene(pi2=0.2, pi3=0.0, pi5=0.5, pi6=10.0),
               Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi7=1.0)]
@@ -870,6 +882,9 @@ def warm_up(records: bool = False, building: bool = False) -> None:
     for sc in scenes:
         solve(sc)
         peak_stuck_demand(sc)
+    if records:
+        ax, ay = np.array([0.0, 1.0, -0.5, 0.0]), np.array([0.0, -0.5, 1.0, 0.0])
+        solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse=sampled(ax, 0.25), pulse_y=sampled(ay, 0.25)))
     if building:
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi9=0.05, pi11=0.5, pi12=0.2, floor="roof"))
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse_y="antisymmetric_ricker", pi14=0.5))

@@ -4,7 +4,8 @@
 :mod:`isoslide.engine.planar_kernel` (the building's parameters are
 :func:`isoslide.engine.building.parameters`); :func:`floor_motion` evaluates the contents' floor's
 absolute acceleration and relative velocity at the rows of a planar
-:class:`~isoslide.store.history.History`.
+:class:`~isoslide.store.history.History`; :func:`pair_grid` the ground samples of a recorded pair on
+one time grid, which :mod:`isoslide.engine.planar_piecewise` propagates exactly between slides.
 """
 
 from __future__ import annotations
@@ -16,9 +17,10 @@ import numpy as np
 from . import building
 from . import building_kernel as bk
 from . import planar_kernel
+from ..pulses import SAMPLED
 from ..scene import Scene
 
-__all__ = ["excitation", "floor_motion"]
+__all__ = ["excitation", "floor_motion", "pair_grid"]
 
 
 def excitation(scene: Scene) -> tuple:
@@ -61,3 +63,26 @@ def floor_motion(scene: Scene, history) -> np.ndarray:
     iso = np.zeros(rows) if history.iso_phase is None else history.iso_phase
     table = np.column_stack([history.tau, *axes, history.u, history.ud, history.phase, iso]).astype(float)
     return planar_kernel.floor_motion(P, excitation(scene), np.ascontiguousarray(table))
+
+
+def pair_grid(scene: Scene):
+    """The ground of a recorded pair along the building's axes at its samples, or None.
+
+    Returns ``(gx, gy, tau0, dtau)`` (units of a_p and T_p) when both horizontal components are
+    sampled records on one time grid (the second one's samples at the first one's times after
+    ``Pi16 + Pi15 tau``, as many of them), the friction is speed-independent, nothing moves
+    vertically and the building is a fixed base or a linear isolator under a rigid superstructure:
+    the scenes whose stick phases :mod:`isoslide.engine.planar_piecewise` propagates exactly.
+    """
+    px, py = scene.pulse, scene.pulse_y
+    if (py is None or px.code != SAMPLED or py.code != SAMPLED or not scene.rate_independent or scene.vertical
+            or scene.pi9 > 0.0 or scene.pi12 > 0.0):
+        return None
+    a, b = px.param_array, py.param_array
+    tau0, dtau = float(a[0]), float(a[1])
+    if (a.size != b.size or abs(scene.pi16 + scene.pi15 * b[0] - tau0) > 1e-12 * (1.0 + abs(tau0))
+            or abs(scene.pi15 * b[1] - dtau) > 1e-12 * dtau):
+        return None
+    c, s = math.cos(scene.angle), math.sin(scene.angle)
+    sx, sy = a[2:], scene.pi14 * b[2:]
+    return (np.ascontiguousarray(c * sx - s * sy), np.ascontiguousarray(s * sx + c * sy), tau0, dtau)

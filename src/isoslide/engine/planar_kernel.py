@@ -932,12 +932,14 @@ def _slow_cap(which, md, tau, y, P, ex, work, slaved):
 
 @njit(cache=True)
 def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol, hist_cap,
-        h_restart, settle, max_steps, Wm, Cm, Wh, Ch, y0, md0, slaved):
+        h_restart, settle, max_steps, Wm, Cm, Wh, Ch, y0, md0, slaved, stop_on_stick, final):
     """Integrate one planar scene from the state ``y0`` in the modes ``md0`` (see :func:`deriv`) at ``tau_start``.
 
     Arguments as :func:`isoslide.engine.building_kernel.run`, with the excitation ``ex`` (see the
     module docstring) instead of the pulse's code and parameters; slides slower than ``slaved``
-    keep their slaved line (:func:`slaved_speed`).
+    keep their slaved line (:func:`slaved_speed`).  With ``stop_on_stick`` the run returns as soon as
+    the block, having slid, is stuck again (and a sliding bearing held); ``final`` (length
+    ``len(y0) + 6``) receives the final state and modes.
 
     Returns
     -------
@@ -1009,6 +1011,8 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             if settle:
                 break
         if tau >= tau_stop or steps + cnt[0] > max_steps:
+            break
+        if stop_on_stick and slipped and md[M_BM] == 0.0 and (not bearing or md[M_IM] == 0.0):
             break
         # --- step length ---------------------------------------------------------------
         while ib < nbk and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
@@ -1228,6 +1232,10 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         h = hnext
         nh = _record(hist, nh, hist_cap, tau, y, md)
     ures = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
+    for i in range(ny):
+        final[i] = y[i]
+    for i in range(6):
+        final[ny + i] = md[i]
     ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh, rejected, iso_events,
                      1 if moved else 0], dtype=np.int64)
     floats = np.array([umax, tpeak, angle, ures, tau, vmax, y[U], y[U + 1], xmax])
