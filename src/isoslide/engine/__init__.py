@@ -6,5 +6,6 @@ the contents on any floor); :mod:`isoslide.engine.kernel` (the paper's model) an
 :mod:`isoslide.engine.piecewise` (exact propagation of sampled records) are fast paths the
 planner in :mod:`isoslide.solver` chooses; :mod:`isoslide.engine.planar_kernel` integrates the
 same buildings with the contents sliding in the plane, from the inputs :mod:`isoslide.engine.planar`
-assembles; :mod:`isoslide.engine.dop853` holds the Runge-Kutta tableau.  Nothing is imported here.
+assembles, and :mod:`isoslide.engine.planar_piecewise` propagates a recorded pair's stick phases
+exactly between the planar kernel's slides; :mod:`isoslide.engine.dop853` holds the Runge-Kutta tableau.  Nothing is imported here.
 """
