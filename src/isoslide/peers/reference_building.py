@@ -61,6 +61,7 @@ the first *consistent* one is taken: every stuck interface's needed force within
 event) slides in the direction of its needed force; breakaways are force-continuous
 (``phi(0) = thr``), so the other interface keeps its mode unless it is inconsistent by itself.
 The bilinear bearing's yield (``|fh| = q``) and unloading (``x' = 0``) are force-continuous too.
+The rule and the state's layout are :mod:`isoslide.peers.stick_slip`, shared with the SI peer.
 ``Pi1 = max |u|``, taken at the block's stops and at the end (``|u|`` peaks only there).
 A stop (a sliding velocity ``v`` back to zero) is located as the root of ``s v / (t - t0)``, which
 has the sign of ``s v`` but not its trivial root at a phase start ``t0`` from rest: a reversal
@@ -99,6 +100,7 @@ slowest decay rate of the free system, 0 for an undamped one) ends with ``settle
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -110,13 +112,11 @@ from ..store.history import History
 from ..pulses import accel_at
 from ..scene import Scene
 from .result import PeerResult, counted
+from .stick_slip import X, XD, XS, StateIndex, bearing_event, choose_modes, farther, phase_modes, sign
 
 __all__ = ["LEDGER_NAMES", "Building", "BuildingRun", "building_of", "default_horizon", "energies",
            "excitation_breakpoints", "excitation_end", "run_building", "shear_building", "solve_reference_building"]
 
-X, XD, XS = 0, 1, 2
-"""Indices of the slab's displacement and velocity and of the first floor's displacement in the
-state; the other indices depend on the number of floors (:class:`Building`)."""
 LEDGER_NAMES = ("work", "viscous", "isolator", "friction")
 """Ledger integrals appended to the state when requested: input work, viscous, isolator
 (hysteretic or bearing friction) and contents-friction dissipation, units ``M_b a_p**2 T_p**2``."""
@@ -193,7 +193,7 @@ def shear_building(masses, stiffnesses, period: float, damping: float) -> tuple:
 
 
 @dataclass(frozen=True)
-class Building:
+class Building(StateIndex):
     """The scene's parameters in the model's units (see the module docstring).
 
     Attributes
@@ -266,36 +266,6 @@ class Building:
         return 1.0 + self.pi17 * accel_at(self.zcode, self.zparams, tau)
 
     @property
-    def n(self) -> int:
-        """Number of floors ``N`` above the slab (0 when rigid)."""
-        return int(self.ms.size)
-
-    @property
-    def slots(self) -> int:
-        """Floor slots in the state (``N``, or one unused slot when rigid)."""
-        return max(1, self.n)
-
-    @property
-    def XSD(self) -> int:   # noqa: N802 - a state index, named like X, XD, XS
-        """Index of the first floor's velocity in the state."""
-        return XS + self.slots
-
-    @property
-    def U(self) -> int:     # noqa: N802
-        """Index of the block's sliding displacement in the state."""
-        return XS + 2 * self.slots
-
-    @property
-    def UD(self) -> int:    # noqa: N802
-        """Index of the block's sliding velocity in the state."""
-        return self.U + 1
-
-    @property
-    def FH(self) -> int:    # noqa: N802
-        """Index of the hysteretic isolator force in the state."""
-        return self.U + 2
-
-    @property
     def n_state(self) -> int:
         """Length of the state (without the ledger)."""
         return self.U + 3
@@ -304,11 +274,6 @@ class Building:
     def upstairs(self) -> bool:
         """True when the block is on a floor above the slab."""
         return self.floor > 0
-
-    @property
-    def holds(self) -> bool:
-        """True when the isolator can hold the slab still (sliding bearing or fixed base)."""
-        return self.kind in ("sliding", "fixed")
 
     def phi(self, v: float) -> float:
         """Friction level ``phi(|v|)`` per unit block weight, units ``a_p``."""
@@ -460,10 +425,6 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int, nz: float = 1.0):
     return xdd, xsdd, udd, fhd, AF, fh_need, R, fh
 
 
-def _sign(a: float) -> int:
-    return 1 if a > 0.0 else (-1 if a < 0.0 else 0)
-
-
 def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, forced_i: int = 0,
             nz: float = 1.0):
     """Consistent modes of the frictional interfaces at a phase start (module docstring).
@@ -485,37 +446,9 @@ def _choose(B: Building, p: float, y, sb: int, si: int, forced_b: int = 0, force
     """
     lim_b = B.thr * nz * (1.0 + _ULP4)
     lim_q = B.q * nz * (1.0 + _ULP4)
-    if forced_b:
-        cb_modes, free_b = [forced_b], False
-    elif sb == 0 or y[B.UD] == 0.0:
-        cb_modes, free_b = [0, 1, -1], True
-    else:
-        cb_modes, free_b = [_sign(y[B.UD])], False
-    if B.kind == "sliding":
-        if forced_i:
-            ci_modes, free_i = [forced_i], False
-        elif si == 0 or y[XD] == 0.0:
-            ci_modes, free_i = [0, 1, -1], True
-        else:
-            ci_modes, free_i = [_sign(y[XD])], False
-    elif B.kind == "fixed":
-        ci_modes, free_i = [0], False
-    else:
-        ci_modes, free_i = [si], False
-    combos = sorted(((b, i) for b in cb_modes for i in ci_modes),
-                    key=lambda c: (c[0] != 0, B.kind == "sliding" and c[1] != 0))
-    for b, i in combos:
-        xdd, _, udd, _, AF, fh_need, _, _ = _dynamics(B, p, y, b, i, nz)
-        if b == 0 and abs(AF) > lim_b:
-            continue
-        if b != 0 and free_b and not b * udd > 0.0:
-            continue
-        if B.kind == "sliding":
-            if i == 0 and abs(fh_need) > lim_q:
-                continue
-            if i != 0 and free_i and not i * xdd > 0.0:
-                continue
-        return b, i
+    modes = choose_modes(B, y, sb, si, forced_b, forced_i, lim_b, lim_q, lambda b, i: _dynamics(B, p, y, b, i, nz))
+    if modes is not None:
+        return modes
     raise RuntimeError(f"no consistent stick/slip mode at the state {list(y[:B.n_state])!r}, p = {p!r}")
 
 
@@ -545,7 +478,7 @@ def _bilinear_mode(B: Building, p: float, y, sb: int, si: int, nz: float = 1.0) 
     fh, xd = y[B.FH], y[XD]
     if si == 0:
         if abs(fh) >= B.q * (1.0 - _ULP4):
-            s = _sign(fh)
+            s = sign(fh)
             v = xd if xd != 0.0 else _dynamics(B, p, y, sb, s, nz)[0]
             if s * v > 0.0:
                 return s
@@ -846,23 +779,13 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         # (an event was counted where it was located; elsewhere every mode change counts)
         p0 = p_at(tau)
         n0 = n_at(tau)
-        if B.kind == "bilinear" and not event_transition:
-            new_si = _bilinear_mode(B, p0, y, sb, si, n0)
-            if new_si != si:
-                n_events += 1
-                si = new_si
-                if si:
-                    y[FH] = si * B.q
-        nb, ni = _choose(B, p0, y, sb, si, forced_b, forced_i, n0)
-        if not event_transition:
-            n_events += (nb != sb) + (B.kind == "sliding" and ni != si)
-        sb, si = nb, ni
+        sb, si, changes = phase_modes(B, y, sb, si, B.q, event_transition,
+                                      functools.partial(_bilinear_mode, B, p0, y, sb, nz=n0),
+                                      functools.partial(_choose, B, p0, y, sb, forced_b=forced_b, forced_i=forced_i,
+                                                        nz=n0))
+        n_events += changes
         forced_b = forced_i = 0
         event_transition = False
-        if sb == 0:
-            y[UD] = 0.0
-        if B.holds and si == 0:
-            y[XD] = 0.0
         free = tau >= tau_end and sb == 0 and si == 0
         settle_g = None
         if free and settle:
@@ -967,24 +890,18 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         event_transition = True
         p, nz = p_at(tau), n_at(tau)
         if kind == "block_break":
-            forced_b = -_sign(_dynamics(B, p, y, sb, si, nz)[4])
+            forced_b = -sign(_dynamics(B, p, y, sb, si, nz)[4])
         elif kind == "block_stop":
             y[UD] = 0.0
-            if abs(y[U]) > peak:
-                peak, tau_peak = abs(y[U]), tau
+            peak, tau_peak = farther(peak, tau_peak, y[U], tau)
         elif kind == "iso_break":
-            forced_i = _sign(_dynamics(B, p, y, sb, si, nz)[5])
+            forced_i = sign(_dynamics(B, p, y, sb, si, nz)[5])
         elif kind == "iso_stop":
             y[XD] = 0.0
-        elif kind == "yield":
-            si = _sign(y[FH])
-            y[FH] = si * B.q
-        elif kind == "unload":
-            si = 0
-            y[FH] = math.copysign(B.q, y[FH])
+        elif kind in ("yield", "unload"):
+            si = bearing_event(kind, y, FH, B.q)
 
-    if abs(y[U]) > peak:
-        peak, tau_peak = abs(y[U]), tau
+    peak, tau_peak = farther(peak, tau_peak, y[U], tau)
     h = led = fl = None
     if hist is not None:
         if hist:

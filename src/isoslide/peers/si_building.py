@@ -5,7 +5,9 @@
 bearing with true stick), a flexible superstructure of one or more storeys and contents on the
 base slab or on any floor above it, written in newtons, metres, seconds and kilograms from the physical equations, independently of the
 compiled kernel and of the dimensionless peers, so that ``Pi1 = u_max / (a_p T_p^2)`` of
-realisations with equal Pi-groups (Pi9 .. Pi13 included) can be compared.
+realisations with equal Pi-groups (Pi9 .. Pi13 included) can be compared.  The state's layout and
+the rule that chooses the modes below are shared with the dimensionless building reference
+(:mod:`isoslide.peers.stick_slip`).
 
 Equations (SI)
 --------------
@@ -47,6 +49,7 @@ force that broke the limit.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -57,12 +60,12 @@ from ..store.history import History
 from ..pulses import accel_at, get_pulse
 from ..scene import FLOORS
 from .result import PeerResult
+from .stick_slip import X, XD, XS, StateIndex, bearing_event, choose_modes, farther, phase_modes, sign
 
 __all__ = ["is_general", "simulate_building_si"]
 
-# state: slab rel. ground (m, m/s), floors rel. slab (m each, then m/s each), contents rel. floor
-# (m, m/s), hysteretic isolator force (N); a rigid superstructure keeps one unused floor slot
-X, XD, XS = 0, 1, 2
+# state (isoslide.peers.stick_slip.StateIndex): slab rel. ground (m, m/s), floors rel. slab (m each,
+# then m/s each), contents rel. floor (m, m/s), hysteretic isolator force (N)
 _SLACK = 4e-15       # relative slack of the stick limits against round-off
 
 
@@ -110,7 +113,7 @@ def chain_matrices(masses, stiffnesses, xi: float) -> tuple:
 
 
 @dataclass(frozen=True)
-class _Building:
+class _Building(StateIndex):
     """SI parameters of one realisation (kg, N/m, N s/m, N, m/s^2, s/m); ``ms, K, C`` of the floors."""
 
     mb: float
@@ -131,30 +134,6 @@ class _Building:
     kind: str          # "linear", "bilinear", "sliding" or "fixed"
     flexible: bool
     floor: int         # 0 the slab, N the roof
-
-    @property
-    def n(self) -> int:
-        return int(self.ms.size)
-
-    @property
-    def XSD(self) -> int:   # noqa: N802 - state indices, named like X, XD, XS
-        return XS + max(1, self.n)
-
-    @property
-    def U(self) -> int:     # noqa: N802
-        return XS + 2 * max(1, self.n)
-
-    @property
-    def UD(self) -> int:    # noqa: N802
-        return self.U + 1
-
-    @property
-    def FH(self) -> int:    # noqa: N802
-        return self.U + 2
-
-    @property
-    def holds(self) -> bool:
-        return self.kind in ("sliding", "fixed")
 
     def friction(self, v: float) -> float:
         """Friction acceleration ``mu(|v|) g`` of the sliding contents, m/s^2."""
@@ -306,43 +285,13 @@ def _motion(B: _Building, ag: float, y, sb: int, si: int):
     return xdd, xsdd, udd, fhd, a_F, f_need
 
 
-def _sgn(a: float) -> int:
-    return 1 if a > 0.0 else (-1 if a < 0.0 else 0)
-
-
 def _modes(B: _Building, ag: float, y, sb: int, si: int, broke_b: int, broke_i: int):
     """Consistent modes ``(sb, si)`` of the contents and a sliding bearing at a phase start."""
     lim_b = B.mu_s * B.g * (1.0 + _SLACK)
     lim_q = B.Q * (1.0 + _SLACK)
-    UD = B.UD
-    if broke_b:
-        cand_b, free_b = (broke_b,), False
-    elif sb == 0 or y[UD] == 0.0:
-        cand_b, free_b = (0, 1, -1), True
-    else:
-        cand_b, free_b = (_sgn(y[UD]),), False
-    if B.kind != "sliding":
-        cand_i, free_i = (si,), False
-    elif broke_i:
-        cand_i, free_i = (broke_i,), False
-    elif si == 0 or y[XD] == 0.0:
-        cand_i, free_i = (0, 1, -1), True
-    else:
-        cand_i, free_i = (_sgn(y[XD]),), False
-    order = sorted(((b, i) for b in cand_b for i in cand_i),
-                   key=lambda c: (c[0] != 0, B.kind == "sliding" and c[1] != 0))
-    for b, i in order:
-        xdd, _, udd, _, a_F, f_need = _motion(B, ag, y, b, i)
-        if b == 0 and abs(a_F) > lim_b:
-            continue
-        if b != 0 and free_b and not b * udd > 0.0:
-            continue
-        if B.kind == "sliding":
-            if i == 0 and abs(f_need) > lim_q:
-                continue
-            if i != 0 and free_i and not i * xdd > 0.0:
-                continue
-        return b, i
+    modes = choose_modes(B, y, sb, si, broke_b, broke_i, lim_b, lim_q, lambda b, i: _motion(B, ag, y, b, i))
+    if modes is not None:
+        return modes
     raise RuntimeError(f"simulate_si: no consistent stick/slip mode at the state {list(y)!r}, a_g = {ag!r}")
 
 
@@ -350,7 +299,7 @@ def _yield_mode(B: _Building, ag: float, y, sb: int, si: int) -> int:
     """Elastic (0) or yielding (+-1) state of a bilinear bearing at a phase start (no event)."""
     FH = B.FH
     if si == 0:
-        s = _sgn(y[FH])
+        s = sign(y[FH])
         if s and abs(y[FH]) >= B.Q * (1.0 - _SLACK):
             v = y[XD] if y[XD] != 0.0 else _motion(B, ag, y, sb, s)[0]
             if s * v > 0.0:
@@ -449,23 +398,11 @@ def simulate_building_si(p: dict, pulse="ricker", t_end: float | None = None, rt
         if n_events > 200_000:
             raise RuntimeError("simulate_si: too many transitions (chattering?)")
         ag0 = ag_at(t)
-        if B.kind == "bilinear" and not after_event:
-            new = _yield_mode(B, ag0, y, sb, si)
-            if new != si:
-                n_events += 1
-                si = new
-                if si:
-                    y[FH] = si * B.Q
-        nb, ni = _modes(B, ag0, y, sb, si, broke_b, broke_i)
-        if not after_event:
-            n_events += (nb != sb) + (B.kind == "sliding" and ni != si)
-        sb, si = nb, ni
+        sb, si, changes = phase_modes(B, y, sb, si, B.Q, after_event, functools.partial(_yield_mode, B, ag0, y, sb),
+                                      functools.partial(_modes, B, ag0, y, sb, broke_b=broke_b, broke_i=broke_i))
+        n_events += changes
         broke_b = broke_i = 0
         after_event = False
-        if sb == 0:
-            y[UD] = 0.0
-        if B.holds and si == 0:
-            y[XD] = 0.0
 
         t_next = next((b for b in bounds if b > t), t_end)
         t_last = math.nextafter(t_next, -math.inf)
@@ -529,23 +466,17 @@ def simulate_building_si(p: dict, pulse="ricker", t_end: float | None = None, rt
         after_event = True
         ag = ag_at(t)
         if kind == "contents_break":
-            broke_b = -_sgn(_motion(B, ag, y, sb, si)[4])
+            broke_b = -sign(_motion(B, ag, y, sb, si)[4])
         elif kind == "contents_stop":
             y[UD] = 0.0
-            if abs(y[U]) > u_max:
-                u_max, t_peak = abs(y[U]), t
+            u_max, t_peak = farther(u_max, t_peak, y[U], t)
         elif kind == "bearing_break":
-            broke_i = _sgn(_motion(B, ag, y, sb, si)[5])
+            broke_i = sign(_motion(B, ag, y, sb, si)[5])
         elif kind == "bearing_stop":
             y[XD] = 0.0
-        elif kind == "yield":
-            si = _sgn(y[FH])
-            y[FH] = si * B.Q
-        elif kind == "unload":
-            si = 0
-            y[FH] = math.copysign(B.Q, y[FH])
-    if abs(y[U]) > u_max:
-        u_max, t_peak = abs(y[U]), t
+        elif kind in ("yield", "unload"):
+            si = bearing_event(kind, y, FH, B.Q)
+    u_max, t_peak = farther(u_max, t_peak, y[U], t)
     hh = None
     if hist is not None:
         tt = np.concatenate([a for a, _, _ in hist])
