@@ -171,6 +171,38 @@ def fig4_data(record_name=FIG4_RECORD, shapes=("ricker", "mavroeidis_papageorgio
     return ds
 
 
+def _grid_values(arg: str, kind: str, names: list, pi2_values, pi3_values) -> tuple:
+    """The Pi2 and Pi3 values of a grid as flat float arrays, checked with the names of its rows.
+
+    Parameters
+    ----------
+    arg : str
+        The argument that gives the rows (``names``, ``motions``), as the errors call it.
+    kind : str
+        What a row is (``record``, ``motion``), as the errors call it.
+    names : list of str
+        The names of the rows (records or ground motions), in order.
+    pi2_values, pi3_values : array_like of float
+        The grid's Pi2 and Pi3 values.
+
+    Returns
+    -------
+    (pi2_values, pi3_values) : tuple of ndarray
+
+    Raises
+    ------
+    ValueError
+        When there are no rows, no Pi2 or no Pi3 values, or two rows have the same name.
+    """
+    pi2_values = np.asarray(pi2_values, dtype=float).ravel()
+    pi3_values = np.asarray(pi3_values, dtype=float).ravel()
+    if len(names) == 0 or pi2_values.size == 0 or pi3_values.size == 0:
+        raise ValueError(f"{arg}, pi2_values and pi3_values must all be non-empty")
+    if len(set(names)) != len(names):
+        raise ValueError(f"{kind} names must be unique, got {names}")
+    return pi2_values, pi3_values
+
+
 def compare_grid(names, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1.0, pi6: float = 0.0,
                  pi7: float = 0.0, pi8: float = 1e-5, shape: str = "ricker", rtol=None,
                  solve_many=None) -> xr.Dataset:
@@ -213,13 +245,8 @@ def compare_grid(names, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
     if solve_many is None:
         solve_many = solver.solve_many
     recs = [resolve_record(n) for n in names]
-    pi2_values = np.asarray(pi2_values, dtype=float).ravel()
-    pi3_values = np.asarray(pi3_values, dtype=float).ravel()
-    if len(recs) == 0 or pi2_values.size == 0 or pi3_values.size == 0:
-        raise ValueError("names, pi2_values and pi3_values must all be non-empty")
     names_out = [r.name for r in recs]
-    if len(set(names_out)) != len(names_out):
-        raise ValueError(f"record names must be unique, got {names_out}")
+    pi2_values, pi3_values = _grid_values("names", "record", names_out, pi2_values, pi3_values)
     shape = canonical_shape(shape)
     nr, n2, n3 = len(recs), pi2_values.size, pi3_values.size
     pi1_rec = np.full((nr, n2, n3), np.nan)
@@ -701,13 +728,8 @@ def pairs_grid(motions, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
     if solve_many is None:
         solve_many = solver.solve_many
     motions = list(motions)
-    pi2_values = np.asarray(pi2_values, dtype=float).ravel()
-    pi3_values = np.asarray(pi3_values, dtype=float).ravel()
-    if len(motions) == 0 or pi2_values.size == 0 or pi3_values.size == 0:
-        raise ValueError("motions, pi2_values and pi3_values must all be non-empty")
     names = [gm.name for gm in motions]
-    if len(set(names)) != len(names):
-        raise ValueError(f"motion names must be unique, got {names}")
+    pi2_values, pi3_values = _grid_values("motions", "motion", names, pi2_values, pi3_values)
     missing_y = [gm.name for gm in motions if gm.y is None]
     if missing_y:
         raise ValueError(f"motions {missing_y!r} have no y component; allowed: pairs")
@@ -895,13 +917,24 @@ def _stats(rec: np.ndarray, pul: np.ndarray, tolerance: float) -> dict:
     return out
 
 
+def _by_motion(ds: xr.Dataset) -> list:
+    """``(label, part)`` of each ground motion of ``ds`` (its selection, ``motion`` kept), then ``("all", ds)``."""
+    return [(str(m), ds.sel(motion=[str(m)])) for m in ds["motion"].values] + [("all", ds)]
+
+
+def _attr_or(ds: xr.Dataset, name: str, value: float | None) -> float:
+    """``value``, or the dataset's attribute ``name`` when ``value`` is None, as a float."""
+    return float(ds.attrs[name] if value is None else value)
+
+
 def pairs_summary(ds: xr.Dataset, tolerance: float | None = None) -> xr.Dataset:
     """The ratio record/pulse per view and ground motion: how far the fitted pulses stand in.
 
     Parameters
     ----------
     ds : xarray.Dataset
-        Output of :func:`pairs_grid` (or :func:`record_pairs_dataset`).
+        Output of :func:`pairs_grid` (or :func:`record_pairs_dataset`): its ``pi1_record``,
+        ``pi1_pulse`` (per component) and ``pi1_record_plane``, ``pi1_pulse_plane``.
     tolerance : float, optional
         Band of ``within_tol``: ``|ratio - 1| <= tolerance``; default the dataset's ``tolerance``
         attribute.
@@ -915,13 +948,10 @@ def pairs_summary(ds: xr.Dataset, tolerance: float | None = None) -> xr.Dataset:
         ``pi1_record / pi1_pulse``'s ``median``, ``gmean`` (geometric mean), ``p10``, ``p90``,
         ``min``, ``max`` and ``within_tol`` (share within the band).
     """
-    tolerance = float(ds.attrs["tolerance"] if tolerance is None else tolerance)
-    labels = [str(m) for m in ds["motion"].values] + ["all"]
-    rows = {}
-    for view in SUMMARY_VIEWS:
-        for lab in labels:
-            sub = ds if lab == "all" else ds.sel(motion=[lab])
-            rows[view, lab] = _stats(*_view(sub, view), tolerance)
+    tolerance = _attr_or(ds, "tolerance", tolerance)
+    parts = _by_motion(ds)
+    labels = [lab for lab, _ in parts]
+    rows = {(view, lab): _stats(*_view(sub, view), tolerance) for view in SUMMARY_VIEWS for lab, sub in parts}
     keys = list(next(iter(rows.values())))
     out = xr.Dataset(coords={"view": ("view", np.array(SUMMARY_VIEWS, dtype=object)),
                              "motion": ("motion", np.array(labels, dtype=object))})
@@ -937,7 +967,8 @@ def direction_summary(ds: xr.Dataset, angle_tolerance: float | None = None) -> x
     Parameters
     ----------
     ds : xarray.Dataset
-        Output of :func:`pairs_grid` (or :func:`record_pairs_dataset`).
+        Output of :func:`pairs_grid` (or :func:`record_pairs_dataset`): its ``angle_off_line`` and
+        ``angle_off`` [rad].
     angle_tolerance : float, optional
         Degrees: the pair "catches" the peak's line when its line is within this angle of the
         record's; default the dataset's ``angle_tolerance`` attribute.
@@ -951,11 +982,10 @@ def direction_summary(ds: xr.Dataset, angle_tolerance: float | None = None) -> x
         ``same_sense`` (share where the two peaks also point the same way: less than 90 degrees
         apart).
     """
-    tol = float(ds.attrs["angle_tolerance"] if angle_tolerance is None else angle_tolerance)
-    labels = [str(m) for m in ds["motion"].values] + ["all"]
+    tol = _attr_or(ds, "angle_tolerance", angle_tolerance)
+    parts = _by_motion(ds)
     cols = {k: [] for k in ("n_both_slide", "median_line_off", "p90_line_off", "within_angle", "same_sense")}
-    for lab in labels:
-        sub = ds if lab == "all" else ds.sel(motion=[lab])
+    for _, sub in parts:
         off = sub["angle_off_line"].values.ravel() * DEG
         sense = sub["angle_off"].values.ravel() * DEG
         ok = np.isfinite(off)
@@ -969,7 +999,7 @@ def direction_summary(ds: xr.Dataset, angle_tolerance: float | None = None) -> x
         else:
             for k in ("median_line_off", "p90_line_off", "within_angle", "same_sense"):
                 cols[k].append(math.nan)
-    out = xr.Dataset(coords={"motion": ("motion", np.array(labels, dtype=object))})
+    out = xr.Dataset(coords={"motion": ("motion", np.array([lab for lab, _ in parts], dtype=object))})
     for k, v in cols.items():
         out[k] = ("motion", np.array(v))
     out.attrs.update({"angle_tolerance": tol, "units_of_angles": "degrees"})
@@ -1016,7 +1046,7 @@ def fit_table(ds: xr.Dataset, tolerance: float | None = None):
     """
     import pandas as pd
 
-    tolerance = float(ds.attrs["tolerance"] if tolerance is None else tolerance)
+    tolerance = _attr_or(ds, "tolerance", tolerance)
     rows = []
     for m in ds["motion"].values:
         for c in ds["component"].values:
