@@ -557,6 +557,25 @@ def run_report_planar(quick: bool = False, file=sys.stdout) -> dict:
     return out
 
 
+SECTION_FLAGS = (
+    ("--records-only", "only the records section (both exact paths on the bundled records, about 15 s)"),
+    ("--no-records", "leave out the records section"),
+    ("--buildings-only", "only the buildings section (bearings and flexible superstructures beside the paper "
+                         "model, about 20 s)"),
+    ("--planar-only", "only the planar section (planar scenes beside their 1-D twins, recorded pairs per "
+                      "sample, about 10 s)"),
+    ("--no-planar", "leave out the planar section"),
+)
+"""The command line's section flags (each on or off) and their help: one section alone, or one left out."""
+
+
+def _write_json(path: str | None, out: dict) -> None:
+    """Write ``out`` as JSON to ``path`` (numbers as floats); nothing when ``path`` is None."""
+    if path:
+        with open(path, "w") as f:
+            json.dump(out, f, indent=1, default=float)
+
+
 def main(argv=None) -> int:
     """Command line: measure, then print the report (or JSON); returns the exit status."""
     ap = argparse.ArgumentParser(prog="python -m isoslide.bench", description=__doc__.split("\n\n")[0])
@@ -574,28 +593,14 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="1 scene per study, 5 repeats, 2 regularised scenes")
     ap.add_argument("--json", metavar="PATH", help="also write the records and summary as JSON")
     ap.add_argument("-v", "--verbose", action="store_true", help="print every scene as it is measured")
-    ap.add_argument("--records-only", action="store_true",
-                    help="only the records section (both exact paths on the bundled records, about 15 s)")
-    ap.add_argument("--no-records", action="store_true", help="leave out the records section")
-    ap.add_argument("--buildings-only", action="store_true",
-                    help="only the buildings section (bearings and flexible superstructures beside the paper "
-                         "model, about 20 s)")
-    ap.add_argument("--planar-only", action="store_true",
-                    help="only the planar section (planar scenes beside their 1-D twins, recorded pairs per "
-                         "sample, about 10 s)")
-    ap.add_argument("--no-planar", action="store_true", help="leave out the planar section")
+    for flag, text in SECTION_FLAGS:
+        ap.add_argument(flag, action="store_true", help=text)
     a = ap.parse_args(argv)
     if a.planar_only:
-        out = {"planar": run_report_planar(quick=a.quick)}
-        if a.json:
-            with open(a.json, "w") as f:
-                json.dump(out, f, indent=1, default=float)
+        _write_json(a.json, {"planar": run_report_planar(quick=a.quick)})
         return 0
     if a.buildings_only:
-        out = {"buildings": report_buildings(run_buildings(repeats=3 if a.quick else 7))}
-        if a.json:
-            with open(a.json, "w") as f:
-                json.dump(out, f, indent=1, default=float)
+        _write_json(a.json, {"buildings": report_buildings(run_buildings(repeats=3 if a.quick else 7))})
         return 0
     if a.quick:
         a.per_study, a.repeats, a.peer_repeats, a.regularized_scenes = 1, 5, 1, 2
@@ -606,9 +611,7 @@ def main(argv=None) -> int:
         report_records(rres, rsumm)
         out["records"] = {"result": rres, "summary": rsumm}
         if a.records_only:
-            if a.json:
-                with open(a.json, "w") as f:
-                    json.dump(out, f, indent=1, default=float)
+            _write_json(a.json, out)
             return 0
         print("")
     res = run(per_study=a.per_study, hard=not a.no_hard, repeats=a.repeats, peer_repeats=a.peer_repeats,
@@ -622,9 +625,7 @@ def main(argv=None) -> int:
     if not a.no_planar:
         print("")
         out["planar"] = run_report_planar(quick=a.quick)
-    if a.json:
-        with open(a.json, "w") as f:
-            json.dump({"result": res, "summary": summ, **out}, f, indent=1, default=float)
+    _write_json(a.json, {"result": res, "summary": summ, **out})
     return 0
 
 
