@@ -325,6 +325,15 @@ def _limit(fn):
     return fn
 
 
+def _both_ways(margin, kind: str) -> list:
+    """The events of a stick limit reached from either side, each with what it marks (``kind``).
+
+    ``margin(t, y, s)`` is the room left to the limit in direction ``s`` (N, or m/s^2 for the
+    contents): one event for ``s = +1``, then one for ``s = -1``, each ending where it falls to zero.
+    """
+    return [(_limit(lambda t, y, s=s: margin(t, y, s)), kind) for s in (1.0, -1.0)]
+
+
 def simulate_building_si(p: dict, pulse="ricker", t_end: float | None = None, rtol: float = 1e-12,
                          history: bool = False) -> PeerResult:
     """Stick-slip response of contents in a general building, integrated in SI units.
@@ -417,32 +426,24 @@ def simulate_building_si(p: dict, pulse="ricker", t_end: float | None = None, rt
             return np.concatenate(([yy[XD], xdd], yy[XSD:U], xsdd, [yy[UD], udd, fhd]))
 
         xdd0, _, udd0 = _motion(B, ag_in(t), y, sb, si)[:3]
-        events, kinds = [], []
+        marks = []          # (event function, what it marks)
         if sb == 0:
-            for s in (1.0, -1.0):
-                events.append(_limit(lambda tt, yy, s=s, sb=sb, si=si, ag_in=ag_in:
-                                     lim_b - s * _motion(B, ag_in(tt), yy, sb, si)[4]))
-                kinds.append("contents_break")
+            marks += _both_ways(lambda tt, yy, s, sb=sb, si=si, ag_in=ag_in:
+                                lim_b - s * _motion(B, ag_in(tt), yy, sb, si)[4], "contents_break")
         else:
-            events.append(_stop(sb, UD, t, y[UD], udd0))
-            kinds.append("contents_stop")
+            marks.append((_stop(sb, UD, t, y[UD], udd0), "contents_stop"))
         if B.kind == "sliding":
             if si == 0:
-                for s in (1.0, -1.0):
-                    events.append(_limit(lambda tt, yy, s=s, sb=sb, ag_in=ag_in:
-                                         lim_q - s * _motion(B, ag_in(tt), yy, sb, 0)[5]))
-                    kinds.append("bearing_break")
+                marks += _both_ways(lambda tt, yy, s, sb=sb, ag_in=ag_in:
+                                    lim_q - s * _motion(B, ag_in(tt), yy, sb, 0)[5], "bearing_break")
             else:
-                events.append(_stop(si, XD, t, y[XD], xdd0))
-                kinds.append("bearing_stop")
+                marks.append((_stop(si, XD, t, y[XD], xdd0), "bearing_stop"))
         elif B.kind == "bilinear":
             if si == 0:
-                for s in (1.0, -1.0):
-                    events.append(_limit(lambda tt, yy, s=s: B.Q - s * yy[FH]))
-                    kinds.append("yield")
+                marks += _both_ways(lambda tt, yy, s: B.Q - s * yy[FH], "yield")
             else:
-                events.append(_stop(si, XD, t, y[XD], xdd0))
-                kinds.append("unload")
+                marks.append((_stop(si, XD, t, y[XD], xdd0), "unload"))
+        events, kinds = [ev for ev, _ in marks], [k for _, k in marks]
 
         h = h_slip if sb != 0 else h_max
         sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=events or None,
