@@ -374,6 +374,25 @@ def test_bench_planar_section_times_planar_scenes_beside_their_one_line_twins():
     assert set(summ) == set(bench.PLANAR_BUILDINGS) and all(v["ratio"] > 0.0 for v in summ.values())
 
 
+def test_bench_times_analyses_of_the_planar_fragility_study_and_projects_its_cpu_time(tmp_path):
+    """The analyses drawn from the study's table are timed on both buildings; the study's CPU time is their
+    mean times its size; without the configuration the section says it is skipped."""
+    cfg = tmp_path / "small.yaml"
+    cfg.write_text("fragility:\n  planar:\n    suites: [fema-p695-near-field-pulse]\n    pairs: 2\n"
+                   "    angles: [0.0]\n    stripes: {im: pga, levels: [3.0, 6.0]}\n    friction_samples: 1\n")
+    res = bench.run_fragility_cost(n=2, path=cfg)
+    assert res["analyses"] == 4 and len(res["sampled"]) == 2
+    out = io.StringIO()
+    bench.report_fragility_cost(res, file=out)
+    for base in ("isolated", "fixed_base"):
+        assert 0.0 < res[base]["median_ms"] <= res[base]["max_ms"]
+        cpu = res[base]["mean_ms"] * 1e-3 * 4 / 60.0
+        assert f"{cpu:6.1f} CPU-min for the building's 4 analyses" in out.getvalue()
+    out = io.StringIO()
+    assert bench.report_fragility_cost(bench.run_fragility_cost(path=tmp_path / "absent.yaml"), file=out) is None
+    assert "skipped" in out.getvalue()
+
+
 def test_bench_recorded_pairs_cost_per_sample_of_the_suite_or_of_lagged_bundled_records(monkeypatch):
     """A suite's pair runs as recorded in the plane, its x component alone on one line; without the suite,
     a bundled record paired with itself lagged."""

@@ -27,7 +27,10 @@ A planar section (``--planar-only`` alone; :func:`run_planar`, :func:`run_pairs`
 compiled kernels readied first, planar scenes of a few building classes beside the same scenes
 without their second horizontal component (the goal: planar at most 3x the 1-D cost), then
 recorded pairs of :data:`PAIR_SUITE` run as recorded, per analysis and per sample of the x
-component (the goal: at most 1 us per sample on median), beside the x component alone.
+component (the goal: at most 1 us per sample on median), beside the x component alone, and the
+cost of one analysis of the planar fragility study at full size (``config/fragility_p695.yaml`` of
+a checkout; :func:`run_fragility_cost`): a planar and two 1-D solves with the floor's peaks, per
+building, and the CPU time the whole study takes at that cost.
 
 Timings are wall-clock on whatever else the machine is running:
 read ratios, which are measured side by side, rather than absolute figures.
@@ -36,16 +39,19 @@ read ratios, which are measured side by side, rather than absolute figures.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
 import platform
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
-from . import accuracy, records
+from . import accuracy, config, records
 from .scene import Scene
+from .studies import fragility_planar
 from .solver import DEFAULT_RTOL, solve, warm_up
 
 TARGET_MS = 0.1
@@ -548,12 +554,63 @@ def report_pairs(res: dict, file=sys.stdout) -> dict:
     return summ
 
 
+FRAGILITY_CONFIG = Path(__file__).resolve().parents[2] / "config" / "fragility_p695.yaml"
+"""The planar fragility study at full size whose per-analysis cost the planar section measures (a checkout's)."""
+FRAGILITY_SAMPLE = 12
+"""Analyses drawn (seeded) from that study's table and timed on each building."""
+
+
+def run_fragility_cost(n: int = FRAGILITY_SAMPLE, path: Path = FRAGILITY_CONFIG) -> dict | None:
+    """Time ``n`` analyses of the planar fragility study of ``path`` on each building (None without the file).
+
+    Each analysis is :func:`isoslide.studies.fragility_planar.solve_analyses` of one index (a
+    planar and two 1-D solves and the floor's peaks), timed after a first call that readies its
+    pair's intensity measures (computed once per pair and chunk in the pipeline).
+    """
+    if not path.exists():
+        return None
+    study = fragility_planar.check_settings(fragility_planar.planar_settings(config.load(None, path)))
+    idx = np.sort(np.random.default_rng(0).choice(study.size, size=min(n, study.size), replace=False))
+    out = {"config": str(path), "analyses": int(study.size), "sampled": [int(i) for i in idx]}
+    for base in fragility_planar.BASES:
+        times = []
+        for i in idx:
+            fragility_planar.solve_analyses(study, [i], base)
+            t0 = time.perf_counter()
+            fragility_planar.solve_analyses(study, [i], base)
+            times.append(time.perf_counter() - t0)
+        out[base] = {"mean_ms": 1e3 * float(np.mean(times)), "median_ms": 1e3 * float(np.median(times)),
+                     "max_ms": 1e3 * float(np.max(times))}
+    return out
+
+
+def report_fragility_cost(res: dict | None, file=sys.stdout) -> dict | None:
+    """Print the per-analysis cost of :func:`run_fragility_cost` and the study's CPU time at it."""
+    p = functools.partial(print, file=file)
+    if res is None:
+        p(f"planar fragility analyses: skipped ({FRAGILITY_CONFIG} is not here: a checkout holds it)")
+        return None
+    p(f"planar fragility analyses: {len(res['sampled'])} of the {res['analyses']} analyses per building of "
+      f"{Path(res['config']).name} (seeded draw), each a planar and two 1-D solves with the floor's peaks")
+    total = 0.0
+    for base in fragility_planar.BASES:
+        r = res[base]
+        cpu = r["mean_ms"] * 1e-3 * res["analyses"]
+        total += cpu
+        p(f"  {base:10s} mean {r['mean_ms']:8.1f} ms  median {r['median_ms']:8.1f} ms  largest {r['max_ms']:8.1f} ms"
+          f"  -> {cpu / 60.0:6.1f} CPU-min for the building's {res['analyses']} analyses")
+    p(f"  both buildings: {total / 60.0:.1f} CPU-min of solving (the fits and the start-up of each job come on top)")
+    return res
+
+
 def run_report_planar(quick: bool = False, file=sys.stdout) -> dict:
-    """The planar section: compiled kernels readied, planar scenes beside 1-D, then recorded pairs."""
+    """The planar section: compiled kernels readied, planar scenes beside 1-D, recorded pairs, fragility analyses."""
     warm_up(records=True, building=True)
     out = {"scenes": report_planar(run_planar(repeats=3 if quick else 7), file=file)}
     print("", file=file)
     out["pairs"] = report_pairs(run_pairs(n=2 if quick else 4, repeats=3 if quick else 5), file=file)
+    print("", file=file)
+    out["fragility"] = report_fragility_cost(run_fragility_cost(n=4 if quick else FRAGILITY_SAMPLE), file=file)
     return out
 
 
@@ -563,7 +620,7 @@ SECTION_FLAGS = (
     ("--buildings-only", "only the buildings section (bearings and flexible superstructures beside the paper "
                          "model, about 20 s)"),
     ("--planar-only", "only the planar section (planar scenes beside their 1-D twins, recorded pairs per "
-                      "sample, about 10 s)"),
+                      "sample, the planar fragility study's cost per analysis; about a minute)"),
     ("--no-planar", "leave out the planar section"),
 )
 """The command line's section flags (each on or off) and their help: one section alone, or one left out."""
