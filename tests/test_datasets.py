@@ -2,7 +2,6 @@
 
 import copy
 import json
-import logging
 import os
 import re
 
@@ -137,16 +136,3 @@ def test_assert_same_data_ignores_provenance_only(merged):
     other["pi1"] = other["pi1"] * 1.0 + 1e-12
     with pytest.raises(AssertionError):
         datasets.assert_same_data(merged, other)
-
-
-def test_a_job_s_dataset_is_warmed_up_made_logged_and_written_with_each_phase_timed(tmp_path, merged, caplog):
-    order = []
-    log = logging.getLogger("isoslide.test.job")
-    with caplog.at_level(logging.INFO, logger="isoslide.test.job"):
-        ds = datasets.solve_and_write(tmp_path / "job.nc", log, lambda: order.append("warm_up"),
-                                      lambda: order.append("make") or merged)
-    assert order == ["warm_up", "make"] and ds is merged
-    datasets.assert_same_data(datasets.open_dataset(tmp_path / "job.nc"), merged)
-    phases = [m.split()[1] for m in caplog.messages if m.startswith("phase ")]
-    assert phases == ["compilation", "solving", "writing"]
-    assert any("<xarray.Dataset>" in m for m in caplog.messages)

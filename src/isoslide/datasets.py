@@ -27,7 +27,6 @@ import numpy as np
 import xarray as xr
 
 from .atomic import atomic_path
-from .budget import compile_and_solve, phase
 from .groups import RESULT, group
 from .models import FACETS, Facets
 from .store.provenance import code_hash, git_commit, source_text  # noqa: F401 - re-exported
@@ -289,32 +288,6 @@ def write_netcdf(ds: xr.Dataset, path, complevel: int = 4) -> Path:
     with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", encoding=encoding_for(ds, complevel))
     return path
-
-
-def solve_and_write(path, logger, warm_up, make) -> xr.Dataset:
-    """A pipeline job's dataset: made, logged and written, each phase timed.
-
-    Parameters
-    ----------
-    path : path-like
-        Where the dataset goes (:func:`write_netcdf`, the phase ``writing``).
-    logger : logging.Logger
-        Receives the seconds of each phase (:func:`isoslide.budget.phase`) and the dataset's summary.
-    warm_up : callable
-        Readies the compiled kernels (the phase ``compilation``).
-    make : callable
-        Returns the dataset (the phase ``solving``).
-
-    Returns
-    -------
-    xarray.Dataset
-        What ``make()`` returned.
-    """
-    ds = compile_and_solve(logger, warm_up, make)
-    logger.info("%s", ds)
-    with phase("writing", logger):
-        write_netcdf(ds, path)
-    return ds
 
 
 def open_dataset(path) -> xr.Dataset:

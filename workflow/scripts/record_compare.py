@@ -1,10 +1,14 @@
 """Rule record_compare: one record against its fitted pulse on the Pi2 x Pi3 grid (isoslide.studies.record_study)."""
 
-from isoslide.datasets import solve_and_write
+from isoslide.budget import compile_and_solve, phase
+from isoslide.datasets import write_netcdf
 from isoslide.store.provenance import log_to
 from isoslide.solver import warm_up
 from isoslide.studies.record_study import record_dataset
 
 with log_to(snakemake.log[0]) as log:
-    solve_and_write(snakemake.output[0], log, lambda: warm_up(records=True),
-                    lambda: record_dataset(snakemake.wildcards.record, snakemake.params.settings))
+    ds = compile_and_solve(log, lambda: warm_up(records=True),
+                           lambda: record_dataset(snakemake.wildcards.record, snakemake.params.settings))
+    log.info("%s", ds)
+    with phase("writing", log):
+        write_netcdf(ds, snakemake.output[0])
