@@ -26,6 +26,17 @@ def test_phases_logged_by_a_job_are_read_back(tmp_path):
     assert 0.0 < got["start-up"] < 24 * 3600
 
 
+def test_a_job_that_writes_its_result_logs_compilation_solving_the_result_and_writing(tmp_path):
+    log_file = tmp_path / "logs" / "fig4_record" / "0.log"
+    done = []
+    with log_to(log_file) as log:
+        got = budget.compile_solve_write(log, lambda: done.append("warm_up"), lambda: done.append("solve") or "result",
+                                         lambda r: done.append(f"write {r}"))
+    assert got == "result" and done == ["warm_up", "solve", "write result"]
+    assert set(budget.job_phases(log_file)) == {"start-up", "compilation", "solving", "writing"}
+    assert "INFO isoslide.job: result" in log_file.read_text()
+
+
 def test_unknown_phase_is_refused():
     with pytest.raises(ValueError, match="phase = 'thinking'.*allowed"):
         with budget.phase("thinking"):

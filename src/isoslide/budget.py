@@ -78,6 +78,30 @@ def compile_and_solve(logger: logging.Logger | None, warm_up, solve):
         return solve()
 
 
+def compile_solve_write(logger: logging.Logger, warm_up, solve, write):
+    """:func:`compile_and_solve`, the result logged, then ``write(result)`` as the phase ``writing``.
+
+    Parameters
+    ----------
+    logger : logging.Logger
+        Receives the seconds of each phase (:func:`phase`) and the result (``%s``).
+    warm_up, solve : callable
+        As for :func:`compile_and_solve`.
+    write : callable
+        ``write(result)``: stores the result (a dataset: :func:`isoslide.datasets.write_netcdf`).
+
+    Returns
+    -------
+    object
+        What ``solve()`` returns.
+    """
+    result = compile_and_solve(logger, warm_up, solve)
+    logger.info("%s", result)
+    with phase("writing", logger):
+        write(result)
+    return result
+
+
 def seconds_since_process_start() -> float | None:
     """Wall-clock seconds since this process started (Linux ``/proc``; None elsewhere)."""
     try:
