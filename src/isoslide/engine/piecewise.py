@@ -191,6 +191,19 @@ def _slide_accel(y, p, s, m):
     return m[M_CW] * y[1] + m[M_W2] * y[0] - (1.0 + m[M_P8]) * s * m[M_THR]
 
 
+@njit(cache=True, inline="always")
+def advance(k, i, g, nint, nsub):
+    """The grid position after one substep: substep ``i`` of sample interval ``k`` (``k == nint``: free step ``g``)."""
+    if k < nint:
+        i += 1
+        if i == nsub:
+            i = 0
+            k += 1
+    else:
+        g += 1
+    return k, i, g
+
+
 # --- root finding on a polynomial ------------------------------------------------
 
 
@@ -513,13 +526,7 @@ def run(m, params, tau_start, tau_end, tau_stop, track_max, hist_cap, settle, ma
             y[q] = y1[q]
         t = t_next
         on_grid = True
-        if k < nint:
-            i += 1
-            if i == nsub:
-                i = 0
-                k += 1
-        else:
-            g += 1
+        k, i, g = advance(k, i, g, nint, nsub)
         nh = _record(hist, nh, hist_cap, t, y, s)
     if not settled and not stick:
         if abs(y[2]) > umax:

@@ -129,29 +129,29 @@ def history_columns(n: int, hysteretic: bool = False) -> dict:
 
 
 @njit(cache=True, inline="always")
-def ground(tau, ex):
-    """Horizontal ground acceleration ``(g_x, g_y)`` in the building's axes at ``tau`` (units of a_p)."""
+def _turned(tau, ex, rate):
+    """The excitation's horizontal components (``rate``: their rates) turned into the building's axes."""
     code, params, code_y, params_y, G = ex
-    px = accel_at(code, params, tau)
+    px = jerk_at(code, params, tau) if rate else accel_at(code, params, tau)
     py = 0.0
     if G[G_HAS_Y] != 0.0:
-        py = G[G_PI14] * accel_at(code_y, params_y, (tau - G[G_PI16]) / G[G_PI15])
+        s = (tau - G[G_PI16]) / G[G_PI15]
+        py = G[G_PI14] * (jerk_at(code_y, params_y, s) / G[G_PI15] if rate else accel_at(code_y, params_y, s))
     c = G[G_COS]
-    s = G[G_SIN]
-    return c * px - s * py, s * px + c * py
+    sn = G[G_SIN]
+    return c * px - sn * py, sn * px + c * py
+
+
+@njit(cache=True, inline="always")
+def ground(tau, ex):
+    """Horizontal ground acceleration ``(g_x, g_y)`` in the building's axes at ``tau`` (units of a_p)."""
+    return _turned(tau, ex, False)
 
 
 @njit(cache=True, inline="always")
 def ground_rate(tau, ex):
     """Rate ``d/dtau`` of :func:`ground`."""
-    code, params, code_y, params_y, G = ex
-    px = jerk_at(code, params, tau)
-    py = 0.0
-    if G[G_HAS_Y] != 0.0:
-        py = G[G_PI14] / G[G_PI15] * jerk_at(code_y, params_y, (tau - G[G_PI16]) / G[G_PI15])
-    c = G[G_COS]
-    s = G[G_SIN]
-    return c * px - s * py, s * px + c * py
+    return _turned(tau, ex, True)
 
 
 @njit(cache=True, inline="always")
@@ -1041,19 +1041,11 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             steps += 1
             tau += h
             _copy(y, y1)
+            umax, tpeak, angle = _at_rest(finished, md, tau, y, umax, tpeak, angle)
             if finished == 0:
-                y[U + 2] = 0.0
-                y[U + 3] = 0.0
                 events += 1
-                um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
-                if um > umax:
-                    umax, tpeak, angle = um, tau, math.atan2(y[U + 1], y[U])
-                md[M_BM] = 0.0
             else:
-                y[1] = 0.0
-                y[nb_ + 1] = 0.0
                 iso_events += 1
-                md[M_IM] = 0.0
             bm0, im0 = md[M_BM], md[M_IM]
             _select(md, md[M_BM] == 0.0, bearing and md[M_IM] == 0.0, tau, y, P, ex, work)
             if md[M_BM] != bm0:
@@ -1116,22 +1108,20 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                 if found and hs < hbest:
                     best, hbest, herr_best = kind, hs, herr
                     _copy(yb, ye)
-        if hyst and md[M_IM] == 1.0:
-            found, hs, herr = _unload(md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol, K, ye, work, cnt)
+        # a yielding bilinear bearing unloading; a slow slide of the block or of a sliding bearing ending
+        for kind in (EV_UNLOAD, EV_STOP, EV_BSTOP):
+            if kind == EV_UNLOAD:
+                if not (hyst and md[M_IM] == 1.0):
+                    continue
+                found, hs, herr = _unload(md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol, K, ye, work, cnt)
+            else:
+                mode = md[M_BM] if kind == EV_STOP else md[M_IM]
+                if mode != 2.0 and mode != -2.0:
+                    continue
+                found, hs, herr = _slow_stop(kind, just_b if kind == EV_STOP else just_i, md, tau, y, y1, h,
+                                             t_end_step, check, P, ex, atol, rtol, K, ye, work, cnt)
             if found and hs < hbest:
-                best, hbest, herr_best = EV_UNLOAD, hs, herr
-                _copy(yb, ye)
-        if md[M_BM] == 2.0 or md[M_BM] == -2.0:
-            found, hs, herr = _slow_stop(EV_STOP, just_b, md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol,
-                                         K, ye, work, cnt)
-            if found and hs < hbest:
-                best, hbest, herr_best = EV_STOP, hs, herr
-                _copy(yb, ye)
-        if md[M_IM] == 2.0 or md[M_IM] == -2.0:
-            found, hs, herr = _slow_stop(EV_BSTOP, just_i, md, tau, y, y1, h, t_end_step, check, P, ex, atol, rtol,
-                                         K, ye, work, cnt)
-            if found and hs < hbest:
-                best, hbest, herr_best = EV_BSTOP, hs, herr
+                best, hbest, herr_best = kind, hs, herr
                 _copy(yb, ye)
         if best >= 0:
             if herr_best > 1.0:
@@ -1148,23 +1138,14 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             tau += hbest
             _copy(y, ye)
             if best == EV_STOP or best == EV_BSTOP:
-                if best == EV_STOP:
-                    y[U + 2] = 0.0
-                    y[U + 3] = 0.0
+                which = 0 if best == EV_STOP else 1
+                if hbest == 0.0 and (just_b if which == 0 else just_i):
+                    hold = True
+                umax, tpeak, angle = _at_rest(which, md, tau, y, umax, tpeak, angle)
+                if which == 0:
                     events += 1
-                    um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
-                    if um > umax:
-                        umax, tpeak, angle = um, tau, math.atan2(y[U + 1], y[U])
-                    if hbest == 0.0 and just_b:
-                        hold = True
-                    md[M_BM] = 0.0
                 else:
-                    y[1] = 0.0
-                    y[nb_ + 1] = 0.0
                     iso_events += 1
-                    if hbest == 0.0 and just_i:
-                        hold = True
-                    md[M_IM] = 0.0
             bm0, im0 = md[M_BM], md[M_IM]
             if best == EV_DEMAND:
                 # a breakaway keeps every force continuous: the other interface's mode stands
@@ -1240,6 +1221,29 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                      1 if moved else 0], dtype=np.int64)
     floats = np.array([umax, tpeak, angle, ures, tau, vmax, y[U], y[U + 1], xmax])
     return ints, floats, hist[:nh]
+
+
+@njit(cache=True)
+def _at_rest(which, md, tau, y, umax, tpeak, angle):
+    """A slide of the block (``which = 0``) or of a sliding bearing (1) ends at ``(tau, y)``.
+
+    Its velocity is zeroed and its mode set to rest; returns the peak of ``|u|`` ``(umax, tpeak,
+    angle)`` with the stop's ``|u|`` taken in.
+    """
+    U = y.shape[0] - 4
+    if which == 0:
+        y[U + 2] = 0.0
+        y[U + 3] = 0.0
+        md[M_BM] = 0.0
+        um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
+        if um > umax:
+            return um, tau, math.atan2(y[U + 1], y[U])
+        return umax, tpeak, angle
+    nb = U // 2
+    y[1] = 0.0
+    y[nb + 1] = 0.0
+    md[M_IM] = 0.0
+    return umax, tpeak, angle
 
 
 @njit(cache=True)

@@ -34,7 +34,7 @@ from .. import jit_cache
 from . import planar_kernel
 from .kernel import M_CW, M_FIXED, M_P8, M_THR, M_W2, _demand_bound, _hermite_coeffs
 from .piecewise import (FIXED_FREE_STEP, N_TAYLOR, PEAK_MARGIN, RHO_STEP, _apply, _demand, _demand_rate, _eval,
-                        _poly, propagation_matrix, taylor)
+                        _poly, advance, propagation_matrix, taylor)
 
 INT_RESULTS = planar_kernel.INT_RESULTS
 """The integer results of :func:`run`: the planar kernel's (``steps`` counts substeps and Runge-Kutta steps)."""
@@ -265,13 +265,7 @@ def run(m, gx, gy, tau0, dtau, tau_end, tau_stop, hist_cap, settle, max_steps, P
                     ay[q] = ay1[q]
                 t = t_next
                 on_grid = True
-                if k < nint:
-                    i += 1
-                    if i == nsub:
-                        i = 0
-                        k += 1
-                else:
-                    g += 1
+                k, i, g = advance(k, i, g, nint, nsub)
                 xmax = max(xmax, math.sqrt(ax[0] ** 2 + ay[0] ** 2))
                 _full_state(ax, ay, u, yfull)
                 nh = planar_kernel._record(hist, nh, hist_cap, t, yfull, md)

@@ -203,13 +203,8 @@ def floor_peaks(solution, scene) -> tuple[float, float]:
 def planar_floor_peaks(solution, scene) -> tuple[float, float]:
     """PFA [m/s^2] and PFV [m/s] of a floor moving in the plane: the peaks of the vectors' lengths.
 
-    Parameters
-    ----------
-    solution : isoslide.Solution
-        ``isoslide.solve(scene, history=True)`` of a scene that ran in the plane, built with
-        :meth:`isoslide.Scene.from_physical`.
-    scene : isoslide.Scene
-        The scene solved.
+    ``solution`` and ``scene`` as for :func:`floor_peaks`, the scene having run in the plane
+    (``solution.facets.contact == "plane"``).
 
     Returns
     -------
