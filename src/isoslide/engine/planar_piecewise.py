@@ -11,9 +11,9 @@ stuck while the floor's demand vector ``d = (d_x, d_y)`` (``d_a`` the 1-D stuck 
 
 A substep whose end, or whose interior (the cubic Hermite interpolants of ``d_x``, ``d_y`` from the
 ends' values and rates, sampled, coming within :data:`isoslide.engine.piecewise.PEAK_MARGIN` of the
-level), may pass the level is evaluated on its Taylor solution instead: ``|d|^2 - thr^2`` is sampled
-at :data:`SCAN` points and its first sign change located by safeguarded Newton, which is the
-breakaway.  From there the slide runs in the planar kernel (:func:`isoslide.engine.planar_kernel.run`
+level), may pass the level is evaluated on its Taylor solution instead: the polynomial ``|d|^2 -
+thr^2`` is sampled at :data:`SCAN` points and its first sign change located by safeguarded Newton
+(:func:`isoslide.engine.piecewise.poly_root`), which is the breakaway.  From there the slide runs in the planar kernel (:func:`isoslide.engine.planar_kernel.run`
 with ``stop_on_stick``: it returns when the contents stick again), and the stick propagation resumes
 from the kernel's state on the Taylor solution to the next grid point.  After the records the free
 vibration is propagated the same way; it settles once the energy bound of each axis
@@ -34,7 +34,7 @@ from .. import jit_cache
 from . import planar_kernel
 from .kernel import M_CW, M_FIXED, M_P8, M_THR, M_W2, _demand_bound, _hermite_coeffs
 from .piecewise import (FIXED_FREE_STEP, N_TAYLOR, PEAK_MARGIN, RHO_STEP, _apply, _demand, _demand_rate, _eval,
-                        _poly, advance, propagation_matrix, taylor)
+                        _poly, advance, poly_root, propagation_matrix, taylor)
 
 INT_RESULTS = planar_kernel.INT_RESULTS
 """The integer results of :func:`run`: the planar kernel's (``steps`` counts substeps and Runge-Kutta steps)."""
@@ -56,44 +56,28 @@ def _hermite_at(g0, d0, g1, d1, h, s):
     return g0 + s * (d0 + s * (c + s * e))
 
 
-@njit(cache=True, inline="always")
-def _excess(cx, cy, h, thr):
-    """``|d(h)|^2 - thr^2`` and its rate from the demand polynomials ``cx``, ``cy``."""
-    ax, dx = _poly(cx, h)
-    ay, dy = _poly(cy, h)
-    return ax * ax + ay * ay - thr * thr, 2.0 * (ax * dx + ay * dy)
-
-
 @njit(cache=True)
-def _first_crossing(cx, cy, r, thr):
-    """First ``h`` in ``[0, r]`` where ``|d(h)|`` passes ``thr`` (``-1`` if none is found)."""
-    g0, _ = _excess(cx, cy, 0.0, thr)
-    if g0 > 0.0:
+def _first_crossing(cx, cy, r, thr, q):
+    """First ``h`` in ``[0, r]`` where ``|d(h)|`` passes ``thr`` (``-1`` if none is found).
+
+    ``q`` (length ``2 N_TAYLOR - 1``) receives the coefficients of ``|d|^2 - thr^2``, the demand
+    polynomials ``cx``, ``cy`` squared; its first sign change among :data:`SCAN` points is located
+    by :func:`isoslide.engine.piecewise.poly_root`.
+    """
+    for a in range(q.shape[0]):
+        q[a] = 0.0
+    for a in range(N_TAYLOR):
+        for b in range(N_TAYLOR):
+            q[a + b] += cx[a] * cx[b] + cy[a] * cy[b]
+    q[0] -= thr * thr
+    if q[0] > 0.0:
         return 0.0
-    lo, glo = 0.0, g0
-    for q in range(1, SCAN + 1):
-        hi = r * q / SCAN
-        ghi, _ = _excess(cx, cy, hi, thr)
+    lo, glo = 0.0, q[0]
+    for k in range(1, SCAN + 1):
+        hi = r * k / SCAN
+        ghi = _poly(q, hi)[0]
         if ghi > 0.0:
-            tol = 1e-15 * max(abs(hi), 1e-300)
-            t = lo - glo * (hi - lo) / (ghi - glo)
-            for _it in range(100):
-                if not (lo < t < hi):
-                    t = 0.5 * (lo + hi)
-                g, d = _excess(cx, cy, t, thr)
-                if g == 0.0:
-                    return t
-                if g > 0.0:
-                    hi = t
-                else:
-                    lo = t
-                tn = t - g / d if d != 0.0 else 0.5 * (lo + hi)
-                if not (lo < tn < hi):
-                    tn = 0.5 * (lo + hi)
-                if abs(tn - t) <= tol or hi - lo <= tol:
-                    return hi
-                t = tn
-            return hi
+            return poly_root(q, lo, glo, hi, ghi)[0]
         lo, glo = hi, ghi
     return -1.0
 
@@ -162,6 +146,7 @@ def run(m, gx, gy, tau0, dtau, tau_end, tau_stop, hist_cap, settle, max_steps, P
     Cy = np.empty((N_TAYLOR, 4))
     cx = np.empty(N_TAYLOR)
     cy = np.empty(N_TAYLOR)
+    q2 = np.empty(2 * N_TAYLOR - 1)
     ax = np.zeros(4)
     ay = np.zeros(4)
     ax1 = np.empty(4)
@@ -250,7 +235,7 @@ def run(m, gx, gy, tau0, dtau, tau_end, tau_stop, hist_cap, settle, max_steps, P
                 taylor(True, 0.0, ay[0], ay[1], 0.0, 0.0, py, jy, m, Cy)
                 _demand_poly(Cx, px, jx, m, cx)
                 _demand_poly(Cy, py, jy, m, cy)
-                te = _first_crossing(cx, cy, r, thr)
+                te = _first_crossing(cx, cy, r, thr, q2)
                 if te >= 0.0:
                     _eval(Cx, te, ax)
                     _eval(Cy, te, ay)
