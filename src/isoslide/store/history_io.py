@@ -117,7 +117,7 @@ def table_columns(planar: bool = False, general: bool = False, storeys: int = 1)
     """
     out = []
     for name, long_name, unit, scale in COLUMNS + (BUILDING_COLUMNS if general else ()):
-        if name in ("time",):
+        if name == "time":
             out.append((name, long_name, unit, scale))
             continue
         if name.endswith("phase"):
@@ -275,7 +275,7 @@ def history_table(solution, scene: Scene) -> HistoryTable:
 
 def _storeys(h: History) -> int:
     """Floors of a history's superstructure (1 for a rigid one)."""
-    return 1 if h.xs is None or np.ndim(h.xs) == 1 or (np.ndim(h.xs) == 3 and h.xs.shape[2] == 1) else h.xs.shape[-1]
+    return 1 if h.xs is None or np.ndim(h.xs) == 1 else h.xs.shape[-1]
 
 
 def _storey_columns(xs, xsd, rows: int, L: float, V: float, axis: str = "") -> dict:
