@@ -49,8 +49,8 @@ by less than 1e-15, are ``tau_start`` and ``tau_end`` themselves).
 
 from __future__ import annotations
 
-import inspect
 import functools
+import inspect
 import math
 import numbers
 from dataclasses import dataclass, field

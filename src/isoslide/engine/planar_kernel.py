@@ -5,8 +5,8 @@ vertical one through the normal force).  The building is the general building of
 :mod:`isoslide.engine.building_kernel` (a fixed base, a linear isolator, a sliding bearing or a
 bilinear bearing, a rigid superstructure or a shear building of ``n`` floors, the contents on
 floor ``k``), isotropic in the plane: it moves in x and in y with the same equations, coupled
-only through the friction forces and a bilinear bearing's force, vectors.  Units: time ``T_p``, lengths ``a_p T_p^2``, accelerations ``a_p``, masses ``M_b``;
-primes are ``d/dtau``.  The model parameters ``P`` are the building kernel's
+only through the friction forces and a bilinear bearing's force, vectors.  Units: time ``T_p``,
+lengths ``a_p T_p^2``, accelerations ``a_p``, masses ``M_b``; primes are ``d/dtau``.  The model parameters ``P`` are the building kernel's
 (:func:`isoslide.engine.building.parameters`).
 
 State ``y`` (length ``2 (2 + 2 n) + 4``, :func:`state_size`; one more per axis on a bilinear

@@ -33,6 +33,7 @@ from numba import njit
 from .. import jit_cache
 from . import planar_kernel
 from .kernel import M_CW, M_FIXED, M_P8, M_THR, M_W2, _demand_bound, _hermite_coeffs
+from .planar_kernel import M_BM
 from .piecewise import (FIXED_FREE_STEP, N_TAYLOR, PEAK_MARGIN, RHO_STEP, _apply, _demand, _demand_rate, _eval,
                         _poly, advance, poly_root, propagation_matrix, taylor)
 
@@ -43,6 +44,13 @@ FLOAT_RESULTS = planar_kernel.FLOAT_RESULTS
 
 NY = planar_kernel.state_size(1)
 """Length of the planar kernel's state of a rigid superstructure (one floor)."""
+NB = planar_kernel.axis_size(1)
+"""States of one axis of that state (``x, x'`` first, then the block's ``u`` from ``2 NB``)."""
+I_STEPS, I_EVENTS, I_SETTLED, I_SLIPPED, I_REJECTED = (INT_RESULTS.index(k) for k in
+                                                        ("steps", "events", "settled", "slipped", "rejected"))
+F_UMAX, F_TPEAK, F_ANGLE, F_TEND, F_VMAX, F_XMAX = (FLOAT_RESULTS.index(k) for k in
+                                                    ("umax", "tpeak", "angle", "tend", "vmax", "xmax"))
+"""Positions of the planar kernel's results that a slide hands back, from its declared layout."""
 SCAN = 32
 """Points at which a substep's ``|d|^2 - thr^2`` is sampled for its first sign change."""
 HERMITE_SAMPLES = 8
@@ -97,15 +105,14 @@ def _demand_poly(C, p0, j, m, c):
 @njit(cache=True)
 def _full_state(ax, ay, u, yfull):
     """The planar kernel's state (one rigid floor) of the axes ``ax``, ``ay`` (``[x, x', ...]``) and ``u``."""
-    nb = yfull.shape[0] // 2 - 2
     for i in range(yfull.shape[0]):
         yfull[i] = 0.0
     yfull[0] = ax[0]
     yfull[1] = ax[1]
-    yfull[nb] = ay[0]
-    yfull[nb + 1] = ay[1]
-    yfull[2 * nb] = u[0]
-    yfull[2 * nb + 1] = u[1]
+    yfull[NB] = ay[0]
+    yfull[NB + 1] = ay[1]
+    yfull[2 * NB] = u[0]
+    yfull[2 * NB + 1] = u[1]
 
 
 @njit(cache=True)
@@ -263,29 +270,28 @@ def run(m, gx, gy, tau0, dtau, tau_end, tau_stop, hist_cap, settle, max_steps, P
                                 max(hist_cap - nh, 0), h_restart, settle, max(max_steps - steps, 0), Wm, Cm, Wh, Ch,
                                 yfull, md, slaved, True, final)
         ints, floats, rows = res
-        steps += ints[0]
-        events += ints[1]
-        rejected += ints[5]
-        if ints[3] != 0:
+        steps += ints[I_STEPS]
+        events += ints[I_EVENTS]
+        rejected += ints[I_REJECTED]
+        if ints[I_SLIPPED] != 0:
             slipped = True
         for r_ in range(rows.shape[0]):
             if nh < hist_cap:
                 for c_ in range(ny + 3):
                     hist[nh, c_] = rows[r_, c_]
                 nh += 1
-        if floats[0] > umax:
-            umax, tpeak, angle = floats[0], floats[1], floats[2]
-        vmax = max(vmax, floats[5])
-        xmax = max(xmax, floats[8])
-        t = floats[4]
-        nb = ny // 2 - 2
+        if floats[F_UMAX] > umax:
+            umax, tpeak, angle = floats[F_UMAX], floats[F_TPEAK], floats[F_ANGLE]
+        vmax = max(vmax, floats[F_VMAX])
+        xmax = max(xmax, floats[F_XMAX])
+        t = floats[F_TEND]
         ax[0], ax[1] = final[0], final[1]
-        ay[0], ay[1] = final[nb], final[nb + 1]
-        u[0], u[1] = final[2 * nb], final[2 * nb + 1]
-        if ints[2] != 0:
+        ay[0], ay[1] = final[NB], final[NB + 1]
+        u[0], u[1] = final[2 * NB], final[2 * NB + 1]
+        if ints[I_SETTLED] != 0:
             settled = True
             break
-        if final[ny] != 0.0 or t >= tau_stop or steps > max_steps:
+        if final[ny + M_BM] != 0.0 or t >= tau_stop or steps > max_steps:
             break
         # back on the grid: the substep holding t, from t to its end on the Taylor solution
         if t < tau_end:

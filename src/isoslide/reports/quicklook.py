@@ -3,9 +3,9 @@
 :func:`plot_history` draws a :class:`~isoslide.store.history_io.HistoryTable`
 (ground and floor accelerations above, sliding displacement below with the
 stick and slip phases shaded; a planar history: the lengths of the acceleration
-vectors, both sliding components and the path of the contents on the floor); :func:`plot_fit` a record with its fitted pulse
-(acceleration and velocity).  Both write PNG, PDF or SVG by the file
-extension (:data:`PLOT_SUFFIXES`).  The figures of the paper are
+vectors, both sliding components and the path of the contents on the floor);
+:func:`plot_fit` a record with its fitted pulse (acceleration and velocity).  Both write PNG,
+PDF or SVG by the file extension (:data:`PLOT_SUFFIXES`).  The figures of the paper are
 :mod:`isoslide.reports.figures`'.
 """
 
