@@ -82,6 +82,7 @@ _FIT_VARS = {
     "nrmse": ("RMS residual over the pulse window / a_p", "1"),
     "energy_fraction": ("share of the record's sum(a^2) captured by the pulse", "1"),
 }
+"""The fitted pulse's variables in the record datasets: name -> (long name, CF units)."""
 
 
 def resolve_record(rec) -> Record:
@@ -102,10 +103,21 @@ def resolve_record(rec) -> Record:
     return _rec.sample(str(rec))
 
 
+def _fit_values(fit) -> dict:
+    """The variables :data:`_FIT_VARS` of a :class:`~isoslide.records.PulseFit`, as floats (their units)."""
+    return {k: float(getattr(fit, k)) for k in _FIT_VARS}
+
+
+def _add_fit_vars(ds: xr.Dataset, dims, values: dict) -> None:
+    """Store ``values[k]`` over ``dims`` for every ``k`` of :data:`_FIT_VARS`, with its long name and units."""
+    for k, (long_name, units) in _FIT_VARS.items():
+        ds[k] = (dims, values[k], {"long_name": long_name, "units": units})
+
+
 def _fit_attrs(fit, prefix: str = "") -> dict:
     out = {f"{prefix}shape": fit.shape}
-    for k in _FIT_VARS:
-        out[f"{prefix}{k}"] = float(getattr(fit, k))
+    for k, v in _fit_values(fit).items():
+        out[f"{prefix}{k}"] = v
     for k, v in fit.params:
         out[f"{prefix}{k}"] = float(v)
     return out
@@ -274,8 +286,8 @@ def compare_grid(names, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
             has_settled = False
         else:
             set_rec[i], set_pul[i] = np.asarray(settled, dtype=bool).reshape(2, n2, n3)
-        for k in _FIT_VARS:
-            per_rec[k][i] = float(getattr(fit, k))
+        for k, v in _fit_values(fit).items():
+            per_rec[k][i] = v
         extra["pga"][i], extra["pgv"][i] = rec.pga, rec.pgv
         extra["duration"][i], extra["dt"][i] = rec.duration, rec.dt
 
@@ -298,8 +310,7 @@ def compare_grid(names, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
     if has_settled:
         ds["settled_record"] = (dims, set_rec, {"long_name": "response settled within the horizon (record)"})
         ds["settled_pulse"] = (dims, set_pul, {"long_name": "response settled within the horizon (pulse)"})
-    for k, (ln, u) in _FIT_VARS.items():
-        ds[k] = ("record", per_rec[k], {"long_name": ln, "units": u})
+    _add_fit_vars(ds, "record", per_rec)
     ds["pga"] = ("record", extra["pga"], {"long_name": "peak ground acceleration of the record", "units": "g"})
     ds["pgv"] = ("record", extra["pgv"], {"long_name": "peak ground velocity of the record", "units": "m s-1"})
     ds["duration"] = ("record", extra["duration"], {"long_name": "record duration", "units": "s"})
@@ -505,9 +516,6 @@ COMPONENTS = ("x", "y")
 
 VIEWS = ("x", "y", "plane")
 """What a pair's summary compares: each component on a line (its own scales), and the pair in the plane."""
-
-_PAIR_FIT_VARS = ("a_p", "a_p_g", "T_p", "t_peak", "t_ref", "polarity", "r2", "nrmse", "energy_fraction")
-
 
 def pair_groups(fit_x, fit_y) -> dict:
     """``Pi14``, ``Pi15``, ``Pi16`` of a fitted pair and the polarities of its two pulses.
@@ -740,7 +748,7 @@ def pairs_grid(motions, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
     line_set = {k: np.zeros((nm, nc, n2, n3), bool) for k in ("record", "pulse")}
     plane = {k: np.full((nm, n2, n3), np.nan) for k in ("pi1_record", "pi1_pulse", "angle_record", "angle_pulse")}
     plane_set = {k: np.zeros((nm, n2, n3), bool) for k in ("record", "pulse")}
-    fit_vals = {k: np.full((nm, nc), np.nan) for k in _PAIR_FIT_VARS}
+    fit_vals = {k: np.full((nm, nc), np.nan) for k in _FIT_VARS}
     comp = {k: np.full((nm, nc), np.nan) for k in ("pga", "pgv", "duration", "dt")}
     comp_names = np.empty((nm, nc), dtype=object)
     per_motion = {k: np.full(nm, np.nan) for k in ("pi14", "pi15", "pi16", "magnitude", "rupture_distance_km",
@@ -776,8 +784,8 @@ def pairs_grid(motions, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
                 line_set[which][i, c, j, k] = settled[n]
         for c, label in enumerate(COMPONENTS):
             rec, fit = getattr(gm, label), fits[label]
-            for key in _PAIR_FIT_VARS:
-                fit_vals[key][i, c] = float(getattr(fit, key))
+            for key, v in _fit_values(fit).items():
+                fit_vals[key][i, c] = v
             comp["pga"][i, c], comp["pgv"][i, c] = rec.pga, rec.pgv
             comp["duration"][i, c], comp["dt"][i, c] = rec.duration, rec.dt
             comp_names[i, c] = rec.name
@@ -847,9 +855,7 @@ def pairs_grid(motions, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
                                                                           f"({which}, in the plane)"))
     d_comp = ("motion", "component")
     ds["record"] = (d_comp, comp_names.astype(str), {"long_name": "name of the component's record"})
-    for key in _PAIR_FIT_VARS:
-        ln, u = _FIT_VARS[key]
-        ds[key] = (d_comp, fit_vals[key], {"long_name": ln, "units": u})
+    _add_fit_vars(ds, d_comp, fit_vals)
     ds["pga"] = (d_comp, comp["pga"], {"long_name": "peak ground acceleration of the component", "units": "g"})
     ds["pgv"] = (d_comp, comp["pgv"], {"long_name": "peak ground velocity of the component", "units": "m s-1"})
     ds["duration"] = (d_comp, comp["duration"], {"long_name": "record duration", "units": "s"})
