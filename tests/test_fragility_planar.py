@@ -257,3 +257,101 @@ def test_a_lead_rubber_bearing_runs_in_the_plane_and_its_slides_do_not_depend_on
     for name in ("u_max", "pfa", "pfv"):
         np.testing.assert_allclose(ds[name].values[o == 1], ds[name].values[o == 0], rtol=2e-3, atol=1e-6)
     assert ds.u_max.max() > 0.0
+
+
+# ---- floors of a building of several storeys ---------------------------------------------------------
+
+FLEXIBLE = {"T_s": 0.5, "m_st": 8.0e5, "xi_s": 0.03, "fixed_base": False}
+
+
+@pytest.mark.parametrize("planar, building, pattern", [
+    ({"floors": [0, 4]}, {"storeys": 3}, r"fragility\.planar\.floors\[1\] = 4 is out of range; allowed: 'base', "
+                                         r"'roof' or an integer, 0 <= floor <= 3 \(fragility\.building\.storeys = 3\)"),
+    ({"floors": [0, "base"]}, {"storeys": 3}, r"fragility\.planar\.floors = \[0, 'base'\] is invalid; allowed: "
+                                              r"distinct floors"),
+    ({"floors": [3, "roof"]}, {"storeys": 3}, r"distinct floors \(0 is 'base', 3 is 'roof'"),
+    ({"floors": [0, 1]}, {"T_s": 0.0}, r"fragility\.planar\.floors has 'roof' with a rigid superstructure"),
+    ({"floors": [0]}, {"storeys": 2, "T_s": 0.0},
+     r"fragility\.building\.storeys = 2 with a rigid superstructure \(building\.T_s = 0\)"),
+])
+def test_floors_outside_the_building_are_refused_naming_the_key_value_and_range(planar, building, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        fp.check_settings(_settings(planar, building={**FLEXIBLE, **building}))
+
+
+@pytest.mark.parametrize("planar, building, key", [
+    ({"floors": [-1]}, {}, "fragility.planar.floors"),
+    ({"floors": ["middle"]}, {}, "fragility.planar.floors"),
+    ({}, {"storeys": 0}, "fragility.building.storeys"),
+    ({}, {"storeys": 65}, "fragility.building.storeys"),
+])
+def test_the_schema_rejects_floors_and_storeys_out_of_range(planar, building, key):
+    with pytest.raises(isoslide.config.ConfigError, match=key.replace(".", r"\.")):
+        _settings(planar, building={**FLEXIBLE, **building})
+
+
+def test_floor_numbers_are_named_as_the_scene_names_them():
+    s = _settings({"floors": [0, 1, 2, 3]}, building={**FLEXIBLE, "storeys": 3})
+    assert fp.check_settings(s).floors == ("base", 1, 2, "roof")
+    assert fp.check_settings(_settings({"floors": ["roof", 0]}, building={**FLEXIBLE, "storeys": 3})).floors == \
+        ("roof", "base")
+
+
+@pytest.fixture(scope="module")
+def storeys_dataset():
+    """Contents on the slab, floor 1 and the roof of a three-storey isolated building: 2 pairs x 2 stripes."""
+    s = _settings({"floors": [0, 1, 3], "pairs": 2, "angles": [0.0], "suites": ["fema-p695-near-field-pulse"],
+                   "stripes": {"im": "pga", "levels": [2.0, 6.0]}},
+                  building={**FLEXIBLE, "storeys": 3})
+    study = fp.check_settings(s)
+    return study, fp.planar_dataset(fp.solve_all(study, "isolated"), study, s, "isolated")
+
+
+def test_a_building_of_several_storeys_labels_its_floors_and_says_its_storeys(storeys_dataset):
+    study, ds = storeys_dataset
+    assert ds.floor.values.tolist() == ["base", "1", "roof"]
+    assert ds.contents_floor.values.tolist() == ["base"] * 4 + ["1"] * 4 + ["roof"] * 4
+    assert (ds.attrs["storeys"], ds.attrs["floors"]) == (3, "base, 1, roof")
+    r = ds.floor_theta_ratio.values
+    np.testing.assert_allclose(r, ds.theta.values / ds.theta.values[:1], rtol=1e-12)
+
+
+def test_the_floors_move_as_a_flexible_superstructure_does(storeys_dataset):
+    """The same pairs, stripes and friction draws on each floor: the floor accelerations grow up the building
+    (the superstructure's first mode), so the roof's PFA exceeds the slab's, floor 1 in between; the slides
+    differ from floor to floor."""
+    study, ds = storeys_dataset
+    pfa = {f: ds.pfa.values[ds.contents_floor.values == f] for f in ("base", "1", "roof")}
+    assert np.all(pfa["roof"] > pfa["base"])
+    assert np.all(pfa["1"] > pfa["base"]) and np.all(pfa["1"] < pfa["roof"])
+    u = {f: ds.u_max.values[ds.contents_floor.values == f] for f in ("base", "roof")}
+    assert u["base"].max() > 0.01 and not np.allclose(u["base"], u["roof"])
+    for name in ("ground_motion", "stripe", "friction_sample", "mu_k", "pga_rotd50"):
+        rows = ds[name].values.reshape(3, -1)
+        assert (rows == rows[0]).all(), name
+
+
+def test_an_analysis_on_a_floor_between_is_the_scene_on_that_floor(storeys_dataset):
+    study, ds = storeys_dataset
+    row = ds.isel(analysis=int(np.flatnonzero(ds.contents_floor.values == "1")[-1]))
+    gm = next(g for g in study.motions if g.name == str(row.ground_motion.values))
+    ax, ay = align_pair(gm.x.accel * G, gm.y.accel * G, gm.x.dt, gm.x.t_start, gm.y.t_start)
+    a_ref = float(row.pga_rotd50)
+    f = float(row.scale_factor) / a_ref
+    t0 = min(gm.x.t_start, gm.y.t_start)
+    b, c, mu = study.building, study.contents, float(row.mu_k)
+    scene = Scene.from_physical(a_p=a_ref, T_p=1.0, M_b=b["M_b"], T_b=b["T_b"], xi_b=b["xi_b"], m_ec=c["mass"],
+                                mu_s=mu, mu_k=mu, pulse=sampled(ax * f, gm.x.dt, t0), pulse_y=sampled(ay * f, gm.x.dt, t0),
+                                m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], storeys=3, floor=1)
+    assert float(row.u_max) == pytest.approx(solver.solve(scene, rtol=study.rtol).u_max, rel=1e-9, abs=1e-12)
+
+
+def test_one_storey_and_the_slab_alone_leave_the_study_as_it_was(analyses, dataset):
+    """storeys = 1 and floors = [base] (or [0]) are the planar study of one floor: the same analyses, the floor
+    labelled base, one storey said."""
+    s = _settings({"floors": [0]})
+    study = fp.check_settings(s)
+    assert study.floors == ("base",) and study.shape[0] == 1
+    xr.testing.assert_identical(fp.solve_chunk(study, 0, "isolated"), analyses["isolated"].isel(analysis=slice(0, 6)))
+    assert dataset.floor.values.tolist() == ["base"]
+    assert (dataset.attrs["storeys"], dataset.attrs["floors"]) == (1, "base")

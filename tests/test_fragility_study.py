@@ -246,3 +246,26 @@ def test_a_friction_pendulum_building_runs_through_the_building_solver():
     assert models and all(m.startswith("sliding-bearing+flexible+roof") for m in models), models
     sc = fs._scene(st, sample("Northridge_1994_PAC-175").as_pulse(), 3.0, 0.2, "isolated")
     assert (sc.isolator, sc.flexible, sc.floor) == ("sliding", True, "roof")
+
+
+def test_the_building_takes_storeys_and_puts_the_contents_on_a_floor_between():
+    """A three-storey superstructure with the contents on floor 2: the scene of every analysis, and the
+    dataset's attributes say the storeys and the floor."""
+    cfg = _settings(building={"m_st": 6e5, "T_s": 0.5, "xi_s": 0.03, "storeys": 3, "floor": 2, "fixed_base": False},
+                    stripes={"im": "pga", "levels": [3.0, 6.0]}, friction_samples=1)
+    st = fs.check_settings(cfg)
+    sc = fs._scene(st, sample("Northridge_1994_PAC-175").as_pulse(), 3.0, 0.2, "isolated")
+    assert (sc.storeys, sc.floor, sc.floor_index) == (3, 2, 2)
+    ds = fs.fragility_dataset(fs.solve_all(st, "isolated"), st, cfg, "isolated")
+    assert (ds.attrs["storeys"], ds.attrs["floor"]) == (3, "2")
+    assert np.isfinite(ds.u_max.values).all() and np.all(ds.pfa.values > 0)
+
+
+@pytest.mark.parametrize("building, match", [
+    ({"m_st": 6e5, "T_s": 0.5, "storeys": 3, "floor": 4},
+     r"fragility\.building\.floor = 4 is out of range; allowed: 'base', 'roof' or an integer, 0 <= floor <= 3"),
+    ({"storeys": 2}, r"fragility\.building\.storeys = 2 with a rigid superstructure"),
+])
+def test_a_floor_or_storeys_the_building_does_not_have_are_refused(building, match):
+    with pytest.raises(ValueError, match=match):
+        fs.check_settings(_settings(building=building))

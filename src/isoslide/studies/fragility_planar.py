@@ -68,8 +68,8 @@ import xarray as xr
 
 from . import fragility as _fit
 from .fragility_study import (REFERENCE_FRAGILITY, T_SCALE, add_curves, add_outputs, base_label, base_stem,
-                              bootstrap_attrs, check_building, check_chunk_size, check_level, check_stripes, chunk_indices,
-                              design_attrs, merge_chunks, n_chunks, new_outputs, stem_base)
+                              bootstrap_attrs, check_building, check_chunk_size, check_floor, check_level, check_stripes,
+                              chunk_indices, design_attrs, merge_chunks, n_chunks, new_outputs, stem_base)
 from .intensity import align_pair, pair_peaks, pair_sa, peak_abs, planar_floor_peaks
 from ..datasets import global_attrs
 from ..pulses import sampled
@@ -151,8 +151,9 @@ class PlanarStudy:
         The suites, in the configured order.
     suite_index : ndarray of int, shape (ground motions,)
         Suite of each ground motion (index into ``suites``).
-    floors : tuple of str
-        Floors carrying the contents (``"base"``, ``"roof"``).
+    floors : tuple of str or int
+        Floors carrying the contents: ``"base"`` (the slab), ``"roof"`` or the number of a floor
+        between (of ``building.storeys``); their ``str`` labels the datasets' ``floor`` and ``contents_floor``.
     im : str
         Scaling IM, ``"pga_rotd50"`` or ``"pgv_rotd50"``.
     levels : ndarray
@@ -221,6 +222,44 @@ def _suite_motions(name: str, pairs: int, index: int) -> tuple:
     return motions
 
 
+def _check_floors(floors, b: dict) -> tuple:
+    """The floors of ``fragility.planar.floors``, checked and named as :func:`check_floor` names them.
+
+    Parameters
+    ----------
+    floors : sequence of str or int
+        ``"base"``, ``"roof"`` or floor numbers ``0 .. building.storeys``.
+    b : dict
+        The ``fragility.building`` section, checked (:func:`check_building`).
+
+    Returns
+    -------
+    tuple of str or int
+        The floors in the configured order: ``"base"``, ``"roof"`` or the number of a floor between.
+
+    Raises
+    ------
+    ValueError
+        Naming the key, its value and what is allowed: a floor out of range, a floor given twice
+        (``0`` is ``"base"``, ``storeys`` is ``"roof"``), a floor above the slab with a rigid
+        superstructure.
+    """
+    storeys = int(b["storeys"])
+    given = list(floors)
+    if not given:
+        raise ValueError("fragility.planar.floors = [] is invalid; allowed: one or more floors")
+    out = tuple(check_floor(f"fragility.planar.floors[{i}]", fl, storeys) for i, fl in enumerate(given))
+    if len(set(out)) != len(out):
+        raise ValueError(f"fragility.planar.floors = {given!r} is invalid; allowed: distinct floors (0 is 'base', "
+                         f"{storeys} is 'roof' with fragility.building.storeys = {storeys})")
+    above = [fl for fl in out if fl != FLOORS[0]]
+    if above and float(b["T_s"]) == 0.0:
+        raise ValueError(f"fragility.planar.floors has {above[0]!r} with a rigid superstructure (building.T_s = 0), "
+                         "where every floor moves with the slab; allowed: floors above the slab ('roof', 1 ... "
+                         "storeys) with building.T_s > 0")
+    return out
+
+
 def check_settings(settings: dict) -> PlanarStudy:
     """Check ``fragility.planar`` and the sections it shares, read the suites and draw the tables.
 
@@ -262,13 +301,7 @@ def check_settings(settings: dict) -> PlanarStudy:
         dup = sorted({n for n in gm_names if gm_names.count(n) > 1})
         raise ValueError(f"fragility.planar.suites = {names!r} share ground motions ({', '.join(dup[:3])}); "
                          "allowed: suites without a ground motion in common")
-    floors = tuple(p["floors"])
-    if not floors or len(set(floors)) != len(floors) or any(fl not in FLOORS for fl in floors):
-        raise ValueError(f"fragility.planar.floors = {list(floors)!r} is invalid; allowed: distinct values of "
-                         f"{', '.join(map(repr, FLOORS))}")
-    if "roof" in floors and float(b["T_s"]) == 0.0:
-        raise ValueError("fragility.planar.floors has 'roof' with a rigid superstructure (building.T_s = 0), where "
-                         "the roof moves with the slab; allowed: 'roof' with building.T_s > 0")
+    floors = _check_floors(p["floors"], b)
     im, levels, limits, n_s = check_stripes(f, p, "planar.", "'pga', 'pgv' (RotD50)")
     angles_cfg = np.asarray(p["angles"], dtype=float)
     if angles_cfg.ndim != 1 or angles_cfg.size == 0 or not np.all((angles_cfg >= 0) & (angles_cfg < 180)):
@@ -327,13 +360,14 @@ def _pair(study_key, gm):
     return ax, ay, min(gm.x.t_start, gm.y.t_start), pair_intensities(ax, ay, gm.x.dt, period, damping)
 
 
-def _scene(study: PlanarStudy, base: str, floor: str, a_ref: float, mu_k: float, pulse, pulse_y=None,
+def _scene(study: PlanarStudy, base: str, floor, a_ref: float, mu_k: float, pulse, pulse_y=None,
            angle: float = 0.0) -> Scene:
     b, c = study.building, study.contents
     return Scene.from_physical(a_p=a_ref, T_p=T_SCALE, M_b=b["M_b"], T_b=0.0 if base == "fixed_base" else b["T_b"],
                                xi_b=b["xi_b"], m_ec=c["mass"], mu_s=mu_k * c["mu_s_over_mu_k"], mu_k=mu_k,
                                beta=c["beta"], gamma=c["gamma"], pulse=pulse, pulse_y=pulse_y, angle=angle,
-                               Q_d=b["Q_d"], D_y=b["D_y"], m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], floor=floor)
+                               Q_d=b["Q_d"], D_y=b["D_y"], m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"],
+                               storeys=b["storeys"], floor=floor)
 
 
 _OUT = ("scale_factor", "pga_rotd50", "pgv_rotd50", "sa_rotd50", "pfa", "pfv", "pga_x", "pga_y", "u_max", "u_max_x",
@@ -431,7 +465,7 @@ def _analysis_dataset(study, idx, tab, out, models) -> xr.Dataset:
     ds["pulse"] = ("analysis", pulse, {"long_name": "velocity pulse of the ground motion (suite metadata)",
                                        "units": "1", "flag_values": np.array([-1, 0, 1], dtype=np.int8),
                                        "flag_meanings": "not_classified no_pulse pulse"})
-    ds["contents_floor"] = ("analysis", np.array([study.floors[int(f)] for f in tab["floor"][idx]], dtype=object),
+    ds["contents_floor"] = ("analysis", np.array([str(study.floors[int(f)]) for f in tab["floor"][idx]], dtype=object),
                             {"long_name": "floor carrying the contents"})
     for k in ("orientation", "stripe", "friction_sample"):
         ds[k] = ("analysis", tab[k][idx].astype(np.int32))
@@ -516,7 +550,7 @@ def _fit_all(study, ds, outcomes, select) -> tuple:
 
 def _members(study: PlanarStudy, ds: xr.Dataset) -> list:
     """``members[floor][ground motion]``: the analysis rows of that floor and ground motion."""
-    fl = {name: i for i, name in enumerate(study.floors)}
+    fl = {str(name): i for i, name in enumerate(study.floors)}
     floor = np.array([fl[str(v)] for v in ds["contents_floor"].values])
     names = {gm.name: i for i, gm in enumerate(study.motions)}
     gm = np.array([names[str(v)] for v in ds["ground_motion"].values])
@@ -600,7 +634,8 @@ def fit_curves(ds: xr.Dataset, study: PlanarStudy) -> xr.Dataset:
         np.zeros(theta.shape, dtype=np.int32)
 
     out = xr.Dataset(coords={
-        "floor": ("floor", np.array(study.floors, dtype=object), {"long_name": "floor carrying the contents"}),
+        "floor": ("floor", np.array([str(f) for f in study.floors], dtype=object),
+                  {"long_name": "floor carrying the contents"}),
         "group": ("group", np.array(groups, dtype=object),
                   {"long_name": "ground motions fitted: all of them, or one suite"}),
         "motion": ("motion", np.array(MOTIONS, dtype=object), {
@@ -682,7 +717,7 @@ def planar_dataset(analyses: xr.Dataset, study: PlanarStudy, settings: dict, bas
         references_rotd=("Boore, D. M. (2010): Orientation-independent, nongeometric-mean measures of seismic "
                          "intensity from two horizontal components of motion, BSSA 100(4), 1830-1835"),
         base=base, scaling_im=study.im, suites=", ".join(study.suites), reference_suite=ref,
-        floors=", ".join(study.floors), sampled_angles=int(study.sampled_angles),
+        floors=", ".join(map(str, study.floors)), sampled_angles=int(study.sampled_angles),
         **{k: v for k, v in design_attrs(study, base).items() if k not in _NOT_STORED},
         sa_period=study.sa_period, sa_damping=study.sa_damping, **bootstrap_attrs(study),
         floor_ims=("pfa, pfv: the peak lengths of the floor's absolute acceleration and velocity vectors over the "

@@ -47,10 +47,11 @@ from .intensity import IM_NAMES, IM_UNITS, floor_peaks, ground_peaks
 from ..pulses import sampled
 from .record_study import resolve_record
 from ..records import G
-from ..scene import FLOORS, Scene
+from ..scene import FLOORS, MAX_STOREYS, Scene
 from .. import solver
 
-__all__ = ["BASES", "FIT_STATUS", "Study", "analysis_table", "base_of", "check_building", "check_settings",
+__all__ = ["BASES", "FIT_STATUS", "Study", "analysis_table", "base_of", "check_building", "check_floor",
+           "check_settings", "check_storeys",
            "chunk_indices", "chunk_job", "dataset_job",
            "dataset_name", "dataset_names", "fit_curves", "fragility_dataset", "fragility_settings", "merge_chunks",
            "n_chunks", "scatter_contributions", "solve_all", "solve_analyses", "solve_chunk", "scaled_pulse"]
@@ -284,11 +285,72 @@ def check_building(f: dict) -> None:
     if float(b["T_s"]) > 0.0 and not 0.0 < float(b["m_st"]) < float(b["M_b"]):
         raise ValueError(f"fragility.building.m_st = {b['m_st']!r} is out of range with a flexible superstructure "
                          f"(T_s > 0); allowed range: 0 < m_st < M_b = {b['M_b']!r}")
-    if b["floor"] not in FLOORS:
-        raise ValueError(f"fragility.building.floor = {b['floor']!r} is invalid; allowed: {', '.join(map(repr, FLOORS))}")
+    storeys = check_storeys(b)
+    check_floor("fragility.building.floor", b["floor"], storeys)
     if c["mass"] / b["M_b"] > 1000.0:
         raise ValueError(f"fragility.contents.mass = {c['mass']!r} is out of range; allowed range: "
                          f"mass / building.M_b <= 1000 (Pi8)")
+
+
+def check_storeys(b: dict) -> int:
+    """The number of storeys ``building.storeys`` of a fragility study's building, checked.
+
+    Parameters
+    ----------
+    b : dict
+        The ``fragility.building`` section (schema-completed).
+
+    Returns
+    -------
+    int
+        Floors of the superstructure above the isolated slab (1 ... ``MAX_STOREYS``).
+
+    Raises
+    ------
+    ValueError
+        Unless it is an integer in range, or if it is above 1 with a rigid superstructure
+        (``building.T_s = 0``, where every floor moves with the slab).
+    """
+    storeys = b["storeys"]
+    if isinstance(storeys, bool) or not isinstance(storeys, int) or not 1 <= storeys <= MAX_STOREYS:
+        raise ValueError(f"fragility.building.storeys = {storeys!r} is out of range; allowed range: an integer, "
+                         f"1 <= storeys <= {MAX_STOREYS}")
+    if storeys > 1 and float(b["T_s"]) == 0.0:
+        raise ValueError(f"fragility.building.storeys = {storeys!r} with a rigid superstructure (building.T_s = 0), "
+                         "where every floor moves with the slab; allowed: storeys = 1, or building.T_s > 0")
+    return storeys
+
+
+def check_floor(key: str, floor, storeys: int):
+    """A floor carrying the contents, checked and named as :class:`isoslide.Scene` names it.
+
+    Parameters
+    ----------
+    key : str
+        The setting, as the error names it (``fragility.building.floor``, ``fragility.planar.floors[1]``).
+    floor : str or int
+        ``"base"``, ``"roof"`` or a floor number ``0 .. storeys`` (0 the isolated slab, ``storeys``
+        the roof).
+    storeys : int
+        Floors of the superstructure above the slab.
+
+    Returns
+    -------
+    str or int
+        ``"base"`` for the slab (``0``), ``"roof"`` for the top floor (``storeys``), the number of a
+        floor between; its ``str`` is the floor's label in the datasets.
+
+    Raises
+    ------
+    ValueError
+        Naming ``key``, the value and the allowed range.
+    """
+    if isinstance(floor, str) and floor in FLOORS:
+        return floor
+    if isinstance(floor, int) and not isinstance(floor, bool) and 0 <= floor <= storeys:
+        return FLOORS[0] if floor == 0 else (FLOORS[1] if floor == storeys else floor)
+    raise ValueError(f"{key} = {floor!r} is out of range; allowed: {', '.join(map(repr, FLOORS))} or an integer, "
+                     f"0 <= floor <= {storeys} (fragility.building.storeys = {storeys})")
 
 
 def check_settings(settings: dict) -> Study:
@@ -394,7 +456,8 @@ def _scene(study: Study, pulse, pga: float, mu_k: float, base: str) -> Scene:
     return Scene.from_physical(a_p=pga, T_p=T_SCALE, M_b=b["M_b"], T_b=0.0 if base == "fixed_base" else b["T_b"],
                                xi_b=b["xi_b"], m_ec=c["mass"], mu_s=mu_k * c["mu_s_over_mu_k"], mu_k=mu_k,
                                beta=c["beta"], gamma=c["gamma"], pulse=pulse, Q_d=b["Q_d"], D_y=b["D_y"],
-                               m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], floor=b["floor"])
+                               m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], storeys=b["storeys"],
+                               floor=check_floor("fragility.building.floor", b["floor"], b["storeys"]))
 
 
 def solve_chunk(study: Study, chunk: int, base: str) -> xr.Dataset:
@@ -778,13 +841,15 @@ def design_attrs(study, base: str) -> dict:
     -------
     dict
         ``T_b`` [s] (0 on a fixed base), ``xi_b`` [1], ``M_b`` [kg], ``m_ec`` [kg], ``Q_d`` [N],
-        ``D_y`` [m], ``m_st`` [kg], ``T_s`` [s], ``xi_s`` [1], ``floor``, ``mu_k_median`` [1],
+        ``D_y`` [m], ``m_st`` [kg], ``T_s`` [s], ``xi_s`` [1], ``storeys`` (floors above the slab),
+        ``floor`` (its label: ``base``, ``roof`` or the floor's number), ``mu_k_median`` [1],
         ``mu_k_log_std`` [1], ``mu_s_over_mu_k`` [1], ``beta_stribeck`` [s/m], ``gamma`` [s/m].
     """
     b, c = study.building, study.contents
     return {"T_b": 0.0 if base == "fixed_base" else float(b["T_b"]), "xi_b": float(b["xi_b"]),
             "M_b": float(b["M_b"]), "m_ec": float(c["mass"]), "Q_d": float(b["Q_d"]), "D_y": float(b["D_y"]),
-            "m_st": float(b["m_st"]), "T_s": float(b["T_s"]), "xi_s": float(b["xi_s"]), "floor": b["floor"],
+            "m_st": float(b["m_st"]), "T_s": float(b["T_s"]), "xi_s": float(b["xi_s"]),
+            "storeys": int(b["storeys"]), "floor": str(check_floor("fragility.building.floor", b["floor"], b["storeys"])),
             "mu_k_median": float(c["mu_k"]["median"]), "mu_k_log_std": float(c["mu_k"]["log_std"]),
             "mu_s_over_mu_k": float(c["mu_s_over_mu_k"]), "beta_stribeck": float(c["beta"]),
             "gamma": float(c["gamma"])}
