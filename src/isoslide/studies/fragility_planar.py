@@ -67,9 +67,10 @@ import numpy as np
 import xarray as xr
 
 from . import fragility as _fit
-from .fragility_study import (REFERENCE_FRAGILITY, T_SCALE, add_curves, add_outputs, base_label, base_stem,
-                              bootstrap_attrs, check_building, check_chunk_size, check_floor, check_level, check_stripes,
-                              chunk_indices, design_attrs, merge_chunks, n_chunks, new_outputs, stem_base)
+from .fragility_study import (REFERENCE_FRAGILITY, T_SCALE, add_curves, add_outputs, add_table_columns, analysis_frame,
+                              base_label, base_stem, bootstrap_attrs, check_building, check_chunk_size, check_floor,
+                              check_level, check_stripes, chunk_indices, design_attrs, merge_chunks, n_chunks,
+                              new_outputs, stem_base)
 from .intensity import align_pair, pair_peaks, pair_sa, peak_abs, planar_floor_peaks
 from ..datasets import global_attrs
 from ..pulses import sampled
@@ -454,9 +455,7 @@ _ANALYSIS_META = {
 
 def _analysis_dataset(study, idx, tab, out, models) -> xr.Dataset:
     g = tab["ground_motion"][idx]
-    ds = xr.Dataset(coords={"analysis": ("analysis", idx.astype(np.int64), {
-        "long_name": "analysis index (floor, ground motion, orientation, stripe, friction sample order)",
-        "units": "1"})})
+    ds = analysis_frame(idx, "floor, ground motion, orientation, stripe, friction sample")
     ds["ground_motion"] = ("analysis", np.array([study.motions[int(r)].name for r in g], dtype=object),
                            {"long_name": "ground motion name"})
     ds["record_suite"] = ("analysis", np.array([study.suites[int(study.suite_index[r])] for r in g], dtype=object),
@@ -467,10 +466,7 @@ def _analysis_dataset(study, idx, tab, out, models) -> xr.Dataset:
                                        "flag_meanings": "not_classified no_pulse pulse"})
     ds["contents_floor"] = ("analysis", np.array([str(study.floors[int(f)]) for f in tab["floor"][idx]], dtype=object),
                             {"long_name": "floor carrying the contents"})
-    for k in ("orientation", "stripe", "friction_sample"):
-        ds[k] = ("analysis", tab[k][idx].astype(np.int32))
-    ds["angle"] = ("analysis", tab["angle"][idx])
-    ds["mu_k"] = ("analysis", tab["mu_k"][idx])
+    add_table_columns(ds, tab, idx, ("orientation", "stripe", "friction_sample"), ("angle", "mu_k"))
     return add_outputs(ds, out, _OUT, _ANALYSIS_META, models)
 
 

@@ -50,9 +50,8 @@ from ..records import G
 from ..scene import FLOORS, MAX_STOREYS, Scene
 from .. import solver
 
-__all__ = ["BASES", "FIT_STATUS", "Study", "analysis_table", "base_of", "check_building", "check_floor",
-           "check_settings", "check_storeys",
-           "chunk_indices", "chunk_job", "dataset_job",
+__all__ = ["BASES", "FIT_STATUS", "Study", "add_table_columns", "analysis_frame", "analysis_table", "base_of",
+           "check_building", "check_floor", "check_settings", "check_storeys", "chunk_indices", "chunk_job", "dataset_job",
            "dataset_name", "dataset_names", "fit_curves", "fragility_dataset", "fragility_settings", "merge_chunks",
            "n_chunks", "scatter_contributions", "solve_all", "solve_analyses", "solve_chunk", "scaled_pulse"]
 
@@ -538,14 +537,44 @@ _ANALYSIS_META = {
 
 def _analysis_dataset(study, idx, tab, out, models) -> xr.Dataset:
     names = np.array([study.records[int(r)].name for r in tab["record"][idx]], dtype=object)
-    ds = xr.Dataset(coords={"analysis": ("analysis", idx.astype(np.int64),
-                                         {"long_name": "analysis index (record, stripe, friction sample order)",
-                                          "units": "1"})})
+    ds = analysis_frame(idx, "record, stripe, friction sample")
     ds["record"] = ("analysis", names, {"long_name": "record name"})
-    for k in ("stripe", "friction_sample"):
-        ds[k] = ("analysis", tab[k][idx].astype(np.int32))
-    ds["mu_k"] = ("analysis", tab["mu_k"][idx])
+    add_table_columns(ds, tab, idx, ("stripe", "friction_sample"), ("mu_k",))
     return add_outputs(ds, out, ("pga", "pgv", "pfa", "pfv", "u_max"), _ANALYSIS_META, models)
+
+
+def analysis_frame(idx: np.ndarray, order: str) -> xr.Dataset:
+    """A dataset over ``analysis`` holding only its coordinate: the global indices of the analyses.
+
+    Parameters
+    ----------
+    idx : numpy.ndarray of int
+        Analysis indices (global, in the order of the study's analysis table).
+    order : str
+        The axes of that table, outermost first, as the coordinate's ``long_name`` names them.
+    """
+    return xr.Dataset(coords={"analysis": ("analysis", idx.astype(np.int64),
+                                           {"long_name": f"analysis index ({order} order)", "units": "1"})})
+
+
+def add_table_columns(ds: xr.Dataset, tab: dict, idx: np.ndarray, ints: tuple, floats: tuple) -> None:
+    """Store the analysis table's columns at the analyses ``idx`` in ``ds`` (in place).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Dataset over ``analysis`` (:func:`analysis_frame` of ``idx``).
+    tab : dict
+        The study's analysis table (flat arrays over every analysis).
+    idx : numpy.ndarray of int
+        The analyses of ``ds``.
+    ints, floats : tuple of str
+        Columns stored as 32-bit indices, then columns stored as they are, in that order.
+    """
+    for k in ints:
+        ds[k] = ("analysis", tab[k][idx].astype(np.int32))
+    for k in floats:
+        ds[k] = ("analysis", tab[k][idx])
 
 
 def add_outputs(ds: xr.Dataset, out: dict, names: tuple, meta: dict, models) -> xr.Dataset:
