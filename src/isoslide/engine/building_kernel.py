@@ -72,8 +72,8 @@ from numba import njit
 from .. import jit_cache
 from ..model.friction import stribeck
 from .modes import candidates
-from .kernel import (ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
-                     _step_factor, hermite_root)
+from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
+                     _step_factor, bracket_step, first_trial, hermite_root)
 from ..pulses import accel_at, jerk_at
 
 Y_X, Y_XD, Y_XS = range(3)
@@ -458,44 +458,20 @@ def locate(kind, sig, bm, im, tau, y, ha, ga, hb, gb, h0, check, P, code, params
     ``max(1, |tau|)``).  ``yout`` receives the state at the root; returns the step length and the
     error estimate of that step (step doubling added when ``check``).
     """
-    lo, glo, hi, ghi = ha, ga, hb, gb
-    side = 0
+    lo, glo, hi, ghi, side = ha, ga, hb, gb, 0
     tol = 1e-13 * max(1.0, abs(tau))
-    h = h0
-    if not (lo < h < hi):
-        h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
-    res = hi
+    h = first_trial(h0, lo, glo, hi, ghi)
     err = 0.0
-    on_res = False
+    state = ROOT_OPEN
     for _it in range(100):
-        if not (lo < h < hi):
-            h = 0.5 * (lo + hi)
         err = rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, yout)
         cnt[0] += 1
         g, dg = _event(kind, sig, bm, im, tau + h, yout, P, code, params, work)
-        if g == 0.0:
-            res, on_res = h, True
+        state, h, lo, glo, hi, ghi, side = bracket_step(h, g, dg, lo, glo, hi, ghi, side, tol)
+        if state != ROOT_OPEN:
             break
-        if (g > 0.0) == (glo > 0.0):
-            lo, glo = h, g
-            if side == -1:
-                ghi *= 0.5
-            side = -1
-        else:
-            hi, ghi = h, g
-            if side == 1:
-                glo *= 0.5
-            side = 1
-        if not math.isnan(dg) and dg != 0.0 and abs(g / dg) <= tol:
-            res, on_res = h, True
-            break
-        res = hi
-        if hi - lo <= tol:
-            break
-        if not math.isnan(dg) and dg != 0.0 and lo < h - g / dg < hi:
-            h = h - g / dg
-        else:
-            h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    on_res = state == ROOT_AT_TRIAL
+    res = h if on_res else hi
     if not on_res:
         err = rk_step(bm, im, tau, y, res, P, code, params, atol, rtol, K, yout)
         cnt[0] += 1

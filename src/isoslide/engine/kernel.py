@@ -412,6 +412,82 @@ def _hermite_max(g0, d0, g1, d1, h):
     return best
 
 
+ROOT_OPEN = 0
+"""Bracket state of :func:`bracket_step`: no root yet, go on from the next trial."""
+ROOT_AT_TRIAL = 1
+"""Bracket state of :func:`bracket_step`: the trial itself is the root."""
+ROOT_SHUT = 2
+"""Bracket state of :func:`bracket_step`: the bracket is narrower than the tolerance, the root is its upper end."""
+
+
+@njit(cache=True, inline="always")
+def _regula_falsi(lo, glo, hi, ghi):
+    """Secant point of the bracket ``(lo, hi)`` through ``(lo, glo)`` and ``(hi, ghi)``; its midpoint if ``glo == ghi``."""
+    return lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+
+
+@njit(cache=True, inline="always")
+def first_trial(h0, lo, glo, hi, ghi):
+    """First trial step length of the root search on the bracket ``(lo, hi)`` (same units as ``h0``).
+
+    The guess ``h0`` when it lies strictly inside the bracket, else the secant point of the bracket,
+    else (the secant point rounded onto an end) the midpoint.
+    """
+    h = h0 if lo < h0 < hi else _regula_falsi(lo, glo, hi, ghi)
+    return h if lo < h < hi else 0.5 * (lo + hi)
+
+
+@njit(cache=True, inline="always")
+def bracket_step(h, g, dg, lo, glo, hi, ghi, side, tol):
+    """One step of safeguarded Newton / Illinois regula falsi on a bracket of a sign change.
+
+    Parameters
+    ----------
+    h : float
+        The trial step length just evaluated (same units as ``lo``, ``hi``, ``tol``).
+    g, dg : float
+        The event function at the trial and its derivative with respect to ``h`` (NaN: not given).
+    lo, glo, hi, ghi : float
+        The bracket ``(lo, hi)`` and the event function at its ends (of opposite sign).
+    side : int
+        Which end the previous step moved (-1 lower, +1 upper, 0 none): a second move of the same
+        end halves the value kept at the other (Illinois).
+    tol : float
+        Absolute tolerance on the step length.
+
+    Returns
+    -------
+    tuple
+        ``(state, h, lo, glo, hi, ghi, side)``: ``state`` is :data:`ROOT_AT_TRIAL` (``g == 0`` or
+        the Newton correction ``|g / dg|`` is within ``tol``), :data:`ROOT_SHUT` (the bracket is
+        narrower than ``tol``: the root is ``hi``) or :data:`ROOT_OPEN`; ``h`` is then the next
+        trial: the Newton step where it stays strictly inside the bracket, else the secant point,
+        else the midpoint.
+    """
+    if g == 0.0:
+        return ROOT_AT_TRIAL, h, lo, glo, hi, ghi, side
+    if (g > 0.0) == (glo > 0.0):
+        lo, glo = h, g
+        if side == -1:
+            ghi *= 0.5
+        side = -1
+    else:
+        hi, ghi = h, g
+        if side == 1:
+            glo *= 0.5
+        side = 1
+    newton = not math.isnan(dg) and dg != 0.0
+    if newton and abs(g / dg) <= tol:
+        return ROOT_AT_TRIAL, h, lo, glo, hi, ghi, side
+    if hi - lo <= tol:
+        return ROOT_SHUT, hi, lo, glo, hi, ghi, side
+    if newton and lo < h - g / dg < hi:
+        h = h - g / dg
+    else:
+        h = _regula_falsi(lo, glo, hi, ghi)
+    return ROOT_OPEN, (h if lo < h < hi else 0.5 * (lo + hi)), lo, glo, hi, ghi, side
+
+
 @njit(cache=True)
 def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, h0, check, m, code, params, atol, rtol,
            K, yout, work, cnt):
@@ -427,46 +503,20 @@ def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, h0, check, m, code, para
     that step (step doubling added when ``check``).  Every step taken is
     counted in ``cnt[kind]``.
     """
-    lo, glo, hi, ghi = ha, ga, hb, gb
-    side = 0
+    lo, glo, hi, ghi, side = ha, ga, hb, gb, 0
     tol = 1e-13 * max(1.0, abs(tau))
-    h = h0
-    if not (lo < h < hi):
-        h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
-    res = hi
+    h = first_trial(h0, lo, glo, hi, ghi)
     err = 0.0
-    on_res = False
+    state = ROOT_OPEN
     for _it in range(100):
-        if not (lo < h < hi):
-            h = 0.5 * (lo + hi)
         err = rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, yout)
         cnt[kind] += 1
         g, dg = _event_value(kind, sig, stick, s, tau + h, yout, m, code, params, work)
-        if g == 0.0:
-            res, on_res = h, True
+        state, h, lo, glo, hi, ghi, side = bracket_step(h, g, dg, lo, glo, hi, ghi, side, tol)
+        if state != ROOT_OPEN:
             break
-        if (g > 0.0) == (glo > 0.0):
-            lo, glo = h, g
-            if side == -1:
-                ghi *= 0.5
-            side = -1
-        else:
-            hi, ghi = h, g
-            if side == 1:
-                glo *= 0.5
-            side = 1
-        if not math.isnan(dg) and dg != 0.0:
-            dh = g / dg
-            if abs(dh) <= tol:
-                res, on_res = h, True  # converged: the root is h to ~1e-13
-                break
-        res = hi
-        if hi - lo <= tol:
-            break
-        if not math.isnan(dg) and dg != 0.0 and lo < h - g / dg < hi:
-            h = h - g / dg
-        else:
-            h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    on_res = state == ROOT_AT_TRIAL
+    res = h if on_res else hi
     if not on_res:
         err = rk_step(stick, s, tau, y, res, m, code, params, atol, rtol, K, yout)
         cnt[kind] += 1

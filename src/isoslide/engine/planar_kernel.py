@@ -67,7 +67,8 @@ from ..pulses import accel_at, jerk_at
 from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness,
                               _storey_force, friction, normal)
-from .kernel import ATOL_SLIDE, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step, _step_factor, hermite_root
+from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
+                     _step_factor, bracket_step, first_trial, hermite_root)
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
@@ -644,44 +645,20 @@ def locate(kind, md, tau, y, ha, ga, hb, gb, h0, check, P, ex, atol, rtol, K, yo
     ``max(1, |tau|)``).  ``yout`` receives the state at the root; returns the step length and the
     error estimate of that step (step doubling added when ``check``).
     """
-    lo, glo, hi, ghi = ha, ga, hb, gb
-    side = 0
+    lo, glo, hi, ghi, side = ha, ga, hb, gb, 0
     tol = 1e-13 * max(1.0, abs(tau))
-    h = h0
-    if not (lo < h < hi):
-        h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
-    res = hi
+    h = first_trial(h0, lo, glo, hi, ghi)
     err = 0.0
-    on_res = False
+    state = ROOT_OPEN
     for _it in range(100):
-        if not (lo < h < hi):
-            h = 0.5 * (lo + hi)
         err = rk_step(md, tau, y, h, P, ex, atol, rtol, K, yout)
         cnt[0] += 1
         g, dg = _event(kind, md, tau + h, yout, P, ex, work)
-        if g == 0.0:
-            res, on_res = h, True
+        state, h, lo, glo, hi, ghi, side = bracket_step(h, g, dg, lo, glo, hi, ghi, side, tol)
+        if state != ROOT_OPEN:
             break
-        if (g > 0.0) == (glo > 0.0):
-            lo, glo = h, g
-            if side == -1:
-                ghi *= 0.5
-            side = -1
-        else:
-            hi, ghi = h, g
-            if side == 1:
-                glo *= 0.5
-            side = 1
-        if not math.isnan(dg) and dg != 0.0 and abs(g / dg) <= tol:
-            res, on_res = h, True
-            break
-        res = hi
-        if hi - lo <= tol:
-            break
-        if not math.isnan(dg) and dg != 0.0 and lo < h - g / dg < hi:
-            h = h - g / dg
-        else:
-            h = lo - glo * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+    on_res = state == ROOT_AT_TRIAL
+    res = h if on_res else hi
     if not on_res:
         err = rk_step(md, tau, y, res, P, ex, atol, rtol, K, yout)
         cnt[0] += 1
