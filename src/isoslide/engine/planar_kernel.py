@@ -1018,11 +1018,8 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             steps += 1
             tau += h
             _copy(y, y1)
-            umax, tpeak, angle = _at_rest(finished, md, tau, y, umax, tpeak, angle)
-            if finished == 0:
-                events += 1
-            else:
-                iso_events += 1
+            umax, tpeak, angle, events, iso_events = _at_rest(finished, md, tau, y, umax, tpeak, angle, events,
+                                                              iso_events)
             bm0, im0 = md[M_BM], md[M_IM]
             _select(md, md[M_BM] == 0.0, bearing and md[M_IM] == 0.0, tau, y, P, ex, work)
             if md[M_BM] != bm0:
@@ -1118,11 +1115,8 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                 which = 0 if best == EV_STOP else 1
                 if hbest == 0.0 and (just_b if which == 0 else just_i):
                     hold = True
-                umax, tpeak, angle = _at_rest(which, md, tau, y, umax, tpeak, angle)
-                if which == 0:
-                    events += 1
-                else:
-                    iso_events += 1
+                umax, tpeak, angle, events, iso_events = _at_rest(which, md, tau, y, umax, tpeak, angle, events,
+                                                                  iso_events)
             bm0, im0 = md[M_BM], md[M_IM]
             if best == EV_DEMAND:
                 # a breakaway keeps every force continuous: the other interface's mode stands
@@ -1201,11 +1195,12 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
 
 
 @njit(cache=True)
-def _at_rest(which, md, tau, y, umax, tpeak, angle):
+def _at_rest(which, md, tau, y, umax, tpeak, angle, events, iso_events):
     """A slide of the block (``which = 0``) or of a sliding bearing (1) ends at ``(tau, y)``.
 
-    Its velocity is zeroed and its mode set to rest; returns the peak of ``|u|`` ``(umax, tpeak,
-    angle)`` with the stop's ``|u|`` taken in.
+    Its velocity is zeroed and its mode set to rest, one event of that interface; returns the peak
+    of ``|u|`` ``(umax, tpeak, angle)`` with the stop's ``|u|`` taken in and the event counts
+    ``(events, iso_events)`` of the block and the bearing.
     """
     U = y.shape[0] - 4
     if which == 0:
@@ -1214,13 +1209,13 @@ def _at_rest(which, md, tau, y, umax, tpeak, angle):
         md[M_BM] = 0.0
         um = math.sqrt(y[U] ** 2 + y[U + 1] ** 2)
         if um > umax:
-            return um, tau, math.atan2(y[U + 1], y[U])
-        return umax, tpeak, angle
+            return um, tau, math.atan2(y[U + 1], y[U]), events + 1, iso_events
+        return umax, tpeak, angle, events + 1, iso_events
     nb = U // 2
     y[1] = 0.0
     y[nb + 1] = 0.0
     md[M_IM] = 0.0
-    return umax, tpeak, angle
+    return umax, tpeak, angle, events, iso_events + 1
 
 
 @njit(cache=True)
