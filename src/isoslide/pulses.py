@@ -117,6 +117,31 @@ def _sampled_segment(params, tau):
     return k
 
 
+@njit(cache=True, inline="always")
+def _mp_phases(params, tau):
+    """Support and phases of the Mavroeidis-Papageorgiou pulse at ``tau`` (units of T_p).
+
+    Parameters
+    ----------
+    params : ndarray of float64
+        ``(gamma, nu, 1 / peak)`` of :func:`mavroeidis_papageorgiou`, :attr:`Pulse.param_array`.
+    tau : float
+        Dimensionless time ``t / T_p``.
+
+    Returns
+    -------
+    tuple
+        ``(inside, gamma, a, x)``: whether ``tau`` lies in the support ``[-gamma/2, gamma/2)``, the
+        envelope's length ``gamma`` (units of T_p), its angular frequency ``a = 2 pi / gamma`` (rad
+        per T_p) and the harmonic's phase ``x = 2 pi tau + nu`` (rad); ``a`` and ``x`` are 0 outside.
+    """
+    gamma = params[0]
+    half = 0.5 * gamma
+    if tau < -half or tau >= half:
+        return False, gamma, 0.0, 0.0
+    return True, gamma, _TWO_PI / gamma, _TWO_PI * tau + params[1]
+
+
 @njit(cache=True)
 def accel_at(code, params, tau):
     """Dimensionless ground acceleration ``p(tau) = a_g / a_p`` (scalar, compiled).
@@ -162,12 +187,9 @@ def accel_at(code, params, tau):
             return math.cos(_TWO_PI * tau + params[0])
         return 0.0
     if code == MAVROEIDIS_PAPAGEORGIOU:
-        gamma = params[0]
-        half = 0.5 * gamma
-        if tau < -half or tau >= half:
+        inside, gamma, a, x = _mp_phases(params, tau)
+        if not inside:
             return 0.0
-        a = _TWO_PI / gamma
-        x = _TWO_PI * tau + params[1]
         return -params[2] * (math.sin(a * tau) * math.cos(x) / gamma
                              + (1.0 + math.cos(a * tau)) * math.sin(x))
     if code == SAMPLED:
@@ -210,12 +232,9 @@ def jerk_at(code, params, tau):
             return -_TWO_PI * math.sin(_TWO_PI * tau + params[0])
         return 0.0
     if code == MAVROEIDIS_PAPAGEORGIOU:
-        gamma = params[0]
-        half = 0.5 * gamma
-        if tau < -half or tau >= half:
+        inside, gamma, a, x = _mp_phases(params, tau)
+        if not inside:
             return 0.0
-        a = _TWO_PI / gamma
-        x = _TWO_PI * tau + params[1]
         sa = math.sin(a * tau)
         ca = math.cos(a * tau)
         return -params[2] * ((a / gamma * ca + _TWO_PI * (1.0 + ca)) * math.cos(x)
