@@ -72,8 +72,8 @@ from numba import njit
 from .. import jit_cache
 from ..model.friction import stribeck
 from .modes import candidates
-from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
-                     _step_factor, bracket_step, first_trial, hermite_root)
+from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, NS, _error_norm, _error_terms, _hermite_max,
+                     _left_limit, _next_step, _step_factor, bracket_step, first_trial, hermite_root)
 from ..pulses import accel_at, jerk_at
 
 Y_X, Y_XD, Y_XS = range(3)
@@ -418,17 +418,10 @@ def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
     e3 = 0.0
     for i in range(ny):
         sc = _error_scale(i, ny, y[i], ynew[i], atol, rtol)
-        a5 = 0.0
-        a3 = 0.0
-        for j in range(NS + 1):
-            a5 += E5[j] * K[j, i]
-            a3 += E3[j] * K[j, i]
+        a5, a3 = _error_terms(K, i)
         e5 += (a5 / sc) ** 2
         e3 += (a3 / sc) ** 2
-    den = e5 + 0.01 * e3
-    if den == 0.0:
-        return 0.0
-    return abs(h) * e5 / math.sqrt(den * 4.0)
+    return _error_norm(e5, e3, h)
 
 
 @njit(cache=True)

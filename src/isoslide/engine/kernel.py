@@ -162,6 +162,30 @@ def _restart_step(short, h_restart, hlast):
 
 
 @njit(cache=True, inline="always")
+def _error_terms(K, i):
+    """DOP853's two error estimates of component ``i`` of a step, before scaling and the step length.
+
+    Returns ``(a5, a3)``: the sums over the stages ``j`` of ``E5[j] K[j, i]`` and ``E3[j] K[j, i]``
+    (``K`` the stage rates, the last row at the step's end).
+    """
+    a5 = 0.0
+    a3 = 0.0
+    for j in range(NS + 1):
+        a5 += E5[j] * K[j, i]
+        a3 += E3[j] * K[j, i]
+    return a5, a3
+
+
+@njit(cache=True, inline="always")
+def _error_norm(e5, e3, h):
+    """DOP853's error norm of a step of length ``h`` from the sums ``e5``, ``e3`` of the squared scaled estimates."""
+    den = e5 + 0.01 * e3
+    if den == 0.0:  # both estimates underflowed: the step is exact to round-off
+        return 0.0
+    return abs(h) * e5 / math.sqrt(den * 4.0)
+
+
+@njit(cache=True, inline="always")
 def _slip_direction(demand):
     """Sliding direction ``s = -sign(a_req)`` of a block the demand ``a_req`` sets sliding."""
     return -1.0 if demand > 0.0 else 1.0
@@ -352,19 +376,10 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
     e3 = 0.0
     for i in range(4):
         sc = _error_scale(i, y[i], ynew[i], atol, rtol)
-        a5 = 0.0
-        a3 = 0.0
-        for j in range(NS + 1):
-            a5 += E5[j] * K[j, i]
-            a3 += E3[j] * K[j, i]
+        a5, a3 = _error_terms(K, i)
         e5 += (a5 / sc) ** 2
         e3 += (a3 / sc) ** 2
-    if e5 == 0.0 and e3 == 0.0:
-        return 0.0
-    den = e5 + 0.01 * e3
-    if den == 0.0:  # both estimates underflowed: the step is exact to round-off
-        return 0.0
-    return abs(h) * e5 / math.sqrt(den * 4.0)
+    return _error_norm(e5, e3, h)
 
 
 @njit(cache=True)

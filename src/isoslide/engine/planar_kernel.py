@@ -67,8 +67,8 @@ from ..pulses import accel_at, jerk_at
 from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness,
                               _storey_force, friction, normal)
-from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_step,
-                     _step_factor, bracket_step, first_trial, hermite_root)
+from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, NS, _error_norm, _error_terms, _hermite_max,
+                     _left_limit, _next_step, _step_factor, bracket_step, first_trial, hermite_root)
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
@@ -524,17 +524,10 @@ def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
     e3 = 0.0
     for i in range(ny):
         sc = _error_scale(i, U, y[i], ynew[i], atol, rtol)
-        a5 = 0.0
-        a3 = 0.0
-        for j in range(NS + 1):
-            a5 += E5[j] * K[j, i]
-            a3 += E3[j] * K[j, i]
+        a5, a3 = _error_terms(K, i)
         e5 += (a5 / sc) ** 2
         e3 += (a3 / sc) ** 2
-    den = e5 + 0.01 * e3
-    if den == 0.0:
-        return 0.0
-    return abs(h) * e5 / math.sqrt(den * 4.0)
+    return _error_norm(e5, e3, h)
 
 
 @njit(cache=True)
