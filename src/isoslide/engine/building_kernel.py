@@ -73,7 +73,8 @@ from .. import jit_cache
 from ..model.friction import stribeck
 from .modes import candidates
 from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, NS, _error_norm, _error_terms, _hermite_max,
-                     _left_limit, _next_step, _step_factor, bracket_step, first_trial, hermite_root)
+                     _left_limit, _next_breakpoint, _next_step, _step_factor, _step_target, bracket_step, first_trial,
+                     hermite_root)
 from ..pulses import accel_at, jerk_at
 
 Y_X, Y_XD, Y_XS = range(3)
@@ -787,7 +788,6 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     h = h_restart
     hlast = h_restart
     ib = 0
-    nb = breakpoints.shape[0]
     nh = _record(hist, 0, hist_cap, tau, y, bm, im, P, code, params)
     zone = 0.0
     if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < thr:
@@ -821,13 +821,10 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         if tau >= tau_stop or steps + cnt[0] > max_steps:
             break
         # --- step length ---------------------------------------------------------
-        while ib < nb and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
-            ib += 1
+        ib = _next_breakpoint(breakpoints, ib, tau)
         hmax = h_max_pulse if tau < tau_end else h_max_free
         h = min(h, hmax)
-        target = tau_stop
-        if ib < nb and breakpoints[ib] < target:
-            target = breakpoints[ib]
+        target = _step_target(breakpoints, ib, tau_stop)
         hit_target = False
         if tau + h >= target:
             h = target - tau

@@ -186,6 +186,22 @@ def _error_norm(e5, e3, h):
 
 
 @njit(cache=True, inline="always")
+def _next_breakpoint(breakpoints, ib, tau):
+    """Index of the first of ``breakpoints`` (from ``ib`` on) after ``tau``; one within 1e-14 relative of ``tau`` is passed."""
+    while ib < breakpoints.shape[0] and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
+        ib += 1
+    return ib
+
+
+@njit(cache=True, inline="always")
+def _step_target(breakpoints, ib, tau_stop):
+    """Where the next step ends at the latest: the breakpoint ``ib``, or ``tau_stop`` when it comes first or none is left."""
+    if ib < breakpoints.shape[0] and breakpoints[ib] < tau_stop:
+        return breakpoints[ib]
+    return tau_stop
+
+
+@njit(cache=True, inline="always")
 def _slip_direction(demand):
     """Sliding direction ``s = -sign(a_req)`` of a block the demand ``a_req`` sets sliding."""
     return -1.0 if demand > 0.0 else 1.0
@@ -808,7 +824,6 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     h = h_restart
     hlast = h_restart
     ib = 0
-    nb = breakpoints.shape[0]
     nh = _record(hist, 0, hist_cap, tau, y, 0.0)
     hs = 0.0
     herr = 0.0
@@ -829,13 +844,10 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 amax = max(amax, _demand_bound(y, m))
             break
         # --- step length -----------------------------------------------------
-        while ib < nb and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
-            ib += 1
+        ib = _next_breakpoint(breakpoints, ib, tau)
         hmax = h_max_pulse if tau < tau_end else h_max_free
         h = min(h, hmax)
-        target = tau_stop
-        if ib < nb and breakpoints[ib] < target:
-            target = breakpoints[ib]
+        target = _step_target(breakpoints, ib, tau_stop)
         if stick and fixed:
             h = hmax
         hit_target = False

@@ -68,7 +68,8 @@ from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness,
                               _storey_force, friction, normal)
 from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, NS, _error_norm, _error_terms, _hermite_max,
-                     _left_limit, _next_step, _step_factor, bracket_step, first_trial, hermite_root)
+                     _left_limit, _next_breakpoint, _next_step, _step_factor, _step_target, bracket_step, first_trial,
+                     hermite_root)
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
@@ -956,7 +957,6 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     hold = False
     h = h_restart
     ib = 0
-    nbk = breakpoints.shape[0]
     nh = _record(hist, 0, hist_cap, tau, y, md)
     zone = 0.0
     if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < P[P_THR]:
@@ -985,8 +985,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         if stop_on_stick and slipped and md[M_BM] == 0.0 and (not bearing or md[M_IM] == 0.0):
             break
         # --- step length ---------------------------------------------------------------
-        while ib < nbk and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
-            ib += 1
+        ib = _next_breakpoint(breakpoints, ib, tau)
         hmax = h_max_pulse if tau < tau_end else h_max_free
         h = min(h, hmax)
         finished = -1
@@ -1024,9 +1023,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             h = h_restart
             nh = _record(hist, nh, hist_cap, tau, y, md)
             continue
-        target = tau_stop
-        if ib < nbk and breakpoints[ib] < target:
-            target = breakpoints[ib]
+        target = _step_target(breakpoints, ib, tau_stop)
         hit_target = False
         if tau + h >= target:
             h = target - tau
