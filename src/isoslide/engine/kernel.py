@@ -217,54 +217,6 @@ def _break_away(demand, events):
 
 
 @njit(cache=True, inline="always")
-def _stuck_checks(ar, after, y, m, thr, fixed, settle, track_max, amax, s, just_started, slipped, events, settled):
-    """Mode checks of the stuck block at the current point: break-away, settlement, the demand's peak.
-
-    Parameters
-    ----------
-    ar : float
-        Stuck demand ``a_req`` at the point (units of ``a_p``).
-    after : bool
-        Whether the point is at or after the end of the pulse.
-    y : ndarray, shape (4,)
-        State at the point; ``m`` the model array (for :func:`_demand_bound`).
-    thr : float
-        Breakaway threshold (units of ``a_p``).
-    fixed, settle, track_max : bool
-        Fixed base; stop once settled; follow the peak stuck demand instead of breaking away.
-    amax : float
-        Largest ``|a_req|`` so far (units of ``a_p``).
-    s, just_started, slipped, events, settled
-        The block's sliding direction and flags and the event count, as the kernel keeps them.
-
-    Returns
-    -------
-    tuple
-        ``(stop, stick, s, just_started, slipped, events, amax, settled)`` updated: the block breaks
-        away when ``|a_req| > thr`` (not with ``track_max``); after the pulse it has settled when the
-        base is fixed or the bound of the free demand stays within ``thr`` (within ``amax`` with
-        ``track_max``, which always stops); ``stop`` says the run ends here.
-    """
-    if track_max and abs(ar) > amax:
-        amax = abs(ar)
-    if abs(ar) > thr and not track_max:
-        stick, s, just_started, slipped, events = _break_away(ar, events)
-        return False, stick, s, just_started, slipped, events, amax, settled
-    if after:
-        if fixed:
-            settled = True
-            if settle:
-                return True, True, s, just_started, slipped, events, amax, settled
-        bound = _demand_bound(y, m)
-        if track_max:
-            if bound <= amax:
-                return True, True, s, just_started, slipped, events, amax, True
-        elif bound <= thr:
-            return settle, True, s, just_started, slipped, events, amax, True
-    return False, True, s, just_started, slipped, events, amax, settled
-
-
-@njit(cache=True, inline="always")
 def _update_peak(u, tau, umax, tpeak, upeak):
     """Largest ``|u|`` so far, its time and ``u`` there: ``(umax, tpeak, upeak)`` updated with ``u`` at ``tau``."""
     if abs(u) > umax:
@@ -834,11 +786,25 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     while True:
         # --- mode checks at the current (accepted) point -------------------
         if stick:
-            stop, stick, s, just_started, slipped, events, amax, settled = _stuck_checks(
-                a_req(tau, y, m, code, params), tau >= tau_end, y, m, thr, fixed, settle, track_max, amax, s,
-                just_started, slipped, events, settled)
-            if stop:
-                break
+            ar = a_req(tau, y, m, code, params)
+            if track_max and abs(ar) > amax:
+                amax = abs(ar)
+            if abs(ar) > thr and not track_max:
+                stick, s, just_started, slipped, events = _break_away(ar, events)
+            elif tau >= tau_end:
+                if fixed:
+                    settled = True
+                    if settle:
+                        break
+                bound = _demand_bound(y, m)
+                if track_max:
+                    if bound <= amax:
+                        settled = True
+                        break
+                elif bound <= thr:
+                    settled = True
+                    if settle:
+                        break
         if tau >= tau_stop or steps > max_steps:
             if track_max and stick and not fixed:
                 amax = max(amax, _demand_bound(y, m))
