@@ -31,7 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import gammaln, log_ndtr, ndtr, ndtri
 
-__all__ = ["BootstrapInterval", "LognormalFit", "bootstrap", "fit_lognormal", "probability"]
+__all__ = ["BootstrapInterval", "LognormalFit", "bootstrap", "draw_groups", "fit_lognormal", "fit_weighted",
+           "probability", "times_drawn"]
 
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
 _MAX_NEWTON = 200
@@ -208,21 +209,32 @@ def _check_identifiable(x: np.ndarray, z: np.ndarray, n: np.ndarray) -> None:
 # the probit likelihood, its gradient and Hessian
 # ----------------------------------------------------------------------------------------------
 
+def _log_terms(z, m, lp, lm):
+    """``z ln Phi(eta) + m ln Phi(-eta)`` per entry from ``lp = ln Phi(eta)``, ``lm = ln Phi(-eta)``; zero counts add 0."""
+    return np.where(z > 0, z * lp, 0.0) + np.where(m > 0, m * lm, 0.0)
+
+
 def _loglik_terms(eta: np.ndarray, z: np.ndarray, n: np.ndarray) -> float:
     """``sum z ln Phi(eta) + (n - z) ln Phi(-eta)`` (no binomial coefficients); zero counts add 0."""
-    m = n - z
-    return float(np.sum(np.where(z > 0, z * log_ndtr(eta), 0.0) + np.where(m > 0, m * log_ndtr(-eta), 0.0)))
+    return float(np.sum(_log_terms(z, n - z, log_ndtr(eta), log_ndtr(-eta))))
+
+
+def _slopes(eta, z, m, lp, lm):
+    """First derivative and minus the second derivative of the log-likelihood terms w.r.t. ``eta``.
+
+    ``z``, ``m``: exceedances and survivals; ``lp``, ``lm``: ``ln Phi(eta)``, ``ln Phi(-eta)``.
+    """
+    log_pdf = -0.5 * eta * eta - _LOG_SQRT_2PI
+    r1 = np.exp(log_pdf - lp)     # phi / Phi(eta)
+    r0 = np.exp(log_pdf - lm)     # phi / Phi(-eta)
+    d1 = z * r1 - m * r0
+    w = z * r1 * (eta + r1) + m * r0 * (r0 - eta)   # >= 0: the log-likelihood is concave in eta
+    return d1, w
 
 
 def _derivatives(eta: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """First derivative and minus the second derivative of the log-likelihood terms w.r.t. ``eta``."""
-    log_pdf = -0.5 * eta * eta - _LOG_SQRT_2PI
-    r1 = np.exp(log_pdf - log_ndtr(eta))     # phi / Phi(eta)
-    r0 = np.exp(log_pdf - log_ndtr(-eta))    # phi / Phi(-eta)
-    m = n - z
-    d1 = z * r1 - m * r0
-    w = z * r1 * (eta + r1) + m * r0 * (r0 - eta)   # >= 0: the log-likelihood is concave in eta
-    return d1, w
+    return _slopes(eta, z, n - z, log_ndtr(eta), log_ndtr(-eta))
 
 
 def _start(t: np.ndarray, z: np.ndarray, n: np.ndarray) -> np.ndarray:
@@ -271,6 +283,284 @@ def _newton(t: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, fl
             return p, f
     raise RuntimeError(f"fit_lognormal: Newton's method did not converge in {_MAX_NEWTON} iterations "
                        f"(last step {scale * step}, parameters {p})")
+
+
+# ----------------------------------------------------------------------------------------------
+# many fits at once (the bootstrap): one Newton iteration over every fit still running
+# ----------------------------------------------------------------------------------------------
+
+FITTED, UNIDENTIFIED, NOT_CONVERGED = 0, 1, 2
+"""Outcomes of :func:`fit_weighted`: a curve; what :func:`fit_lognormal` rejects with ValueError
+(no curve identified, a decreasing fraction, a singular Newton system); its RuntimeError."""
+_UNSTABLE = 3   # an outcome that hinges on round-off: the fit is redone one by one
+
+_NEAR_SINGULAR = 1e-8
+"""A Newton system whose determinant is below this fraction of the product of its diagonal terms
+is near singular (the weights of all but one IM level underflow): whether it turns exactly
+singular, and :func:`fit_lognormal` fails, hinges on round-off."""
+
+_FLAT = 1e-8
+"""A maximum-likelihood slope ``b`` (of the standardised ``ln x``) below this in magnitude is a flat
+fraction exceeded: its sign, and whether :func:`fit_lognormal` fits a curve, hinges on round-off."""
+
+_BATCH_ENTRIES = 1 << 20   # fits of one pass of fit_weighted: at most this many (fit, entry) pairs
+
+
+def _low(x: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    return np.where(mask, x, np.inf).min(axis=-1)
+
+
+def _high(x: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    return np.where(mask, x, -np.inf).max(axis=-1)
+
+
+def _identifiable(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray) -> np.ndarray:
+    """Per fit, whether :func:`_check_identifiable` accepts the entries repeated ``w`` times.
+
+    Two distinct IM levels, some but not all analyses exceeded, outcomes that overlap in the IM in
+    the increasing direction (neither separated nor reversed).
+    """
+    on = w > 0
+    hits, total = (w * z).sum(axis=-1), (w * n).sum(axis=-1)
+    survived, hit = on & (n - z > 0), on & (z > 0)
+    return ((_high(x, on) > _low(x, on)) & (hits > 0) & (hits < total)
+            & (_high(x, survived) > _low(x, hit)) & (_high(x, hit) > _low(x, survived)))
+
+
+def _standardised(x: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(t, centre, spread)``: ``ln x`` standardised with the mean and deviation over the entries repeated ``w`` times."""
+    lx = np.log(x)
+    total = w.sum(axis=-1, keepdims=True)
+    centre = (w * lx).sum(axis=-1, keepdims=True) / total
+    spread = np.sqrt((w * (lx - centre) ** 2).sum(axis=-1, keepdims=True) / total)
+    return (lx - centre) / spread, centre[:, 0], spread[:, 0]
+
+
+def _starts(t: np.ndarray, z: np.ndarray, m: np.ndarray) -> np.ndarray:
+    """:func:`_start` of every fit, shape ``(fits, 2)``: ``z``, ``m`` exceedances and survivals (weighted)."""
+    n = z + m
+    total = n.sum(axis=-1)
+    pbar = z.sum(axis=-1) / total
+    tm = (n * t).sum(axis=-1) / total
+    dt = t - tm[:, None]
+    var = (n * dt * dt).sum(axis=-1) / total
+    c1 = (dt * (z - n * pbar[:, None])).sum(axis=-1) / total / var
+    a0 = ndtri(np.clip(pbar, 1e-6, 1.0 - 1e-6))
+    dens = np.exp(-0.5 * a0 * a0) / math.sqrt(2.0 * math.pi)
+    b0 = np.clip(c1 / dens, 0.05, 20.0)
+    return np.stack([a0 - b0 * tm, b0], axis=-1)
+
+
+class _Running:
+    """The fits still iterating: their data, parameters, log-likelihood and ``ln Phi(+-eta)``."""
+
+    def __init__(self, t, z, m, p):
+        self.index = np.arange(t.shape[0])
+        self.t, self.z, self.m, self.p = t, z, m, p
+        self.f, self.lp, self.lm = self.evaluate(p, slice(None))
+
+    def evaluate(self, p: np.ndarray, rows) -> tuple:
+        """Log-likelihood terms, ``ln Phi(eta)`` and ``ln Phi(-eta)`` at parameters ``p`` of the fits ``rows``."""
+        eta = p[:, :1] + p[:, 1:] * self.t[rows]
+        lp, lm = log_ndtr(eta), log_ndtr(-eta)
+        return _log_terms(self.z[rows], self.m[rows], lp, lm).sum(axis=-1), lp, lm
+
+    def keep(self, rows: np.ndarray) -> None:
+        """Go on with the fits ``rows`` only."""
+        for name in ("index", "t", "z", "m", "p", "f", "lp", "lm"):
+            setattr(self, name, getattr(self, name)[rows])
+
+
+def _newton_steps(r: _Running) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The Newton step of every running fit (closed-form 2x2 solve), its predicted gain and relative determinant.
+
+    The relative determinant is ``det H / (H_aa H_bb)``, 1 minus the squared correlation of ``t``
+    under the Hessian's weights: 0 for a singular system.
+    """
+    eta = r.p[:, :1] + r.p[:, 1:] * r.t
+    d1, w = _slopes(eta, r.z, r.m, r.lp, r.lm)
+    g0, g1 = d1.sum(axis=-1), (d1 * r.t).sum(axis=-1)
+    wt = w * r.t
+    h00, h01, h11 = w.sum(axis=-1), wt.sum(axis=-1), (wt * r.t).sum(axis=-1)
+    det = h00 * h11 - h01 * h01
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        step = np.stack([(h11 * g0 - h01 * g1) / det, (h00 * g1 - h01 * g0) / det], axis=-1)
+        return step, g0 * step[:, 0] + g1 * step[:, 1], det / (h00 * h11)
+
+
+def _line_search(r: _Running, step: np.ndarray) -> tuple:
+    """Step halving of :func:`_newton` for every running fit: ``(scale, q, f, lp, lm)`` accepted."""
+    scale = np.ones(step.shape[0])
+    q = r.p + step
+    f, lp, lm = r.evaluate(q, slice(None))
+    short = ~((f >= r.f - 1e-12 * np.abs(r.f)) | (scale < 1e-10))
+    while short.any():
+        rows = np.flatnonzero(short)
+        scale[rows] *= 0.5
+        q[rows] = r.p[rows] + scale[rows, None] * step[rows]
+        f[rows], lp[rows], lm[rows] = r.evaluate(q[rows], rows)
+        short[rows] = ~((f[rows] >= r.f[rows] - 1e-12 * np.abs(r.f[rows])) | (scale[rows] < 1e-10))
+    return scale, q, f, lp, lm
+
+
+def _newton_many(t: np.ndarray, z: np.ndarray, m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_newton` of every fit at once, with its own convergence tests and step halving.
+
+    Parameters
+    ----------
+    t : numpy.ndarray, shape (fits, k)
+        Standardised ``ln`` IM.
+    z, m : numpy.ndarray, shape (fits, k)
+        Exceedances and survivals (weighted counts).
+
+    Returns
+    -------
+    p : numpy.ndarray, shape (fits, 2)
+        The maximisers ``(a, b)``.
+    f : numpy.ndarray, shape (fits,)
+        The maxima (binomial coefficients left out).
+    outcome : numpy.ndarray of int, shape (fits,)
+        ``FITTED``, ``NOT_CONVERGED``, or ``_UNSTABLE`` for a near singular or non-finite Newton
+        system (``_NEAR_SINGULAR``).
+    """
+    r = _Running(t, z, m, _starts(t, z, m))
+    p_out, f_out = np.full((t.shape[0], 2), np.nan), np.full(t.shape[0], np.nan)
+    outcome = np.full(t.shape[0], NOT_CONVERGED, dtype=np.int8)
+    for _ in range(_MAX_NEWTON):
+        step, gain, det = _newton_steps(r)
+        singular = ~(det > _NEAR_SINGULAR) | ~np.isfinite(gain)
+        done = ~singular & (gain <= _DECREMENT_TOL * (1.0 + np.abs(r.f)))
+        outcome[r.index[singular]] = _UNSTABLE
+        p_out[r.index[done]], f_out[r.index[done]], outcome[r.index[done]] = r.p[done], r.f[done], FITTED
+        go = np.flatnonzero(~(done | singular))
+        r.keep(go)
+        step = step[go]
+        if not go.size:
+            break
+        scale, r.p, r.f, r.lp, r.lm = _line_search(r, step)
+        moved = np.max(np.abs(scale[:, None] * step), axis=-1)
+        done = moved <= _STEP_TOL * (1.0 + np.max(np.abs(r.p), axis=-1))
+        p_out[r.index[done]], f_out[r.index[done]], outcome[r.index[done]] = r.p[done], r.f[done], FITTED
+        r.keep(np.flatnonzero(~done))
+        if not r.index.size:
+            break
+    return p_out, f_out, outcome
+
+
+def _fit_pass(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple:
+    """:func:`fit_weighted` of fits few enough for one pass."""
+    x, z, n = (np.broadcast_to(a, w.shape) for a in (x, z, n))
+    theta, beta, ll = (np.full(w.shape[0], np.nan) for _ in range(3))
+    outcome = np.full(w.shape[0], UNIDENTIFIED, dtype=np.int8)
+    rows = np.flatnonzero(_identifiable(x, w, z, n))
+    if not rows.size:
+        return theta, beta, ll, outcome
+    x, w, z, n = x[rows], w[rows], z[rows], n[rows]
+    t, centre, spread = _standardised(x, w)
+    p, f, fitted = _newton_many(t, w * z, w * (n - z))
+    a, b = p[:, 0], p[:, 1]
+    fitted[(fitted == FITTED) & (np.abs(b) < _FLAT)] = _UNSTABLE
+    fitted[(fitted == FITTED) & ~(b > 0.0)] = UNIDENTIFIED    # a fraction that decreases with the IM
+    ok = fitted == FITTED
+    outcome[rows] = fitted
+    binomial = (w * (gammaln(n + 1.0) - gammaln(z + 1.0) - gammaln(n - z + 1.0))).sum(axis=-1)
+    with np.errstate(over="ignore", under="ignore"):
+        theta[rows[ok]] = np.exp(centre[ok] - a[ok] * spread[ok] / b[ok])
+    beta[rows[ok]] = spread[ok] / b[ok]
+    ll[rows[ok]] = f[ok] + binomial[ok]
+    return theta, beta, ll, outcome
+
+
+def _refit(x: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple:
+    """``(theta, beta, log_likelihood, outcome)`` of :func:`_fit`, one fit."""
+    try:
+        fit = _fit(x, z, n)
+    except ValueError:
+        return math.nan, math.nan, math.nan, UNIDENTIFIED
+    except RuntimeError:
+        return math.nan, math.nan, math.nan, NOT_CONVERGED
+    return fit.theta, fit.beta, fit.log_likelihood, FITTED
+
+
+def _repeated(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray):
+    """The entries of fit ``i`` repeated ``w[i]`` times, in entry order (``expanded`` of :func:`fit_weighted`)."""
+    def expanded(i: int) -> tuple:
+        reps = w[i].astype(np.int64)
+        return tuple(np.repeat(a if a.ndim == 1 else a[i], reps) for a in (x, z, n))
+    return expanded
+
+
+def _merged(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple:
+    """Entries shared by every fit with the same ``(x, z, n)`` made one, their weights added.
+
+    The likelihood, its derivatives, the standardisation and the checks are sums over entries
+    times their weights, so they keep their values (to round-off) on fewer entries.
+    """
+    keys, inverse = np.unique(np.stack([x, z, n]), axis=1, return_inverse=True)
+    if keys.shape[1] == x.size:
+        return x, w, z, n
+    order = np.argsort(inverse.ravel(), kind="stable")
+    starts = np.flatnonzero(np.diff(inverse.ravel()[order], prepend=-1))
+    return keys[0], np.add.reduceat(w[:, order], starts, axis=1), keys[1], keys[2]
+
+
+def fit_weighted(x, w, z, n, expanded=None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Many :func:`fit_lognormal` fits at once, each of the same entries repeated ``w`` times.
+
+    Fit ``i`` is ``fit_lognormal(*expanded(i))``, the entries repeated ``w[i]`` times (an entry
+    with ``w = 0`` left out), to round-off: the same checks, start, Newton iteration and
+    convergence tests, run on every fit still iterating at once.  A fit whose outcome hinges on
+    round-off is redone one by one by :func:`fit_lognormal` on ``expanded(i)``, so that it is the
+    outcome :func:`fit_lognormal` gives for those very arrays: a Newton system that comes near
+    singular (``_NEAR_SINGULAR``), a slope that ends flat (``_FLAT``), no convergence, or a
+    ``theta`` that overflows (``OverflowError``, as :func:`fit_lognormal` raises).  A bootstrap
+    resample is a fit whose weights are the times each entry was drawn.
+
+    Parameters
+    ----------
+    x : numpy.ndarray of float, shape (k,) or (fits, k)
+        IM of each entry, > 0 and finite (unchecked).
+    w : numpy.ndarray of float, shape (fits, k)
+        Times each entry counts in each fit: integers >= 0.
+    z, n : numpy.ndarray of float, shape (k,) or (fits, k)
+        Exceedances and analyses of each entry (as checked by :func:`fit_lognormal`; ``n`` may be 0
+        where ``w`` is 0).
+    expanded : callable, optional
+        ``expanded(i) -> (x, z, n)``: the arrays fit ``i`` stands for, in the order its entries
+        come (e.g. a bootstrap resample's, in the order drawn).  Default: each entry repeated in
+        place.
+
+    Returns
+    -------
+    theta, beta, log_likelihood : numpy.ndarray of float, shape (fits,)
+        As :class:`LognormalFit`; NaN where no curve was fitted.
+    outcome : numpy.ndarray of int8, shape (fits,)
+        ``FITTED`` (0), ``UNIDENTIFIED`` (1: :func:`fit_lognormal` raises ValueError) or
+        ``NOT_CONVERGED`` (2: it raises RuntimeError).
+
+    Notes
+    -----
+    The fits go through in passes of at most ``_BATCH_ENTRIES`` (fit, entry) pairs, in order, so
+    the memory stays bounded; the results do not depend on the number of fits asked at once.
+    """
+    w = np.asarray(w, dtype=float)
+    x, z, n = (np.asarray(a, dtype=float) for a in (x, z, n))
+    expanded = expanded or _repeated(x, w, z, n)
+    if x.ndim == z.ndim == n.ndim == 1:
+        x, w, z, n = _merged(x, w, z, n)
+    per = max(1, _BATCH_ENTRIES // max(1, w.shape[-1]))
+
+    def rows(a: np.ndarray, i: int) -> np.ndarray:
+        return a if a.ndim == 1 else a[i:i + per]
+
+    parts = [_fit_pass(rows(x, i), rows(w, i), rows(z, i), rows(n, i)) for i in range(0, w.shape[0], per)]
+    if not parts:
+        return tuple(np.empty(0) for _ in range(3)) + (np.empty(0, dtype=np.int8),)
+    theta, beta, ll, outcome = (np.concatenate(col) for col in zip(*parts, strict=True))
+    overflow = (outcome == FITTED) & ~np.isfinite(theta)   # fit_lognormal: OverflowError
+    for i in np.flatnonzero((outcome == NOT_CONVERGED) | (outcome == _UNSTABLE) | overflow):
+        theta[i], beta[i], ll[i], outcome[i] = _refit(*expanded(int(i)))
+    return theta, beta, ll, outcome
 
 
 # ----------------------------------------------------------------------------------------------
@@ -356,6 +646,21 @@ def probability(x, theta, beta):
     return out if out.ndim else float(out)
 
 
+def draw_groups(size: int, n_boot: int, seed) -> np.ndarray:
+    """Groups drawn by each of ``n_boot`` resamples, in the order drawn, shape ``(n_boot, size)``.
+
+    Resample ``i`` draws ``size`` groups with replacement, ``rng.integers(0, size, size=size)``,
+    the ``i``-th such draw of ``numpy.random.default_rng(seed)``.
+    """
+    rng = np.random.default_rng(seed)
+    return np.array([rng.integers(0, size, size=size) for _ in range(n_boot)]).reshape(n_boot, size)
+
+
+def times_drawn(draws: np.ndarray, size: int) -> np.ndarray:
+    """Times each of ``size`` groups is drawn in each resample (rows of ``draws``), as floats."""
+    return np.array([np.bincount(d, minlength=size) for d in draws], dtype=float).reshape(len(draws), size)
+
+
 def bootstrap(im, exceeded, groups, n=None, *, n_boot: int, seed: int, level: float) -> BootstrapInterval:
     """Percentile bootstrap interval of ``theta`` and ``beta``, resampling groups (records).
 
@@ -404,25 +709,24 @@ def bootstrap(im, exceeded, groups, n=None, *, n_boot: int, seed: int, level: fl
         raise ValueError(f"seed = {seed!r} is out of range; allowed: integers >= 0")
     if not (isinstance(level, (int, float, np.floating)) and 0.0 < float(level) < 1.0):
         raise ValueError(f"level = {level!r} is out of range; allowed range: 0 < level < 1")
+    draws = draw_groups(labels.size, int(n_boot), seed)
     members = [np.flatnonzero(code == i) for i in range(labels.size)]
-    rng = np.random.default_rng(seed)
-    thetas, betas = [], []
-    n_failed = 0
-    for _ in range(int(n_boot)):
-        drawn = rng.integers(0, labels.size, size=labels.size)
-        idx = np.concatenate([members[i] for i in drawn])
-        try:
-            fit = _fit(x[idx], z[idx], nn[idx])
-        except ValueError:
-            n_failed += 1
-            continue
-        thetas.append(fit.theta)
-        betas.append(fit.beta)
-    if not thetas:
+
+    def expanded(i: int) -> tuple:
+        idx = np.concatenate([members[g] for g in draws[i]])
+        return x[idx], z[idx], nn[idx]
+
+    theta, beta, _, outcome = fit_weighted(x, times_drawn(draws, labels.size)[:, code], z, nn, expanded)
+    if (outcome == NOT_CONVERGED).any():
+        raise RuntimeError(f"bootstrap: Newton's method did not converge in {_MAX_NEWTON} iterations for "
+                           f"{int((outcome == NOT_CONVERGED).sum())} of {n_boot} resamples")
+    ok = outcome == FITTED
+    thetas, betas, n_failed = theta[ok], beta[ok], int(n_boot) - int(ok.sum())
+    if not thetas.size:
         raise ValueError(f"n_boot = {n_boot}: none of the resamples identifies a curve (all {n_failed} failed); "
                          "allowed: data whose record resamples overlap (more records or IM levels)")
     q = [(1.0 - float(level)) / 2.0, (1.0 + float(level)) / 2.0]
-    tl, th = np.quantile(np.array(thetas), q)
-    bl, bh = np.quantile(np.array(betas), q)
+    tl, th = np.quantile(thetas, q)
+    bl, bh = np.quantile(betas, q)
     return BootstrapInterval(theta_low=float(tl), theta_high=float(th), beta_low=float(bl), beta_high=float(bh),
                              n_boot=int(n_boot), n_failed=int(n_failed))
