@@ -181,6 +181,28 @@ def test_bootstrap_bounds_come_from_the_resamples_and_are_seeded(dataset, study,
     xr.testing.assert_identical(again.theta_ratio_low, dataset.theta_ratio_low)
 
 
+@pytest.mark.parametrize("base", ["isolated", "fixed_base"])
+def test_the_bootstrap_fits_are_the_resampled_analyses_fitted_one_by_one(analyses, base):
+    """All resamples of a curve fitted at once equal each resample's rows fitted by fit_lognormal."""
+    study = fp.check_settings(_settings(bootstrap={"n_boot": 40, "level": 0.9}))
+    ds = analyses[base]
+    members, outcomes = fp._members(study, ds), fp._outcomes(ds)
+    rows = fp._group_rows(members, study)
+    _, _, status = fp._fit_all(study, ds, outcomes, rows)
+    boot_t, boot_b = fp._boot_fits(study, ds, outcomes, members, fp._boot_draws(study), status == 0)
+    rng = np.random.default_rng([study.seed, fp.BOOT_SEED_OFFSET])
+    by_suite = [np.flatnonzero(study.suite_index == i) for i in range(len(study.suites))]
+    for i in range(study.n_boot):
+        drawn = [idx[rng.integers(0, idx.size, size=idx.size)] for idx in by_suite]
+        drawn_rows = [[np.concatenate([members[f][g] for g in gms]) for gms in [np.concatenate(drawn)] + drawn]
+                      for f in range(len(study.floors))]
+        theta, beta, _ = fp._fit_all(study, ds, outcomes, drawn_rows)
+        theta[status != 0], beta[status != 0] = np.nan, np.nan
+        np.testing.assert_allclose(boot_t[i], theta, rtol=1e-10)
+        np.testing.assert_allclose(boot_b[i], beta, rtol=1e-10)
+    assert np.isfinite(boot_t).any()
+
+
 def test_no_resamples_give_no_bounds(analyses, settings):
     study = fp.check_settings(_settings(bootstrap={"n_boot": 0}))
     fits = fp.fit_curves(analyses["fixed_base"], study)

@@ -498,7 +498,7 @@ def _fit_status(exc: np.ndarray) -> int:
     return 1 if not exc.any() else (2 if exc.all() else 0)
 
 
-def _fit_one(scaling: bool, levels, stripe, x, exc, checked: bool):
+def _fit_one(scaling: bool, levels, stripe, x, exc):
     """``(theta, beta, status)`` of one curve: by stripe counts (``scaling``) or per analysis."""
     status = _fit_status(exc)
     if status:
@@ -511,37 +511,98 @@ def _fit_one(scaling: bool, levels, stripe, x, exc, checked: bool):
             args = (levels[keep], zj[keep], nj[keep])
         else:
             args = (x, exc.astype(float), np.ones(x.size))
-        fit = _fit._fit(*args) if checked else _fit.fit_lognormal(*args)
+        fit = _fit.fit_lognormal(*args)
     except (ValueError, RuntimeError):   # separated outcomes, or no convergence
         return math.nan, math.nan, 3
     return fit.theta, fit.beta, 0
 
 
-def _fit_all(study, ds, outcomes, select) -> tuple:
-    """theta, beta, status over (floor, group, motion, limit_state, im) for the analyses ``select(floor, group)``."""
-    groups = ("all",) + study.suites
-    shape = (len(study.floors), len(groups), len(MOTIONS), study.limit_states.size, len(PLANAR_IMS))
+def _combinations(study, ds, outcomes, rows):
+    """Every curve of the analyses ``rows[floor][group]``.
+
+    Yields ``(index, scaling, pick, r, exc, im)``: the index into (floor, group, motion,
+    limit_state, im), whether the IM is the scaling one, the outcomes picked (into ``outcomes``),
+    their analysis rows, whether each exceeded the limit state, and the IM name.
+    """
+    n = ds.sizes["analysis"]
+    for f in range(len(study.floors)):
+        for gi in range(len(study.suites) + 1):
+            sel = rows[f][gi]
+            for m, motion in enumerate(MOTIONS):
+                rows_m, u = outcomes[motion]
+                pick = sel if motion != "one_component" else np.concatenate([sel, sel + n])
+                r = rows_m[pick]
+                for a, limit in enumerate(study.limit_states):
+                    exc = u[pick] > limit
+                    for b, im in enumerate(PLANAR_IMS):
+                        yield (f, gi, m, a, b), im == study.im, pick, r, exc, im
+
+
+def _shape(study) -> tuple:
+    return len(study.floors), len(study.suites) + 1, len(MOTIONS), study.limit_states.size, len(PLANAR_IMS)
+
+
+def _fit_all(study, ds, outcomes, rows) -> tuple:
+    """theta, beta, status over (floor, group, motion, limit_state, im) for the analyses ``rows[floor][group]``."""
+    shape = _shape(study)
     theta, beta = np.full(shape, np.nan), np.full(shape, np.nan)
     status = np.zeros(shape, dtype=np.int8)
     stripe = ds["stripe"].values
     ims = {k: ds[k].values for k in PLANAR_IMS}
-    n = ds.sizes["analysis"]
-    for f in range(shape[0]):
-        for gi in range(shape[1]):
-            sel = select(f, gi)
-            if sel is None:
-                continue
-            for m, motion in enumerate(MOTIONS):
-                rows, u = outcomes[motion]
-                pick = sel if motion != "one_component" else np.concatenate([sel, sel + n])
-                r = rows[pick]
-                for a, limit in enumerate(study.limit_states):
-                    exc = u[pick] > limit
-                    for b, im in enumerate(PLANAR_IMS):
-                        scaling = im == study.im
-                        theta[f, gi, m, a, b], beta[f, gi, m, a, b], status[f, gi, m, a, b] = _fit_one(
-                            scaling, study.levels, stripe[r], ims[im][r], exc, checked=select.checked)
+    for i, scaling, _, r, exc, im in _combinations(study, ds, outcomes, rows):
+        theta[i], beta[i], status[i] = _fit_one(scaling, study.levels, stripe[r], ims[im][r], exc)
     return theta, beta, status
+
+
+def _boot_fits(study, ds, outcomes, members, draws, ok) -> tuple:
+    """Bootstrap theta and beta, shape ``(n_boot,)`` + the curves' shape, NaN where a resample fits no curve.
+
+    ``draws``: :func:`_boot_draws`.  Only the curves ``ok`` are fitted, all resamples of one curve
+    at once (:func:`isoslide.studies.fragility.fit_weighted`, each analysis weighted by the times
+    its ground motion is drawn), as :func:`_fit_one` fits each.
+    """
+    boot_t = np.full((study.n_boot,) + ok.shape, np.nan)
+    boot_b = np.full_like(boot_t, np.nan)
+    if not study.n_boot:
+        return boot_t, boot_b
+    rows = _group_rows(members, study)
+    weights = _boot_weights(members, study, draws)
+    stripe = ds["stripe"].values
+    ims = {k: ds[k].values for k in PLANAR_IMS}
+    for i, scaling, pick, r, exc, im in _combinations(study, ds, outcomes, rows):
+        if not ok[i]:
+            continue
+        w = weights[i[0]][i[1]]
+        w = w if pick.size == w.shape[1] else np.concatenate([w, w], axis=1)   # one_component: x and y rows
+        if scaling:
+            onehot = (stripe[r][:, None] == np.arange(study.levels.size)).astype(float)
+            nj, zj = w @ onehot, w @ (onehot * exc[:, None])   # integer sums: exact
+            keep = nj > 0
+            args = (study.levels, keep.astype(float), zj, nj,
+                    lambda j, keep=keep, zj=zj, nj=nj: (study.levels[keep[j]], zj[j][keep[j]], nj[j][keep[j]]))
+        else:
+            args = (ims[im][r], w, exc.astype(float), np.ones(pick.size),
+                    _resampled(ds, outcomes, members, draws, i, study))
+        boot_t[(slice(None),) + i], boot_b[(slice(None),) + i], _, _ = _fit.fit_weighted(*args)
+    return boot_t, boot_b
+
+
+def _resampled(ds, outcomes, members, draws, index, study):
+    """``expanded(j)`` of :func:`isoslide.studies.fragility.fit_weighted` for the per-analysis curve ``index``.
+
+    The IM, outcomes and counts of resample ``j`` in the order drawn: the rows of each ground
+    motion drawn, as often as it is drawn (one_component: then the same rows' y outcomes).
+    """
+    f, gi, m, a, b = index
+    rows_m, u = outcomes[MOTIONS[m]]
+    x, limit, n = ds[PLANAR_IMS[b]].values, study.limit_states[a], ds.sizes["analysis"]
+
+    def expanded(j: int) -> tuple:
+        gms = np.concatenate(draws[j]) if gi == 0 else draws[j][gi - 1]
+        sel = np.concatenate([members[f][g] for g in gms])
+        pick = sel if MOTIONS[m] != "one_component" else np.concatenate([sel, sel + n])
+        return x[rows_m[pick]], (u[pick] > limit).astype(float), np.ones(pick.size)
+    return expanded
 
 
 def _members(study: PlanarStudy, ds: xr.Dataset) -> list:
@@ -554,16 +615,38 @@ def _members(study: PlanarStudy, ds: xr.Dataset) -> list:
             for f in range(len(study.floors))]
 
 
-class _Select:
-    """Rows of a (floor, group) for a draw of ground motions per suite."""
+def _group_motions(study: PlanarStudy) -> list:
+    """The ground motions of each group: ``all`` (every suite), then each suite."""
+    by_suite = [np.flatnonzero(study.suite_index == i) for i in range(len(study.suites))]
+    return [np.concatenate(by_suite)] + by_suite
 
-    def __init__(self, members, study, drawn, checked):
-        self.members, self.study, self.drawn, self.checked = members, study, drawn, checked
 
-    def __call__(self, f, gi):
-        per_suite = self.drawn if gi == 0 else [self.drawn[gi - 1]]
-        gms = np.concatenate(per_suite)
-        return np.concatenate([self.members[f][g] for g in gms])
+def _group_rows(members: list, study: PlanarStudy) -> list:
+    """``rows[floor][group]``: the analysis rows of a floor and group, ground motion by ground motion."""
+    return [[np.concatenate([members[f][g] for g in gms]) for gms in _group_motions(study)]
+            for f in range(len(members))]
+
+
+def _boot_draws(study: PlanarStudy) -> list:
+    """``draws[i][s]``: the ground motions resample ``i`` draws from suite ``s``, in the order drawn.
+
+    Suite by suite, as many ground motions as the suite has, with replacement, from
+    ``default_rng([seed, BOOT_SEED_OFFSET])``.
+    """
+    rng = np.random.default_rng([study.seed, BOOT_SEED_OFFSET])
+    by_suite = _group_motions(study)[1:]
+    return [[idx[rng.integers(0, idx.size, size=idx.size)] for idx in by_suite] for _ in range(study.n_boot)]
+
+
+def _boot_weights(members: list, study: PlanarStudy, draws: list) -> list:
+    """``weights[floor][group]``: times each row of :func:`_group_rows` is drawn in each resample.
+
+    The group ``all`` takes the draws of every suite, a suite its own (``draws``: :func:`_boot_draws`).
+    """
+    n_gm = len(study.motions)
+    counts = _fit.times_drawn([np.concatenate(d) for d in draws], n_gm)
+    return [[counts[:, np.concatenate([np.full(members[f][g].size, g) for g in gms])]
+             for gms in _group_motions(study)] for f in range(len(members))]
 
 
 def _interval(values: np.ndarray, level: float) -> tuple:
@@ -598,31 +681,16 @@ def fit_curves(ds: xr.Dataset, study: PlanarStudy) -> xr.Dataset:
     """
     members = _members(study, ds)
     outcomes = _outcomes(ds)
-    n_suites = len(study.suites)
-    by_suite = [np.flatnonzero(study.suite_index == i) for i in range(n_suites)]
-    theta, beta, status = _fit_all(study, ds, outcomes, _Select(members, study, by_suite, checked=False))
+    rows = _group_rows(members, study)
+    theta, beta, status = _fit_all(study, ds, outcomes, rows)
     groups = ("all",) + study.suites
     n_exc = np.zeros(theta.shape[:4], dtype=np.int32)
     n_ana = np.zeros(theta.shape[:3], dtype=np.int32)
-    n = ds.sizes["analysis"]
-    for f in range(theta.shape[0]):
-        for gi in range(theta.shape[1]):
-            sel = _Select(members, study, by_suite, False)(f, gi)
-            for m, motion in enumerate(MOTIONS):
-                _, u = outcomes[motion]
-                pick = sel if motion != "one_component" else np.concatenate([sel, sel + n])
-                n_ana[f, gi, m] = pick.size
-                for a, limit in enumerate(study.limit_states):
-                    n_exc[f, gi, m, a] = int((u[pick] > limit).sum())
-    boot_t = np.full((study.n_boot,) + theta.shape, np.nan)
-    boot_b = np.full_like(boot_t, np.nan)
-    rng = np.random.default_rng([study.seed, BOOT_SEED_OFFSET])
-    for i in range(study.n_boot):
-        drawn = [idx[rng.integers(0, idx.size, size=idx.size)] for idx in by_suite]
-        boot_t[i], boot_b[i], _ = _fit_all(study, ds, outcomes, _Select(members, study, drawn, checked=True))
+    for (f, gi, m, a, _b), _, pick, _, exc, _ in _combinations(study, ds, outcomes, rows):
+        n_ana[f, gi, m] = pick.size
+        n_exc[f, gi, m, a] = int(exc.sum())
+    boot_t, boot_b = _boot_fits(study, ds, outcomes, members, _boot_draws(study), status == 0)
     ok = status == 0
-    boot_t[:, ~ok] = np.nan
-    boot_b[:, ~ok] = np.nan
     res = {"theta": theta, "beta": beta}
     res["theta_low"], res["theta_high"] = _interval(boot_t, study.level)
     res["beta_low"], res["beta_high"] = _interval(boot_b, study.level)
