@@ -352,22 +352,31 @@ def _starts(t: np.ndarray, z: np.ndarray, m: np.ndarray) -> np.ndarray:
 
 
 class _Running:
-    """The fits still iterating: their data, parameters, log-likelihood and ``ln Phi(+-eta)``."""
+    """The fits still iterating: their data, parameters, log-likelihood and ``ln Phi(+-eta)``.
+
+    ``ln Phi(eta)`` is evaluated only where an entry has exceedances and ``ln Phi(-eta)`` only
+    where it has survivals (0 elsewhere, where its count is 0): one outcome per analysis, or an
+    entry not drawn, needs one of them or none.
+    """
 
     def __init__(self, t, z, m, p):
         self.index = np.arange(t.shape[0])
         self.t, self.z, self.m, self.p = t, z, m, p
+        self.hit, self.survived = z > 0, m > 0
         self.f, self.lp, self.lm = self.evaluate(p, slice(None))
 
     def evaluate(self, p: np.ndarray, rows) -> tuple:
         """Log-likelihood terms, ``ln Phi(eta)`` and ``ln Phi(-eta)`` at parameters ``p`` of the fits ``rows``."""
         eta = p[:, :1] + p[:, 1:] * self.t[rows]
-        lp, lm = log_ndtr(eta), log_ndtr(-eta)
+        lp, lm = np.zeros_like(eta), np.zeros_like(eta)
+        hit, survived = self.hit[rows], self.survived[rows]
+        lp[hit] = log_ndtr(eta[hit])
+        lm[survived] = log_ndtr(-eta[survived])
         return _log_terms(self.z[rows], self.m[rows], lp, lm).sum(axis=-1), lp, lm
 
     def keep(self, rows: np.ndarray) -> None:
         """Go on with the fits ``rows`` only."""
-        for name in ("index", "t", "z", "m", "p", "f", "lp", "lm"):
+        for name in ("index", "t", "z", "m", "hit", "survived", "p", "f", "lp", "lm"):
             setattr(self, name, getattr(self, name)[rows])
 
 
@@ -447,6 +456,15 @@ def _newton_many(t: np.ndarray, z: np.ndarray, m: np.ndarray) -> tuple[np.ndarra
     return p_out, f_out, outcome
 
 
+def _compacted(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple:
+    """The entries of each fit with ``w > 0`` first, in order, and no more columns than the fit with most of them."""
+    order = np.argsort(w == 0.0, axis=-1, kind="stable")
+    width = int((w > 0).sum(axis=-1).max())
+    if width == w.shape[-1]:
+        return x, w, z, n
+    return tuple(np.take_along_axis(a, order[:, :width], axis=-1) for a in (x, w, z, n))
+
+
 def _fit_pass(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple:
     """:func:`fit_weighted` of fits few enough for one pass."""
     x, z, n = (np.broadcast_to(a, w.shape) for a in (x, z, n))
@@ -455,7 +473,7 @@ def _fit_pass(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray) -> tup
     rows = np.flatnonzero(_identifiable(x, w, z, n))
     if not rows.size:
         return theta, beta, ll, outcome
-    x, w, z, n = x[rows], w[rows], z[rows], n[rows]
+    x, w, z, n = _compacted(x[rows], w[rows], z[rows], n[rows])
     t, centre, spread = _standardised(x, w)
     p, f, fitted = _newton_many(t, w * z, w * (n - z))
     a, b = p[:, 0], p[:, 1]
