@@ -18,6 +18,11 @@ separated by the IM (every analysis below some level survives, every one above i
 likelihood then grows without bound as ``beta -> 0``.  :func:`fit_lognormal` detects that before
 fitting and says which analyses would identify a curve.
 
+Many fits of the same entries, each entry repeated its own number of times (the bootstrap's
+resamples of records), run at once in :func:`fit_weighted`: the same checks and Newton iteration,
+vectorised over the fits, each with its own convergence tests and step halving; a fit whose
+outcome hinges on round-off is redone by :func:`fit_lognormal` itself.
+
 The module holds science only (no I/O, no configuration defaults): the bootstrap's ``n_boot``,
 ``level`` and ``seed`` come from ``fragility.bootstrap`` and ``fragility.seed`` in
 ``config/schema.yaml``.
@@ -508,18 +513,20 @@ def _repeated(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray):
     return expanded
 
 
-def _merged(x: np.ndarray, w: np.ndarray, z: np.ndarray, n: np.ndarray) -> tuple:
-    """Entries shared by every fit with the same ``(x, z, n)`` made one, their weights added.
+def _merging(x: np.ndarray, z: np.ndarray, n: np.ndarray):
+    """Entries of the same ``(x, z, n)`` in every fit made one: ``(x, z, n, weights)``.
 
-    The likelihood, its derivatives, the standardisation and the checks are sums over entries
-    times their weights, so they keep their values (to round-off) on fewer entries.
+    ``weights(w)`` adds the weights of the entries made one.  The likelihood, its derivatives, the
+    standardisation and the checks are sums over entries times their weights, so they keep their
+    values (to round-off) on fewer entries.
     """
-    keys, inverse = np.unique(np.stack([x, z, n]), axis=1, return_inverse=True)
-    if keys.shape[1] == x.size:
-        return x, w, z, n
-    order = np.argsort(inverse.ravel(), kind="stable")
-    starts = np.flatnonzero(np.diff(inverse.ravel()[order], prepend=-1))
-    return keys[0], np.add.reduceat(w[:, order], starts, axis=1), keys[1], keys[2]
+    if x.ndim == z.ndim == n.ndim == 1:    # entries shared by every fit
+        keys, inverse = np.unique(np.stack([x, z, n]), axis=1, return_inverse=True)
+        if keys.shape[1] < x.size:
+            order = np.argsort(inverse.ravel(), kind="stable")
+            starts = np.flatnonzero(np.diff(inverse.ravel()[order], prepend=-1))
+            return keys[0], keys[1], keys[2], lambda w: np.add.reduceat(w[:, order], starts, axis=1)
+    return x, z, n, lambda w: w
 
 
 def fit_weighted(x, w, z, n, expanded=None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -564,14 +571,13 @@ def fit_weighted(x, w, z, n, expanded=None) -> tuple[np.ndarray, np.ndarray, np.
     w = np.asarray(w, dtype=float)
     x, z, n = (np.asarray(a, dtype=float) for a in (x, z, n))
     expanded = expanded or _repeated(x, w, z, n)
-    if x.ndim == z.ndim == n.ndim == 1:
-        x, w, z, n = _merged(x, w, z, n)
+    x, z, n, merged = _merging(x, z, n)
     per = max(1, _BATCH_ENTRIES // max(1, w.shape[-1]))
 
     def rows(a: np.ndarray, i: int) -> np.ndarray:
         return a if a.ndim == 1 else a[i:i + per]
 
-    parts = [_fit_pass(rows(x, i), rows(w, i), rows(z, i), rows(n, i)) for i in range(0, w.shape[0], per)]
+    parts = [_fit_pass(rows(x, i), merged(w[i:i + per]), rows(z, i), rows(n, i)) for i in range(0, w.shape[0], per)]
     if not parts:
         return tuple(np.empty(0) for _ in range(3)) + (np.empty(0, dtype=np.int8),)
     theta, beta, ll, outcome = (np.concatenate(col) for col in zip(*parts, strict=True))

@@ -39,7 +39,9 @@ engineer who runs both directions and keeps the worse).
 Confidence intervals come from one bootstrap (:data:`BOOT_SEED_OFFSET`): each resample draws, suite
 by suite, as many ground motions as the suite has, with replacement, and refits every curve on
 them (all its floors, angles, stripes and draws go in together); the group ``all`` is the union of
-the suites' draws.  The same resamples give the intervals of the comparisons:
+the suites' draws.  All resamples of a curve are fitted at once
+(:func:`isoslide.studies.fragility.fit_weighted`, each analysis weighted by the times its ground
+motion is drawn).  The same resamples give the intervals of the comparisons:
 ``theta_ratio`` (the planar median over the one-component one), ``beta_change`` (the planar
 dispersion minus the one-component one), ``suite_theta_ratio`` (each suite's median over the
 reference suite's, resampled independently) and ``floor_theta_ratio`` (each floor's median over
@@ -566,14 +568,17 @@ def _boot_fits(study, ds, outcomes, members, draws, ok) -> tuple:
     if not study.n_boot:
         return boot_t, boot_b
     rows = _group_rows(members, study)
-    weights = _boot_weights(members, study, draws)
+    counts = _fit.times_drawn([np.concatenate(d) for d in draws], len(study.motions))
+    motion_of = _row_motions(members, study)
     stripe = ds["stripe"].values
     ims = {k: ds[k].values for k in PLANAR_IMS}
+    weighted = None
     for i, scaling, pick, r, exc, im in _combinations(study, ds, outcomes, rows):
         if not ok[i]:
             continue
-        w = weights[i[0]][i[1]]
-        w = w if pick.size == w.shape[1] else np.concatenate([w, w], axis=1)   # one_component: x and y rows
+        if weighted != i[:3]:    # times each outcome is drawn, per resample (one_component: x rows, then y rows)
+            gm = motion_of[i[0]][i[1]]
+            w, weighted = counts[:, gm if pick.size == gm.size else np.concatenate([gm, gm])], i[:3]
         if scaling:
             onehot = (stripe[r][:, None] == np.arange(study.levels.size)).astype(float)
             nj, zj = w @ onehot, w @ (onehot * exc[:, None])   # integer sums: exact
@@ -638,15 +643,10 @@ def _boot_draws(study: PlanarStudy) -> list:
     return [[idx[rng.integers(0, idx.size, size=idx.size)] for idx in by_suite] for _ in range(study.n_boot)]
 
 
-def _boot_weights(members: list, study: PlanarStudy, draws: list) -> list:
-    """``weights[floor][group]``: times each row of :func:`_group_rows` is drawn in each resample.
-
-    The group ``all`` takes the draws of every suite, a suite its own (``draws``: :func:`_boot_draws`).
-    """
-    n_gm = len(study.motions)
-    counts = _fit.times_drawn([np.concatenate(d) for d in draws], n_gm)
-    return [[counts[:, np.concatenate([np.full(members[f][g].size, g) for g in gms])]
-             for gms in _group_motions(study)] for f in range(len(members))]
+def _row_motions(members: list, study: PlanarStudy) -> list:
+    """``motion_of[floor][group]``: the ground motion of each row of :func:`_group_rows`."""
+    return [[np.concatenate([np.full(members[f][g].size, g) for g in gms]) for gms in _group_motions(study)]
+            for f in range(len(members))]
 
 
 def _interval(values: np.ndarray, level: float) -> tuple:
