@@ -698,14 +698,16 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
 
 
 def _planar_modal(modal: tuple, n: int, hyst: bool) -> tuple:
-    """The general kernel's modal data ``(Wm, Cm, Wh, Ch)`` with ``W``'s columns in the planar kernel's axis order.
+    """The general kernel's modal data (:func:`isoslide.engine.building.modal_data`) in the planar kernel's axis order.
 
     An axis of the planar state is ``[x, x', xs.., xs'..]`` and a bilinear bearing's ``fh``, which
-    the general kernel's state holds last (after the block's ``u, u'``).
+    the general kernel's state holds last (after the block's ``u, u'``): ``W``'s columns and
+    ``V``'s rows are taken in that order.
     """
-    Wm, Cm, Wh, Ch = modal
+    Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh = modal
     cols = list(range(2 + 2 * n)) + ([Wm.shape[1] - 1] if hyst else [])
-    return np.ascontiguousarray(Wm[:, cols]), Cm, np.ascontiguousarray(Wh[:, cols]), Ch
+    return (np.ascontiguousarray(Wm[:, cols]), Cm, np.ascontiguousarray(Vm[cols, :]), Lm,
+            np.ascontiguousarray(Wh[:, cols]), Ch, np.ascontiguousarray(Vh[cols, :]), Lh)
 
 
 def _planar_history(h: np.ndarray, n: int, scene: Scene, hyst: bool = False) -> History:

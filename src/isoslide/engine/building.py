@@ -220,7 +220,8 @@ def free_step(scene: Scene) -> float:
 
 
 def _empty_modal(ny: int) -> tuple:
-    return np.zeros((0, ny), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128)
+    return (np.zeros((0, ny), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128),
+            np.zeros((ny, 0), dtype=np.complex128), np.zeros(0, dtype=np.complex128))
 
 
 def _free_system(P: np.ndarray, code: int, params: np.ndarray, held: bool) -> tuple:
@@ -249,14 +250,22 @@ def _free_system(P: np.ndarray, code: int, params: np.ndarray, held: bool) -> tu
 
 
 def modal_data(scene: Scene, P: np.ndarray) -> tuple:
-    """Modal data of the settlement test of :func:`isoslide.engine.building_kernel.run`.
+    """Modal data of the free linear phase of :func:`isoslide.engine.building_kernel.run`.
 
-    For the free linear system after the pulse (block stuck; the isolator elastic, ``Wm, Cm``, or
-    holding the slab, ``Wh, Ch``): ``W`` maps the state ``y`` to modal coordinates (rows: modes,
-    columns: the states) and ``C[j, k] = c_j . v_k`` gives demand ``j`` (0: the block's floor
-    acceleration; 1: the bilinear bearing's force, or the force holding a sliding bearing) per unit
-    of mode ``k``.  Empty where the configuration cannot occur, has no moving state, or its
+    For the free linear system after the pulse (block stuck; the isolator elastic, ``Wm, Cm, Vm,
+    Lm``, or holding the slab, ``Wh, Ch, Vh, Lh``): ``W`` maps the state ``y`` to modal coordinates
+    (rows: modes, columns: the states), ``C[j, k] = c_j . v_k`` gives demand ``j`` (0: the block's
+    floor acceleration; 1: the bilinear bearing's force, or the force holding a sliding bearing) per
+    unit of mode ``k``, ``V`` maps the modes back to the states (zero rows for the states that do not
+    move) and ``L`` holds the eigenvalues (units ``1/T_p``), the modes ordered from the fastest to the
+    slowest (:mod:`isoslide.engine.free_phase`).  ``W, C`` prove settlement; all four propagate the
+    phase exactly.  Empty where the configuration cannot occur, has no moving state, or its
     eigenvectors are too ill-conditioned (condition number above 1e8) for a trustworthy bound.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh)``, complex128.
     """
     kind = int(P[bk.P_KIND])
     n = int(P[bk.P_N])
@@ -275,9 +284,13 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
         if np.max(lam.real) > 1e-12 * max(1.0, np.max(np.abs(lam))) or np.linalg.cond(V) > 1e8:
             out.extend(_empty_modal(ny))
             continue
+        order = np.argsort(-np.abs(lam), kind="stable")
+        lam, V = lam[order], V[:, order]
         Winv = np.linalg.inv(V)
         W = np.zeros((len(idx), ny), dtype=np.complex128)
         W[:, idx] = Winv
+        Vfull = np.zeros((ny, len(idx)), dtype=np.complex128)
+        Vfull[idx, :] = V
         demand_rows = [0] + ([1] if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else [])
         c = np.zeros((len(demand_rows), len(idx)))
         for k, col in enumerate(idx):
@@ -291,5 +304,5 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
                 c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, zp, zv, 0.0, 0.0, P[bk.P_KD], P)
         # a relative margin for the round-off of the eigen-decomposition
         margin = 1.0 + 1e-12 + 1e-14 * np.linalg.cond(V)
-        out.extend([W, (margin * (c @ V)).astype(np.complex128)])
+        out.extend([W, (margin * (c @ V)).astype(np.complex128), Vfull, lam.astype(np.complex128)])
     return tuple(out)

@@ -71,6 +71,7 @@ from numba import njit
 
 from .. import jit_cache
 from ..model.friction import stribeck
+from . import free_phase
 from .modes import candidates
 from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, NS, _error_norm, _error_terms, _hermite_max,
                      _left_limit, _next_breakpoint, _next_step, _step_factor, _step_target, bracket_step, first_trial,
@@ -731,12 +732,15 @@ def _copy(dst, src):
 
 @njit(cache=True)
 def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol,
-        hist_cap, h_restart, settle, max_steps, Wm, Cm, Wh, Ch):
+        hist_cap, h_restart, settle, max_steps, Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh):
     """Integrate one general scene from rest at ``tau_start`` (see the module docstring).
 
     Arguments as :func:`isoslide.engine.kernel.run` (without ``track_max``), with the model parameters
-    ``P`` of :func:`isoslide.engine.building.parameters` and the modal data ``Wm, Cm, Wh, Ch`` of
-    :func:`isoslide.engine.building.modal_data` for the settlement test.
+    ``P`` of :func:`isoslide.engine.building.parameters` and the modal data ``Wm, Cm, Vm, Lm, Wh, Ch,
+    Vh, Lh`` of :func:`isoslide.engine.building.modal_data`: the settlement test, and the exact steps
+    of the free linear phase after the pulse (:mod:`isoslide.engine.free_phase`), taken wherever
+    their bound proves that nothing slips or yields within them (at most ``h_max_free`` long while
+    a history is recorded).
 
     Returns
     -------
@@ -789,6 +793,10 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     hlast = h_restart
     ib = 0
     nh = _record(hist, 0, hist_cap, tau, y, bm, im, P, code, params)
+    a_x = np.empty(max(Wm.shape[0], Wh.shape[0]), dtype=np.complex128)
+    a_y = np.zeros(a_x.shape[0], dtype=np.complex128)
+    limits = np.array([thr, q])
+    offsets = np.zeros((2, 2))
     zone = 0.0
     if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < thr:
         zone = 30.0 / P[P_PI6]
@@ -820,9 +828,31 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 break
         if tau >= tau_stop or steps + cnt[0] > max_steps:
             break
+        # --- the free linear phase: an exact step where its bound proves it safe --------
+        if tau >= tau_end and bm == 0.0 and im == 0.0:
+            held = _held(im, P)
+            W, Cd, V, L = (Wh, Ch, Vh, Lh) if held else (Wm, Cm, Vm, Lm)
+            nm = W.shape[0]
+            if nm > 0 and V.shape[1] == nm:
+                free_phase.modal_coordinates(W, y, 0, a_x[:nm])
+                offsets[1, 0] = P[P_KD] * y[Y_X] if held else 0.0
+                hf = min(free_phase.safe_step(a_x[:nm], a_y[:nm], L, Cd, offsets, limits), tau_stop - tau)
+                if hist_cap > 0:
+                    hf = min(hf, h_max_free)
+                if hf >= h_max_free or tau + hf >= tau_stop:
+                    free_phase.advance(a_x[:nm], L, V, hf, y, 0)
+                    tau = tau_stop if tau + hf >= tau_stop else tau + hf
+                    steps += 1
+                    xmax = max(xmax, abs(y[Y_X]))
+                    nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+                    continue
         # --- step length ---------------------------------------------------------
         ib = _next_breakpoint(breakpoints, ib, tau)
-        hmax = h_max_pulse if tau < tau_end else h_max_free
+        # after the pulse, steps are held to h_max_free while a demand is watched for its limit
+        # (a stuck block, a held or elastic bearing); a sliding block and a linear, sliding or
+        # yielding isolator have only speed events, found by sign, as during the pulse
+        watch = bm == 0.0 or ((kind == KIND_SLIDING or kind == KIND_BILINEAR) and im == 0.0)
+        hmax = h_max_pulse if tau < tau_end or not watch else h_max_free
         h = min(h, hmax)
         target = _step_target(breakpoints, ib, tau_stop)
         hit_target = False

@@ -64,6 +64,7 @@ from numba import njit
 
 from .. import jit_cache
 from ..pulses import accel_at, jerk_at
+from . import free_phase
 from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness,
                               _storey_force, friction, normal)
@@ -903,10 +904,11 @@ def _slow_cap(which, md, tau, y, P, ex, work, slaved):
 
 @njit(cache=True)
 def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol, hist_cap,
-        h_restart, settle, max_steps, Wm, Cm, Wh, Ch, y0, md0, slaved, stop_on_stick, final):
+        h_restart, settle, max_steps, Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh, y0, md0, slaved, stop_on_stick, final):
     """Integrate one planar scene from the state ``y0`` in the modes ``md0`` (see :func:`deriv`) at ``tau_start``.
 
-    Arguments as :func:`isoslide.engine.building_kernel.run`, with the excitation ``ex`` (see the
+    Arguments as :func:`isoslide.engine.building_kernel.run` (the modal data's states in this
+    kernel's axis order), with the excitation ``ex`` (see the
     module docstring) instead of the pulse's code and parameters; slides slower than ``slaved``
     keep their slaved line (:func:`slaved_speed`).  With ``stop_on_stick`` the run returns as soon as
     the block, having slid, is stuck again (and a sliding bearing held); ``final`` (length
@@ -958,6 +960,10 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     h = h_restart
     ib = 0
     nh = _record(hist, 0, hist_cap, tau, y, md)
+    a_x = np.empty(max(Wm.shape[0], Wh.shape[0]), dtype=np.complex128)
+    a_y = np.empty(a_x.shape[0], dtype=np.complex128)
+    limits = np.array([P[P_THR], P[P_Q]])
+    offsets = np.zeros((2, 2))
     zone = 0.0
     if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < P[P_THR]:
         zone = 30.0 / P[P_PI6]
@@ -984,9 +990,34 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             break
         if stop_on_stick and slipped and md[M_BM] == 0.0 and (not bearing or md[M_IM] == 0.0):
             break
+        # --- the free linear phase: an exact step where its bound proves it safe ------------
+        if tau >= tau_end and md[M_BM] == 0.0 and md[M_IM] == 0.0 and not hold:
+            held = _held(0.0, P)
+            W, Cd, V, L = (Wh, Ch, Vh, Lh) if held else (Wm, Cm, Vm, Lm)
+            nm = W.shape[0]
+            if nm > 0 and V.shape[1] == nm:
+                free_phase.modal_coordinates(W, y, 0, a_x[:nm])
+                free_phase.modal_coordinates(W, y, nb_, a_y[:nm])
+                if held:
+                    offsets[1, 0] = P[P_KD] * y[0]
+                    offsets[1, 1] = P[P_KD] * y[nb_]
+                hf = min(free_phase.safe_step(a_x[:nm], a_y[:nm], L, Cd, offsets, limits), tau_stop - tau)
+                if hist_cap > 0:
+                    hf = min(hf, h_max_free)
+                if hf >= h_max_free or tau + hf >= tau_stop:
+                    free_phase.advance(a_x[:nm], L, V, hf, y, 0)
+                    free_phase.advance(a_y[:nm], L, V, hf, y, nb_)
+                    tau = tau_stop if tau + hf >= tau_stop else tau + hf
+                    steps += 1
+                    xmax = max(xmax, math.sqrt(y[0] ** 2 + y[nb_] ** 2))
+                    nh = _record(hist, nh, hist_cap, tau, y, md)
+                    continue
         # --- step length ---------------------------------------------------------------
         ib = _next_breakpoint(breakpoints, ib, tau)
-        hmax = h_max_pulse if tau < tau_end else h_max_free
+        # after the pulses, steps are held to h_max_free while a demand is watched for its limit
+        # (a stuck block, a held or elastic bearing); slides have only their stops, as during the pulses
+        watch = md[M_BM] == 0.0 or ((bearing or hyst) and md[M_IM] == 0.0)
+        hmax = h_max_pulse if tau < tau_end or not watch else h_max_free
         h = min(h, hmax)
         finished = -1
         for which in range(2):

@@ -117,7 +117,7 @@ def _full_state(ax, ay, u, yfull):
 
 @njit(cache=True)
 def run(m, gx, gy, tau0, dtau, tau_end, tau_stop, hist_cap, settle, max_steps, P, ex, breakpoints, h_max_pulse,
-        h_max_free, rtol, atol, h_restart, Wm, Cm, Wh, Ch, slaved):
+        h_max_free, rtol, atol, h_restart, Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh, slaved):
     """Propagate a recorded pair in the plane from rest at ``tau0``: stick phases exactly, slides in the planar kernel.
 
     Parameters
@@ -130,7 +130,7 @@ def run(m, gx, gy, tau0, dtau, tau_end, tau_stop, hist_cap, settle, max_steps, P
         First sample, sample interval and the records' end (units of T_p).
     tau_stop, hist_cap, settle, max_steps
         As :func:`isoslide.engine.planar_kernel.run`; ``max_steps`` counts substeps and Runge-Kutta steps.
-    P, ex, breakpoints, h_max_pulse, h_max_free, rtol, atol, h_restart, Wm, Cm, Wh, Ch, slaved
+    P, ex, breakpoints, h_max_pulse, h_max_free, rtol, atol, h_restart, Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh, slaved
         The planar kernel's arguments for the slides.
 
     Returns
@@ -267,7 +267,7 @@ def run(m, gx, gy, tau0, dtau, tau_end, tau_stop, hist_cap, settle, max_steps, P
         _full_state(ax, ay, u, yfull)
         kb = max(k - 2, 0)
         res = planar_kernel.run(P, ex, breakpoints[kb:], t, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol,
-                                max(hist_cap - nh, 0), h_restart, settle, max(max_steps - steps, 0), Wm, Cm, Wh, Ch,
+                                max(hist_cap - nh, 0), h_restart, settle, max(max_steps - steps, 0), Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh,
                                 yfull, md, slaved, True, final)
         ints, floats, rows = res
         steps += ints[I_STEPS]
