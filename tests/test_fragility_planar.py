@@ -189,7 +189,7 @@ def test_the_bootstrap_fits_are_the_resampled_analyses_fitted_one_by_one(analyse
     members, outcomes = fp._members(study, ds), fp._outcomes(ds)
     rows = fp._group_rows(members, study)
     _, _, status = fp._fit_all(study, ds, outcomes, rows)
-    boot_t, boot_b = fp._boot_fits(study, ds, outcomes, members, fp._boot_draws(study), status == 0)
+    boot_t, boot_b = fp._boot_fits(study, ds, outcomes, members, rows, fp._boot_draws(study), status == 0)
     rng = np.random.default_rng([study.seed, fp.BOOT_SEED_OFFSET])
     by_suite = [np.flatnonzero(study.suite_index == i) for i in range(len(study.suites))]
     for i in range(study.n_boot):

@@ -169,7 +169,8 @@ class PlanarStudy:
     limit_states : ndarray
         Sliding limits, m, increasing.
     building, contents : dict
-        The configuration sections.
+        The configuration sections, the building's floor named by
+        :func:`isoslide.studies.fragility_study.check_building`.
     sa_period, sa_damping : float
         Period [s] and damping ratio of ``sa_rotd50``.
     sampled_angles : bool
@@ -286,8 +287,7 @@ def check_settings(settings: dict) -> PlanarStudy:
     """
     f = settings["fragility"]
     p = f["planar"]
-    check_building(f)
-    b = f["building"]
+    b = check_building(f)
     names = list(p["suites"])
     if not names or len(set(names)) != len(names):
         raise ValueError(f"fragility.planar.suites = {names!r} is invalid; allowed: one or more distinct suites")
@@ -329,7 +329,7 @@ def check_settings(settings: dict) -> PlanarStudy:
         angles = np.broadcast_to(angles_cfg[None, :, None, None], (n_gm, n_a, n_j, n_s)).copy()
     return PlanarStudy(motions=tuple(motions), suites=tuple(map(str, names)), suite_index=np.asarray(suite_index),
                        floors=floors, im=SCALING_IMS[im], levels=levels, angles=angles, mu_k=mu_k,
-                       limit_states=limits, building=dict(b), contents=copy.deepcopy(c),
+                       limit_states=limits, building=b, contents=copy.deepcopy(c),
                        sa_period=float(b["T_b"]), sa_damping=damping, sampled_angles=sampled_angles, seed=seed,
                        n_boot=int(f["bootstrap"]["n_boot"]), level=level, chunk_size=chunk_size,
                        rtol=settings["solver"]["rtol"])
@@ -556,10 +556,10 @@ def _fit_all(study, ds, outcomes, rows) -> tuple:
     return theta, beta, status
 
 
-def _boot_fits(study, ds, outcomes, members, draws, ok) -> tuple:
+def _boot_fits(study, ds, outcomes, members, rows, draws, ok) -> tuple:
     """Bootstrap theta and beta, shape ``(n_boot,)`` + the curves' shape, NaN where a resample fits no curve.
 
-    ``draws``: :func:`_boot_draws`.  Only the curves ``ok`` are fitted, all resamples of one curve
+    ``rows``: :func:`_group_rows`; ``draws``: :func:`_boot_draws`.  Only the curves ``ok`` are fitted, all resamples of one curve
     at once (:func:`isoslide.studies.fragility.fit_weighted`, each analysis weighted by the times
     its ground motion is drawn), as :func:`_fit_one` fits each.
     """
@@ -567,7 +567,6 @@ def _boot_fits(study, ds, outcomes, members, draws, ok) -> tuple:
     boot_b = np.full_like(boot_t, np.nan)
     if not study.n_boot:
         return boot_t, boot_b
-    rows = _group_rows(members, study)
     counts = _fit.times_drawn([np.concatenate(d) for d in draws], len(study.motions))
     motion_of = _row_motions(members, study)
     stripe = ds["stripe"].values
@@ -689,8 +688,8 @@ def fit_curves(ds: xr.Dataset, study: PlanarStudy) -> xr.Dataset:
     for (f, gi, m, a, _b), _, pick, _, exc, _ in _combinations(study, ds, outcomes, rows):
         n_ana[f, gi, m] = pick.size
         n_exc[f, gi, m, a] = int(exc.sum())
-    boot_t, boot_b = _boot_fits(study, ds, outcomes, members, _boot_draws(study), status == 0)
     ok = status == 0
+    boot_t, boot_b = _boot_fits(study, ds, outcomes, members, rows, _boot_draws(study), ok)
     res = {"theta": theta, "beta": beta}
     res["theta_low"], res["theta_high"] = _interval(boot_t, study.level)
     res["beta_low"], res["beta_high"] = _interval(boot_b, study.level)

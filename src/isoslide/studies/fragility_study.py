@@ -149,7 +149,7 @@ class Study:
         Every kinetic friction coefficient, drawn up front.
     building, contents : dict
         The configuration sections (T_b [s], xi_b, M_b [kg]; mass [kg], mu_s_over_mu_k,
-        beta [s/m], gamma [s/m]).
+        beta [s/m], gamma [s/m]), the building's floor named by :func:`check_building`.
     seed, n_boot, level, chunk_size : int, int, float, int
     rtol : float or None
     """
@@ -252,13 +252,19 @@ def check_stripes(f: dict, section: dict, key: str, allowed: str) -> tuple:
     return im, levels, limits, n_s
 
 
-def check_building(f: dict) -> None:
+def check_building(f: dict) -> dict:
     """Check ``fragility.building`` and ``fragility.contents`` (schema-completed).
 
     Parameters
     ----------
     f : dict
         The ``fragility`` section.
+
+    Returns
+    -------
+    dict
+        A copy of ``fragility.building`` whose ``floor`` is named as :func:`check_floor` names it
+        (``"base"``, ``"roof"`` or the number of a floor between).
 
     Raises
     ------
@@ -285,10 +291,11 @@ def check_building(f: dict) -> None:
         raise ValueError(f"fragility.building.m_st = {b['m_st']!r} is out of range with a flexible superstructure "
                          f"(T_s > 0); allowed range: 0 < m_st < M_b = {b['M_b']!r}")
     storeys = check_storeys(b)
-    check_floor("fragility.building.floor", b["floor"], storeys)
+    floor = check_floor("fragility.building.floor", b["floor"], storeys)
     if c["mass"] / b["M_b"] > 1000.0:
         raise ValueError(f"fragility.contents.mass = {c['mass']!r} is out of range; allowed range: "
                          f"mass / building.M_b <= 1000 (Pi8)")
+    return dict(b, floor=floor)
 
 
 def check_storeys(b: dict) -> int:
@@ -371,8 +378,7 @@ def check_settings(settings: dict) -> Study:
         Naming the key, its value and what is allowed (records that cannot be read included).
     """
     f = settings["fragility"]
-    b, c = f["building"], f["contents"]
-    check_building(f)
+    b, c = check_building(f), f["contents"]
     im, levels, limits, n_s = check_stripes(f, f, "", "'pga', 'pgv'")
     names = list(f["records"])
     if len(names) < 2:
@@ -394,7 +400,7 @@ def check_settings(settings: dict) -> Study:
     level = check_level(f)
     chunk_size = check_chunk_size("fragility.chunk_size", f["chunk_size"])
     return Study(records=tuple(recs), im=im, levels=levels, n_samples=n_s, limit_states=limits, mu_k=mu_k,
-                 building=dict(b), contents=copy.deepcopy(c), seed=seed, n_boot=int(f["bootstrap"]["n_boot"]),
+                 building=b, contents=copy.deepcopy(c), seed=seed, n_boot=int(f["bootstrap"]["n_boot"]),
                  level=level, chunk_size=chunk_size, rtol=settings["solver"]["rtol"])
 
 
@@ -455,8 +461,7 @@ def _scene(study: Study, pulse, pga: float, mu_k: float, base: str) -> Scene:
     return Scene.from_physical(a_p=pga, T_p=T_SCALE, M_b=b["M_b"], T_b=0.0 if base == "fixed_base" else b["T_b"],
                                xi_b=b["xi_b"], m_ec=c["mass"], mu_s=mu_k * c["mu_s_over_mu_k"], mu_k=mu_k,
                                beta=c["beta"], gamma=c["gamma"], pulse=pulse, Q_d=b["Q_d"], D_y=b["D_y"],
-                               m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], storeys=b["storeys"],
-                               floor=check_floor("fragility.building.floor", b["floor"], b["storeys"]))
+                               m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], storeys=b["storeys"], floor=b["floor"])
 
 
 def solve_chunk(study: Study, chunk: int, base: str) -> xr.Dataset:
@@ -878,7 +883,7 @@ def design_attrs(study, base: str) -> dict:
     return {"T_b": 0.0 if base == "fixed_base" else float(b["T_b"]), "xi_b": float(b["xi_b"]),
             "M_b": float(b["M_b"]), "m_ec": float(c["mass"]), "Q_d": float(b["Q_d"]), "D_y": float(b["D_y"]),
             "m_st": float(b["m_st"]), "T_s": float(b["T_s"]), "xi_s": float(b["xi_s"]),
-            "storeys": int(b["storeys"]), "floor": str(check_floor("fragility.building.floor", b["floor"], b["storeys"])),
+            "storeys": int(b["storeys"]), "floor": str(b["floor"]),
             "mu_k_median": float(c["mu_k"]["median"]), "mu_k_log_std": float(c["mu_k"]["log_std"]),
             "mu_s_over_mu_k": float(c["mu_s_over_mu_k"]), "beta_stribeck": float(c["beta"]),
             "gamma": float(c["gamma"])}
