@@ -7,5 +7,7 @@ the contents on any floor); :mod:`isoslide.engine.kernel` (the paper's model) an
 planner in :mod:`isoslide.solver` chooses; :mod:`isoslide.engine.planar_kernel` integrates the
 same buildings with the contents sliding in the plane, from the inputs :mod:`isoslide.engine.planar`
 assembles, and :mod:`isoslide.engine.planar_piecewise` propagates a recorded pair's stick phases
-exactly between the planar kernel's slides; :mod:`isoslide.engine.dop853` holds the Runge-Kutta tableau.  Nothing is imported here.
+exactly between the planar kernel's slides; :mod:`isoslide.engine.free_phase` steps the free linear
+phase after the pulse exactly; :mod:`isoslide.engine.dop853` holds the Runge-Kutta tableau.
+Nothing is imported here.
 """
