@@ -73,9 +73,9 @@ from .. import jit_cache
 from ..model.friction import stribeck
 from . import free_phase
 from .modes import candidates
-from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, NS, _error_norm, _error_terms, _hermite_max,
-                     _left_limit, _next_breakpoint, _next_step, _step_factor, _step_target, bracket_step, first_trial,
-                     hermite_root)
+from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, C, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
+                     _step_factor, _step_target, advance, bracket_open, bracket_step, copy_state,
+                     doubling_error, hermite_root, scaled_error, stage_state)
 from ..pulses import accel_at, jerk_at
 
 Y_X, Y_XD, Y_XS = range(3)
@@ -385,11 +385,6 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
 # --- one Runge-Kutta step ---------------------------------------------------
 
 
-@njit(cache=True)
-def _error_scale(i, ny, a, b, atol, rtol):
-    """Tolerance of state component ``i`` of ``ny`` (the block's ``u, u'`` get ``atol * ATOL_SLIDE``)."""
-    return (atol * ATOL_SLIDE if (i == ny - 3 or i == ny - 2) else atol) + rtol * max(abs(a), abs(b))
-
 
 @njit(cache=True)
 def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
@@ -403,27 +398,12 @@ def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
     ys = np.empty(ny)
     deriv(bm, im, tau, y, P, code, params, K[0])
     for st in range(1, NS):
-        for i in range(ny):
-            acc = 0.0
-            for j in range(st):
-                acc += A[st, j] * K[j, i]
-            ys[i] = y[i] + h * acc
+        stage_state(y, h, K, st, ys)
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
         deriv(bm, im, ts, ys, P, code, params, K[st])
-    for i in range(ny):
-        acc = 0.0
-        for j in range(NS):
-            acc += B[j] * K[j, i]
-        ynew[i] = y[i] + h * acc
+    advance(y, h, K, ynew)
     deriv(bm, im, t_left, ynew, P, code, params, K[NS])
-    e5 = 0.0
-    e3 = 0.0
-    for i in range(ny):
-        sc = _error_scale(i, ny, y[i], ynew[i], atol, rtol)
-        a5, a3 = _error_terms(K, i)
-        e5 += (a5 / sc) ** 2
-        e3 += (a3 / sc) ** 2
-    return _error_norm(e5, e3, h)
+    return scaled_error(K, y, ynew, h, atol, rtol, ny - 3, ny - 1)
 
 
 @njit(cache=True)
@@ -434,10 +414,7 @@ def verify(bm, im, tau, y, h, ycand, P, code, params, atol, rtol, K):
     yb = np.empty(ny)
     rk_step(bm, im, tau, y, 0.5 * h, P, code, params, atol, rtol, K, ya)
     rk_step(bm, im, tau + 0.5 * h, ya, 0.5 * h, P, code, params, atol, rtol, K, yb)
-    e = 0.0
-    for i in range(ny):
-        e = max(e, abs(yb[i] - ycand[i]) / _error_scale(i, ny, y[i], ycand[i], atol, rtol))
-    return e
+    return doubling_error(y, yb, ycand, atol, rtol, ny - 3, ny - 1)
 
 
 # --- events -------------------------------------------------------------------
@@ -453,9 +430,7 @@ def locate(kind, sig, bm, im, tau, y, ha, ga, hb, gb, h0, check, P, code, params
     ``max(1, |tau|)``).  ``yout`` receives the state at the root; returns the step length and the
     error estimate of that step (step doubling added when ``check``).
     """
-    lo, glo, hi, ghi, side = ha, ga, hb, gb, 0
-    tol = 1e-13 * max(1.0, abs(tau))
-    h = first_trial(h0, lo, glo, hi, ghi)
+    lo, glo, hi, ghi, side, tol, h = bracket_open(tau, h0, ha, ga, hb, gb)
     err = 0.0
     state = ROOT_OPEN
     for _it in range(100):
@@ -511,14 +486,35 @@ def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code,
 
 
 @njit(cache=True)
-def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, params, atol, rtol, K, ye, work,
-                 cnt):
-    """End of a sliding (or yielding) phase inside the accepted step: ``g1 <= 0`` (rate ``r1``) at its end.
+def _earliest_demand_event(kind, peak, limit, bm, im, tau, y, y1, h, t_end, P, code, params, atol, rtol, check, K,
+                           ye, yb, work, cnt, best, best_sig, hbest, herr_best):
+    """The earliest of :func:`_demand_event` in both directions, if before the best event so far.
 
+    ``(best, best_sig, hbest, herr_best)`` is the best event so far (kind, sign, step length and
+    error estimate; ``yb`` its state); returns it updated.
+    """
+    for sig in (1.0, -1.0):
+        found, hs, herr = _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code, params, atol,
+                                        rtol, check, K, ye, work, cnt)
+        if found and hs < hbest:
+            best, best_sig, hbest, herr_best = kind, sig, hs, herr
+            copy_state(yb, ye)
+    return best, best_sig, hbest, herr_best
+
+
+@njit(cache=True)
+def _speed_event(kind, bm, im, tau, y, y1, h, t_end, just_started, check, P, code, params, atol, rtol, K, ye, work,
+                 cnt):
+    """End of a sliding (or yielding) phase inside the accepted step ``(tau, y) -> (t_end, y1)`` of length ``h``.
+
+    The phase ends where the speed event ``kind`` reaches zero (``g1 <= 0`` at the step's end).
     When the phase began at the step's start (``just_started``, speed 0) an interior point of
     positive speed is found first by halving; without one the phase ends at once.
-    Returns ``(hs, herr)``; ``ye`` holds the state there.
+    Returns ``(found, hs, herr)``; ``ye`` holds the state at ``tau + hs``.
     """
+    g1, r1 = _event(kind, 0.0, bm, im, t_end, y1, P, code, params, work)
+    if g1 > 0.0:
+        return False, 0.0, 0.0
     g0, r0 = _event(kind, 0.0, bm, im, tau, y, P, code, params, work)
     if just_started or g0 <= 0.0:
         hp = h
@@ -531,14 +527,15 @@ def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, 
             if gp > 0.0 or hp < 1e-300:
                 break
         if gp > 0.0:
-            return locate(kind, 0.0, bm, im, tau, y, hp, gp, h, g1, -1.0, check, P, code, params, atol, rtol,
-                          K, ye, work, cnt)
+            hs, herr = locate(kind, 0.0, bm, im, tau, y, hp, gp, h, g1, -1.0, check, P, code, params, atol, rtol,
+                              K, ye, work, cnt)
+            return True, hs, herr
         for i in range(y.shape[0]):
             ye[i] = y[i]
-        return 0.0, 0.0
-    h0 = hermite_root(g0, r0, g1, r1, h)
-    return locate(kind, 0.0, bm, im, tau, y, 0.0, g0, h, g1, h0, check, P, code, params, atol, rtol, K, ye,
-                  work, cnt)
+        return True, 0.0, 0.0
+    hs, herr = locate(kind, 0.0, bm, im, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, code,
+                      params, atol, rtol, K, ye, work, cnt)
+    return True, hs, herr
 
 
 # --- modes ----------------------------------------------------------------------
@@ -724,11 +721,6 @@ def _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params):
     return nh
 
 
-@njit(cache=True)
-def _copy(dst, src):
-    for i in range(src.shape[0]):
-        dst[i] = src[i]
-
 
 @njit(cache=True)
 def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol,
@@ -881,27 +873,19 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         hbest = math.inf
         herr_best = 0.0
         if bm == 0.0:
-            for sig in (1.0, -1.0):
-                found, hs, herr = _demand_event(EV_BLOCK, EV_BPEAK, thr, sig, bm, im, tau, y, y1, h, t_end_step,
-                                                P, code, params, atol, rtol, check, K, ye, work, cnt)
-                if found and hs < hbest:
-                    best, best_sig, hbest, herr_best = EV_BLOCK, sig, hs, herr
-                    _copy(yb, ye)
+            best, best_sig, hbest, herr_best = _earliest_demand_event(
+                EV_BLOCK, EV_BPEAK, thr, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
+                ye, yb, work, cnt, best, best_sig, hbest, herr_best)
         else:
-            g1, r1 = _event(EV_BSPEED, 0.0, bm, im, t_end_step, y1, P, code, params, work)
-            if g1 <= 0.0:
-                hs, herr = _speed_event(EV_BSPEED, bm, im, tau, y, h, g1, r1, b_just, check, P, code, params,
-                                        atol, rtol, K, ye, work, cnt)
-                if hs < hbest:
-                    best, hbest, herr_best = EV_BSPEED, hs, herr
-                    _copy(yb, ye)
+            found, hs, herr = _speed_event(EV_BSPEED, bm, im, tau, y, y1, h, t_end_step, b_just, check, P, code,
+                                           params, atol, rtol, K, ye, work, cnt)
+            if found and hs < hbest:
+                best, hbest, herr_best = EV_BSPEED, hs, herr
+                copy_state(yb, ye)
         if kind == KIND_SLIDING and im == 0.0:
-            for sig in (1.0, -1.0):
-                found, hs, herr = _demand_event(EV_BEAR, EV_IPEAK, q, sig, bm, im, tau, y, y1, h, t_end_step,
-                                                P, code, params, atol, rtol, check, K, ye, work, cnt)
-                if found and hs < hbest:
-                    best, best_sig, hbest, herr_best = EV_BEAR, sig, hs, herr
-                    _copy(yb, ye)
+            best, best_sig, hbest, herr_best = _earliest_demand_event(
+                EV_BEAR, EV_IPEAK, q, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
+                ye, yb, work, cnt, best, best_sig, hbest, herr_best)
         elif kind == KIND_BILINEAR and im == 0.0:
             for sig in (1.0, -1.0):
                 g0, r0 = _event(EV_YIELD, sig, bm, im, tau, y, P, code, params, work)
@@ -909,14 +893,14 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 if g1 > 0.0:
                     if g0 >= 0.0:
                         hs, herr = 0.0, 0.0
-                        _copy(ye, y)
+                        copy_state(ye, y)
                     else:
                         hs, herr = locate(EV_YIELD, sig, bm, im, tau, y, 0.0, g0, h, g1,
                                           hermite_root(g0, r0, g1, r1, h), check, P, code, params, atol, rtol,
                                           K, ye, work, cnt)
                     if hs < hbest:
                         best, best_sig, hbest, herr_best = EV_YIELD, sig, hs, herr
-                        _copy(yb, ye)
+                        copy_state(yb, ye)
                 elif r0 > 0.0 and r1 < 0.0 and _hermite_max(g0, r0, g1, r1, h) >= -1e-2 * q:
                     # an interior peak of sig fh: where x' = 0
                     hm, herr = locate(EV_XD, sig, bm, im, tau, y, 0.0, sig * y[Y_XD], h,
@@ -927,21 +911,19 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                                           params, atol, rtol, K, ye, work, cnt)
                         if hs < hbest:
                             best, best_sig, hbest, herr_best = EV_YIELD, sig, hs, herr
-                            _copy(yb, ye)
+                            copy_state(yb, ye)
         elif kind == KIND_SLIDING or kind == KIND_BILINEAR:
-            g1, r1 = _event(EV_ISPEED, 0.0, bm, im, t_end_step, y1, P, code, params, work)
-            if g1 <= 0.0:
-                hs, herr = _speed_event(EV_ISPEED, bm, im, tau, y, h, g1, r1, i_just, check, P, code, params,
-                                        atol, rtol, K, ye, work, cnt)
-                if hs < hbest:
-                    best, hbest, herr_best = EV_ISPEED, hs, herr
-                    _copy(yb, ye)
+            found, hs, herr = _speed_event(EV_ISPEED, bm, im, tau, y, y1, h, t_end_step, i_just, check, P, code,
+                                           params, atol, rtol, K, ye, work, cnt)
+            if found and hs < hbest:
+                best, hbest, herr_best = EV_ISPEED, hs, herr
+                copy_state(yb, ye)
         if best >= 0:
             if herr_best > 1.0:
                 h = 0.5 * hbest
                 continue
             tau = tau + hbest
-            _copy(y, yb)
+            copy_state(y, yb)
             xmax = max(xmax, abs(y[Y_X]))
             short = check
             if best == EV_BLOCK:
@@ -996,7 +978,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             i_just = False
         # --- accept -----------------------------------------------------------------
         tau = tnew
-        _copy(y, y1)
+        copy_state(y, y1)
         if bm == 0.0:
             y[Y_UD] = 0.0
         if _held(im, P):

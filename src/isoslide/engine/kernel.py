@@ -127,10 +127,6 @@ def _demand_bound(y, m):
     return math.sqrt(2.0 * energy * (cw * cw / mt + w2)) / mt
 
 
-@njit(cache=True, inline="always")
-def _error_scale(i, a, b, atol, rtol):
-    """Tolerance of state component ``i`` for values ``a`` and ``b`` (base: atol; sliding: atol ATOL_SLIDE)."""
-    return (atol if i < 2 else atol * ATOL_SLIDE) + rtol * max(abs(a), abs(b))
 
 
 @njit(cache=True, inline="always")
@@ -186,6 +182,66 @@ def _error_norm(e5, e3, h):
 
 
 @njit(cache=True, inline="always")
+def error_scale(i, lo, hi, a, b, atol, rtol):
+    """Tolerance of state component ``i`` for values ``a`` and ``b``.
+
+    ``atol`` for the building's components, ``atol * ATOL_SLIDE`` for the sliding block's, which
+    are the components ``lo <= i < hi`` of the state; plus ``rtol`` times the larger magnitude.
+    """
+    return (atol * ATOL_SLIDE if lo <= i < hi else atol) + rtol * max(abs(a), abs(b))
+
+
+@njit(cache=True, inline="always")
+def stage_state(y, h, K, st, ys):
+    """The state ``ys = y + h sum_j A[st, j] K[j]`` at which stage ``st`` of a step of length ``h`` is evaluated."""
+    for i in range(y.shape[0]):
+        acc = 0.0
+        for j in range(st):
+            acc += A[st, j] * K[j, i]
+        ys[i] = y[i] + h * acc
+
+
+@njit(cache=True, inline="always")
+def advance(y, h, K, ynew):
+    """The eighth-order end state ``ynew = y + h sum_j B[j] K[j]`` of a step of length ``h``."""
+    for i in range(y.shape[0]):
+        acc = 0.0
+        for j in range(NS):
+            acc += B[j] * K[j, i]
+        ynew[i] = y[i] + h * acc
+
+
+@njit(cache=True, inline="always")
+def scaled_error(K, y, ynew, h, atol, rtol, lo, hi):
+    """DOP853's error norm of the step ``y -> ynew`` of length ``h`` with stages ``K`` (accept when <= 1).
+
+    Each component's estimates are scaled by :func:`error_scale` (the block's components
+    ``lo <= i < hi``).
+    """
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(y.shape[0]):
+        sc = error_scale(i, lo, hi, y[i], ynew[i], atol, rtol)
+        a5, a3 = _error_terms(K, i)
+        e5 += (a5 / sc) ** 2
+        e3 += (a3 / sc) ** 2
+    return _error_norm(e5, e3, h)
+
+
+@njit(cache=True, inline="always")
+def doubling_error(y, yb, ycand, atol, rtol, lo, hi):
+    """Scaled error of a step's end state ``ycand`` against ``yb``, the end of two half steps from ``y``.
+
+    The largest ``|yb - ycand|`` over the components, each scaled by :func:`error_scale` (the
+    block's components ``lo <= i < hi``); accept when <= 1.
+    """
+    e = 0.0
+    for i in range(y.shape[0]):
+        e = max(e, abs(yb[i] - ycand[i]) / error_scale(i, lo, hi, y[i], ycand[i], atol, rtol))
+    return e
+
+
+@njit(cache=True, inline="always")
 def _next_breakpoint(breakpoints, ib, tau):
     """Index of the first of ``breakpoints`` (from ``ib`` on) after ``tau``; one within 1e-14 relative of ``tau`` is passed."""
     while ib < breakpoints.shape[0] and breakpoints[ib] <= tau + 1e-14 * max(1.0, abs(tau)):
@@ -217,6 +273,59 @@ def _break_away(demand, events):
 
 
 @njit(cache=True, inline="always")
+def checkpoint(stick, s, just_started, slipped, events, demand, y, m, after_pulse, at_stop, thr, fixed, settle,
+               track_max, amax, settled):
+    """Mode check at an accepted point, shared by the paper kernel and the piecewise-exact propagation.
+
+    Stuck contents break away where the demand ``|a_req|`` exceeds ``thr`` (Pi5 / Pi2, in units
+    of ``a_p``), unless only the largest demand is tracked (``track_max``, which keeps the peak in
+    ``amax``).  After the pulse (``after_pulse``) stuck contents settle where the bound of
+    :func:`_demand_bound` proves no later demand reaches ``thr`` (``amax`` when tracking), or at
+    once on a fixed base; the run stops there when ``settle`` (when tracking, at once).  At the
+    horizon (``at_stop``) the run stops, a tracked stuck block adding its remaining bound.
+
+    Parameters
+    ----------
+    stick, s, just_started, slipped, events
+        The contact's mode: stuck, sliding direction, phase began at this point, ever slid,
+        transition count.
+    demand : float
+        ``a_req`` at the point (read only while stuck).
+    y : ndarray
+        The state ``(x, x', u, u')`` at the point.
+
+    Returns
+    -------
+    tuple
+        ``(stop, stick, s, just_started, slipped, events, amax, settled)``.
+    """
+    if stick:
+        if track_max and abs(demand) > amax:
+            amax = abs(demand)
+        if abs(demand) > thr and not track_max:
+            stick, s, just_started, slipped, events = _break_away(demand, events)
+        elif after_pulse:
+            if fixed:
+                settled = True
+                if settle:
+                    return True, stick, s, just_started, slipped, events, amax, settled
+            bound = _demand_bound(y, m)
+            if track_max:
+                if bound <= amax:
+                    return True, stick, s, just_started, slipped, events, amax, True
+            elif bound <= thr:
+                settled = True
+                if settle:
+                    return True, stick, s, just_started, slipped, events, amax, settled
+    if at_stop:
+        if track_max and stick and not fixed:
+            amax = max(amax, _demand_bound(y, m))
+        return True, stick, s, just_started, slipped, events, amax, settled
+    return False, stick, s, just_started, slipped, events, amax, settled
+
+
+
+@njit(cache=True, inline="always")
 def _update_peak(u, tau, umax, tpeak, upeak):
     """Largest ``|u|`` so far, its time and ``u`` there: ``(umax, tpeak, upeak)`` updated with ``u`` at ``tau``."""
     if abs(u) > umax:
@@ -225,9 +334,9 @@ def _update_peak(u, tau, umax, tpeak, upeak):
 
 
 @njit(cache=True, inline="always")
-def _copy_state(dst, src):
-    """``dst[:4] = src[:4]``."""
-    for i in range(4):
+def copy_state(dst, src):
+    """``dst[:n] = src`` for a state ``src`` of ``n`` components."""
+    for i in range(src.shape[0]):
         dst[i] = src[i]
 
 
@@ -308,12 +417,12 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
 
     ``K`` (at least ``(NS + 1, 4)``) receives the stages; row ``NS`` is the
     right-hand side at the step end.  The norm is Hairer's combination of the
-    fifth- and third-order estimates, scaled by :func:`_error_scale`
+    fifth- and third-order estimates, scaled by :func:`error_scale`
     (accept when <= 1).  A stuck fixed base does not move: ``ynew = y``,
     error 0.
     """
     if stick and m[M_FIXED] != 0.0:
-        _copy_state(ynew, y)
+        copy_state(ynew, y)
         return 0.0
     # the pulse is right-continuous; stages at the step end use its left
     # limit so that a step ending on a breakpoint sees the step's own piece
@@ -333,21 +442,10 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
         K[st, 0], K[st, 1], K[st, 2], K[st, 3] = deriv4(
             stick, s, ts, y[0] + h * a0, y[1] + h * a1, y[2] + h * a2, y[3] + h * a3, m, code, params)
-    for i in range(4):
-        acc = 0.0
-        for j in range(NS):
-            acc += B[j] * K[j, i]
-        ynew[i] = y[i] + h * acc
+    advance(y, h, K, ynew)
     K[NS, 0], K[NS, 1], K[NS, 2], K[NS, 3] = deriv4(stick, s, t_left, ynew[0], ynew[1], ynew[2],
                                                     ynew[3], m, code, params)
-    e5 = 0.0
-    e3 = 0.0
-    for i in range(4):
-        sc = _error_scale(i, y[i], ynew[i], atol, rtol)
-        a5, a3 = _error_terms(K, i)
-        e5 += (a5 / sc) ** 2
-        e3 += (a3 / sc) ** 2
-    return _error_norm(e5, e3, h)
+    return scaled_error(K, y, ynew, h, atol, rtol, 2, 4)
 
 
 @njit(cache=True)
@@ -363,10 +461,7 @@ def verify(stick, s, tau, y, h, ycand, m, code, params, atol, rtol, K):
     yb = np.empty(4)
     rk_step(stick, s, tau, y, 0.5 * h, m, code, params, atol, rtol, K, ya)
     rk_step(stick, s, tau + 0.5 * h, ya, 0.5 * h, m, code, params, atol, rtol, K, yb)
-    e = 0.0
-    for i in range(4):
-        e = max(e, abs(yb[i] - ycand[i]) / _error_scale(i, y[i], ycand[i], atol, rtol))
-    return e
+    return doubling_error(y, yb, ycand, atol, rtol, 2, 4)
 
 
 # --- events -------------------------------------------------------------------
@@ -469,6 +564,18 @@ def first_trial(h0, lo, glo, hi, ghi):
 
 
 @njit(cache=True, inline="always")
+def bracket_open(tau, h0, ha, ga, hb, gb):
+    """Start of a root search on the bracket ``(ha, hb)`` of step lengths from ``tau``.
+
+    Returns ``(lo, glo, hi, ghi, side, tol, h)`` for :func:`bracket_step`: the bracket with the
+    event function at its ends (``ga``, ``gb`` of opposite sign), no end moved yet, the tolerance
+    ``1e-13 max(1, |tau|)`` on the step length and the first trial (:func:`first_trial` of the
+    guess ``h0``).
+    """
+    return ha, ga, hb, gb, 0, 1e-13 * max(1.0, abs(tau)), first_trial(h0, ha, ga, hb, gb)
+
+
+@njit(cache=True, inline="always")
 def bracket_step(h, g, dg, lo, glo, hi, ghi, side, tol):
     """One step of safeguarded Newton / Illinois regula falsi on a bracket of a sign change.
 
@@ -534,9 +641,7 @@ def locate(kind, sig, stick, s, tau, y, ha, ga, hb, gb, h0, check, m, code, para
     that step (step doubling added when ``check``).  Every step taken is
     counted in ``cnt[kind]``.
     """
-    lo, glo, hi, ghi, side = ha, ga, hb, gb, 0
-    tol = 1e-13 * max(1.0, abs(tau))
-    h = first_trial(h0, lo, glo, hi, ghi)
+    lo, glo, hi, ghi, side, tol, h = bracket_open(tau, h0, ha, ga, hb, gb)
     err = 0.0
     state = ROOT_OPEN
     for _it in range(100):
@@ -662,7 +767,7 @@ def _slip_end(s, tau, y, h, g1, just_started, check, m, code, params, atol, rtol
         if gp > 0.0:
             return locate(EV_SPEED, 0.0, False, s, tau, y, hp, gp, h, g1, -1.0, check, m, code, params,
                           atol, rtol, K, ye, work, cnt)
-        _copy_state(ye, y)
+        copy_state(ye, y)
         return 0.0, 0.0
     glo = s * y[3]
     h0 = hermite_root(glo, s * K[0, 3], g1, s * K[NS, 3], h)
@@ -785,29 +890,10 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     check = zone > 0.0
     while True:
         # --- mode checks at the current (accepted) point -------------------
-        if stick:
-            ar = a_req(tau, y, m, code, params)
-            if track_max and abs(ar) > amax:
-                amax = abs(ar)
-            if abs(ar) > thr and not track_max:
-                stick, s, just_started, slipped, events = _break_away(ar, events)
-            elif tau >= tau_end:
-                if fixed:
-                    settled = True
-                    if settle:
-                        break
-                bound = _demand_bound(y, m)
-                if track_max:
-                    if bound <= amax:
-                        settled = True
-                        break
-                elif bound <= thr:
-                    settled = True
-                    if settle:
-                        break
-        if tau >= tau_stop or steps > max_steps:
-            if track_max and stick and not fixed:
-                amax = max(amax, _demand_bound(y, m))
+        stop, stick, s, just_started, slipped, events, amax, settled = checkpoint(
+            stick, s, just_started, slipped, events, a_req(tau, y, m, code, params) if stick else 0.0, y, m,
+            tau >= tau_end, tau >= tau_stop or steps > max_steps, thr, fixed, settle, track_max, amax, settled)
+        if stop:
             break
         # --- step length -----------------------------------------------------
         ib = _next_breakpoint(breakpoints, ib, tau)
@@ -862,7 +948,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     h = 0.5 * hs
                     continue
                 tau = tau + hs
-                _copy_state(y, ye)
+                copy_state(y, ye)
                 stick, s, just_started, slipped, events = _break_away(a_req(tau, y, m, code, params), events)
                 h = _restart_step(check, h_restart, hlast)
                 nh = _record(hist, nh, hist_cap, tau, y, 0.0)
@@ -876,7 +962,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     h = 0.5 * hs
                     continue
                 tau = tau + hs
-                _copy_state(y, ye)
+                copy_state(y, ye)
                 y[3] = 0.0
                 events += 1
                 umax, tpeak, upeak = _update_peak(y[2], tau, umax, tpeak, upeak)
@@ -896,7 +982,7 @@ def run(m, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 vmax = abs(y1[3])
         # --- accept -------------------------------------------------------------
         tau = tnew
-        _copy_state(y, y1)
+        copy_state(y, y1)
         if stick:
             y[3] = 0.0
         hlast = h

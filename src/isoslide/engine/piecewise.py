@@ -50,7 +50,7 @@ from .. import jit_cache
 from . import kernel
 from .kernel import (F_AMAX, F_TEND, F_TPEAK, F_UMAX, F_UPEAK, F_URES, F_VMAX, M_CW, M_FIXED, M_P8, M_THR, M_W2, N_F, N_H,
                      N_R, R_EVENTS, R_HIST, R_LOC_PEAK, R_LOC_SLIP, R_LOC_STICK, R_REJECTED, R_SETTLED, R_SLIPPED,
-                     R_STEPS, _break_away, _demand_bound, _hermite_max, _record)
+                     R_STEPS, _hermite_max, _record, checkpoint)
 
 INT_RESULTS = kernel.INT_RESULTS
 """The integer results of :func:`run`: the layout of :func:`isoslide.engine.kernel.run`."""
@@ -350,29 +350,10 @@ def run(m, params, tau_start, tau_end, tau_stop, track_max, hist_cap, settle, ma
                 t_next = tau_stop
                 on_grid = False
         # --- mode checks at the current point (as the kernel's) ------------------
-        if stick:
-            ar = _demand(y[0], y[1], p_t, m)
-            if track_max and abs(ar) > amax:
-                amax = abs(ar)
-            if abs(ar) > thr and not track_max:
-                stick, s, just_started, slipped, events = _break_away(ar, events)
-            elif t >= tau_end:
-                if fixed:
-                    settled = True
-                    if settle:
-                        break
-                bound = _demand_bound(y, m)
-                if track_max:
-                    if bound <= amax:
-                        settled = True
-                        break
-                elif bound <= thr:
-                    settled = True
-                    if settle:
-                        break
-        if t >= tau_stop or steps > max_steps:
-            if track_max and stick and not fixed:
-                amax = max(amax, _demand_bound(y, m))
+        stop, stick, s, just_started, slipped, events, amax, settled = checkpoint(
+            stick, s, just_started, slipped, events, _demand(y[0], y[1], p_t, m) if stick else 0.0, y, m,
+            t >= tau_end, t >= tau_stop or steps > max_steps, thr, fixed, settle, track_max, amax, settled)
+        if stop:
             break
         r = t_next - t
         steps += 1

@@ -68,9 +68,9 @@ from . import free_phase
 from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness,
                               _storey_force, friction, normal)
-from .kernel import (ATOL_SLIDE, ROOT_AT_TRIAL, ROOT_OPEN, A, B, C, NS, _error_norm, _error_terms, _hermite_max,
-                     _left_limit, _next_breakpoint, _next_step, _step_factor, _step_target, bracket_step, first_trial,
-                     hermite_root)
+from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, C, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
+                     _step_factor, _step_target, advance, bracket_open, bracket_step, copy_state,
+                     doubling_error, hermite_root, scaled_error, stage_state)
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
@@ -489,11 +489,6 @@ def _turning(which, md, tau, y, P, ex, rate, tmp, dx, dy):
     return (px - mx) / (2.0 * eps), (py - my) / (2.0 * eps)
 
 
-@njit(cache=True)
-def _error_scale(i, U, a, b, atol, rtol):
-    """Tolerance of state component ``i`` (the block's ``u, w`` from ``U`` on get ``atol * ATOL_SLIDE``)."""
-    return (atol * ATOL_SLIDE if i >= U else atol) + rtol * max(abs(a), abs(b))
-
 
 @njit(cache=True)
 def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
@@ -509,27 +504,12 @@ def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
     tmp = K.reshape(K.size)[(NS + 2) * ny:(NS + 5) * ny]
     deriv(md, tau, y, P, ex, K[0], tmp)
     for st in range(1, NS):
-        for i in range(ny):
-            acc = 0.0
-            for j in range(st):
-                acc += A[st, j] * K[j, i]
-            ys[i] = y[i] + h * acc
+        stage_state(y, h, K, st, ys)
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
         deriv(md, ts, ys, P, ex, K[st], tmp)
-    for i in range(ny):
-        acc = 0.0
-        for j in range(NS):
-            acc += B[j] * K[j, i]
-        ynew[i] = y[i] + h * acc
+    advance(y, h, K, ynew)
     deriv(md, t_left, ynew, P, ex, K[NS], tmp)
-    e5 = 0.0
-    e3 = 0.0
-    for i in range(ny):
-        sc = _error_scale(i, U, y[i], ynew[i], atol, rtol)
-        a5, a3 = _error_terms(K, i)
-        e5 += (a5 / sc) ** 2
-        e3 += (a3 / sc) ** 2
-    return _error_norm(e5, e3, h)
+    return scaled_error(K, y, ynew, h, atol, rtol, U, ny)
 
 
 @njit(cache=True)
@@ -540,10 +520,7 @@ def verify(md, tau, y, h, ycand, P, ex, atol, rtol, K):
     yb = np.empty(ny)
     rk_step(md, tau, y, 0.5 * h, P, ex, atol, rtol, K, ya)
     rk_step(md, tau + 0.5 * h, ya, 0.5 * h, P, ex, atol, rtol, K, yb)
-    e = 0.0
-    for i in range(ny):
-        e = max(e, abs(yb[i] - ycand[i]) / _error_scale(i, ny - 4, y[i], ycand[i], atol, rtol))
-    return e
+    return doubling_error(y, yb, ycand, atol, rtol, ny - 4, ny)
 
 
 @njit(cache=True)
@@ -640,9 +617,7 @@ def locate(kind, md, tau, y, ha, ga, hb, gb, h0, check, P, ex, atol, rtol, K, yo
     ``max(1, |tau|)``).  ``yout`` receives the state at the root; returns the step length and the
     error estimate of that step (step doubling added when ``check``).
     """
-    lo, glo, hi, ghi, side = ha, ga, hb, gb, 0
-    tol = 1e-13 * max(1.0, abs(tau))
-    h = first_trial(h0, lo, glo, hi, ghi)
+    lo, glo, hi, ghi, side, tol, h = bracket_open(tau, h0, ha, ga, hb, gb)
     err = 0.0
     state = ROOT_OPEN
     for _it in range(100):
@@ -675,7 +650,7 @@ def _breakaway(kind, limit, md, tau, y, y1, h, t_end, P, ex, atol, rtol, check, 
     g1, r1 = _event(kind, md, t_end, y1, P, ex, work)
     if g1 > 0.0:
         if g0 >= 0.0:
-            _copy(ye, y)
+            copy_state(ye, y)
             return True, 0.0, 0.0
         hs, herr = locate(kind, md, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, ex, atol,
                           rtol, K, ye, work, cnt)
@@ -703,7 +678,7 @@ def _unload(md, tau, y, y1, h, t_end, check, P, ex, atol, rtol, K, ye, work, cnt
         return False, 0.0, 0.0
     g0, r0 = _event(EV_UNLOAD, md, tau, y, P, ex, work)
     if g0 <= 0.0:
-        _copy(ye, y)
+        copy_state(ye, y)
         return True, 0.0, 0.0
     hs, herr = locate(EV_UNLOAD, md, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, ex, atol,
                       rtol, K, ye, work, cnt)
@@ -735,7 +710,7 @@ def _slow_stop(kind, just, md, tau, y, y1, h, t_end, check, P, ex, atol, rtol, K
         if gp > 0.0:
             hs, herr = locate(kind, md, tau, y, hp, gp, h, g1, -1.0, check, P, ex, atol, rtol, K, ye, work, cnt)
             return True, hs, herr
-        _copy(ye, y)
+        copy_state(ye, y)
         return True, 0.0, 0.0
     hs, herr = locate(kind, md, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, ex, atol, rtol, K,
                       ye, work, cnt)
@@ -806,11 +781,6 @@ def _record(hist, nh, hist_cap, tau, y, md):
     return nh
 
 
-@njit(cache=True)
-def _copy(dst, src):
-    for i in range(src.shape[0]):
-        dst[i] = src[i]
-
 
 @njit(cache=True)
 def _select(md, free_b, free_i, tau, y, P, ex, work):
@@ -854,7 +824,7 @@ def _select(md, free_b, free_i, tau, y, P, ex, work):
             if si and free_i and not (rate[1] * trial[M_I0] + rate[nb + 1] * trial[M_I1] > 0.0):
                 ok = False
         if ok:
-            _copy(md, trial)
+            copy_state(md, trial)
             return
     if free_b:
         md[M_BM] = 2.0
@@ -1040,7 +1010,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             rk_step(md, tau, y, h, P, ex, atol, rtol, K, y1)
             steps += 1
             tau += h
-            _copy(y, y1)
+            copy_state(y, y1)
             umax, tpeak, angle, events, iso_events = _at_rest(finished, md, tau, y, umax, tpeak, angle, events,
                                                               iso_events)
             bm0, im0 = md[M_BM], md[M_IM]
@@ -1102,7 +1072,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                                              K, ye, work, cnt)
                 if found and hs < hbest:
                     best, hbest, herr_best = kind, hs, herr
-                    _copy(yb, ye)
+                    copy_state(yb, ye)
         # a yielding bilinear bearing unloading; a slow slide of the block or of a sliding bearing ending
         for kind in (EV_UNLOAD, EV_STOP, EV_BSTOP):
             if kind == EV_UNLOAD:
@@ -1117,12 +1087,12 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                                              t_end_step, check, P, ex, atol, rtol, K, ye, work, cnt)
             if found and hs < hbest:
                 best, hbest, herr_best = kind, hs, herr
-                _copy(yb, ye)
+                copy_state(yb, ye)
         if best >= 0:
             if herr_best > 1.0:
                 h = 0.5 * hbest
                 continue
-            _copy(ye, yb)
+            copy_state(ye, yb)
             # the peak of |u| before the transition, inside the slide
             if md[M_BM] != 0.0:
                 t_old = tpeak
@@ -1131,7 +1101,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                 if tpeak != t_old and tau < tpeak < tau + hbest:
                     nh = _record(hist, nh, hist_cap, tpeak, y1, md)   # the peak of |u| is a history row
             tau += hbest
-            _copy(y, ye)
+            copy_state(y, ye)
             if best == EV_STOP or best == EV_BSTOP:
                 which = 0 if best == EV_STOP else 1
                 if hbest == 0.0 and (just_b if which == 0 else just_i):
@@ -1179,7 +1149,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                 nh = _record(hist, nh, hist_cap, tpeak, ye, md)
         # --- accept -----------------------------------------------------------------------
         tau = tnew
-        _copy(y, y1)
+        copy_state(y, y1)
         just_b = False
         just_i = False
         if md[M_BM] == 0.0:
