@@ -11,23 +11,18 @@ from isoslide.studies.fragility import (FITTED, NOT_CONVERGED, UNIDENTIFIED, boo
 
 RTOL = 1e-10
 
-
-def _one_by_one(x, z, n):
-    """``(theta, beta, log_likelihood, outcome)`` of fit_lognormal, its errors as outcomes."""
-    try:
-        fit = fit_lognormal(x, z, n)
-    except ValueError:
-        return math.nan, math.nan, math.nan, UNIDENTIFIED
-    except RuntimeError:
-        return math.nan, math.nan, math.nan, NOT_CONVERGED
-    return fit.theta, fit.beta, fit.log_likelihood, FITTED
+RAISES = {UNIDENTIFIED: ValueError, NOT_CONVERGED: RuntimeError}
+"""The error fit_lognormal raises where fit_weighted reports each failed outcome."""
 
 
 def _overflows(x, z, n):
+    """fit_lognormal of ``(x, z, n)`` overflows (not another of its failures)."""
     try:
-        _one_by_one(x, z, n)
+        fit_lognormal(x, z, n)
     except OverflowError:
         return True
+    except (ValueError, RuntimeError):   # no curve, or no convergence: a failure of another kind
+        pass
     return False
 
 
@@ -51,11 +46,19 @@ def _repeated(x, w, z, n, i):
 
 
 def _assert_same_fits(got, x, w, z, n):
-    """Each fit of ``got`` (fit_weighted) is fit_lognormal of its entries repeated ``w`` times."""
+    """Each fit of ``got`` (fit_weighted) is fit_lognormal of its entries repeated ``w`` times: the
+    same curve where it fits one, its error where it fails (and NaN for the curve)."""
     for i in range(w.shape[0]):
-        want = _one_by_one(*_repeated(x, w, z, n, i))
-        assert got[3][i] == want[3]
-        np.testing.assert_allclose([g[i] for g in got[:3]], want[:3], rtol=RTOL, equal_nan=True)
+        entries = _repeated(x, w, z, n, i)
+        values = [g[i] for g in got[:3]]
+        if got[3][i] == FITTED:
+            fit = fit_lognormal(*entries)
+            np.testing.assert_allclose(values, [fit.theta, fit.beta, fit.log_likelihood], rtol=RTOL)
+        else:
+            assert got[3][i] in RAISES
+            with pytest.raises(RAISES[got[3][i]]):
+                fit_lognormal(*entries)
+            assert np.isnan(values).all()
 
 
 @pytest.mark.parametrize("kind", ["stripes", "per analysis", "near"])

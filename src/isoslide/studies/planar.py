@@ -33,7 +33,7 @@ from ..datasets import encode_facets, global_attrs, pi_attrs
 from ..groups import group
 from ..pulses import PULSE_NAMES
 from ..scene import Scene
-from ..solver import solve_many as _solve_many
+from .solving import batch_solver
 
 __all__ = ["DIMS", "PI5_DIMS", "amplification_summary", "check_settings", "direction_summary", "findings",
            "line_deviation", "pendulum_summary", "pi5_dataset", "pi5_scenes", "pi5_study", "planar_dataset", "planar_settings",
@@ -324,13 +324,9 @@ def _solution(batch, shape, dims) -> dict:
 def planar_study(settings: Mapping, solve_many=None) -> xr.Dataset:
     """Peak sliding in the plane over the study's grid, with the 1-D answers it is compared with.
 
-    Parameters
-    ----------
-    settings : mapping
-        :func:`planar_settings` of a complete configuration.
-    solve_many : callable, optional
-        ``solve_many(scenes, rtol=...)`` returning an :class:`isoslide.Batch`; default
-        :func:`isoslide.solve_many`.
+    ``settings`` of :func:`planar_settings` and ``solve_many`` as in :mod:`isoslide.studies.solving`;
+    of the solver's answers (an :class:`isoslide.Batch` by default) the dataset stores ``pi1``,
+    ``pi1_residual``, ``tau_peak``, ``settled``, ``peak_angle`` and ``facets``.
 
     Returns
     -------
@@ -348,8 +344,7 @@ def planar_study(settings: Mapping, solve_many=None) -> xr.Dataset:
         ``planar.pendulum``), ``pi1_pendulum_linear`` (the linear isolator of its period) and
         ``pendulum_ratio``.
     """
-    if solve_many is None:
-        solve_many = _solve_many
+    solve_many = batch_solver(solve_many)
     section = check_settings(settings)
     rtol = settings["solver"]["rtol"]
     built = scenes(settings)
@@ -426,12 +421,7 @@ def planar_study(settings: Mapping, solve_many=None) -> xr.Dataset:
 def pi5_study(settings: Mapping, solve_many=None) -> xr.Dataset:
     """The paper's complete similarity in Pi5 re-examined in the plane.
 
-    Parameters
-    ----------
-    settings : mapping
-        :func:`planar_settings` of a complete configuration.
-    solve_many : callable, optional
-        As in :func:`planar_study`.
+    ``settings`` and ``solve_many`` as for :func:`planar_study`.
 
     Returns
     -------
@@ -441,8 +431,7 @@ def pi5_study(settings: Mapping, solve_many=None) -> xr.Dataset:
         (largest Pi1 of those curves), ``relative_spread`` (spread / peak), ``pi2_at`` (where the
         spread is largest) and ``similar`` (``relative_spread <= spread_tolerance``).
     """
-    if solve_many is None:
-        solve_many = _solve_many
+    solve_many = batch_solver(solve_many)
     section = check_settings(settings)
     q = section["pi5"]
     rtol = settings["solver"]["rtol"]

@@ -57,7 +57,7 @@ from .. import records as _rec
 from ..records import G, Record, canonical_shape
 from ..datasets import global_attrs
 from ..scene import Scene
-from .. import solver
+from .solving import batch_solver
 
 __all__ = ["COMPONENTS", "FIG4_RECORD", "PAIR_SUITE", "STAND_IN_FOR", "SUMMARY_VIEWS", "VIEWS", "amplification",
            "check_pairs_settings", "compare_grid", "direction_summary", "fig4_data", "fig4_dataset", "fit_table",
@@ -240,9 +240,8 @@ def compare_grid(names, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
     rtol : float, optional
         Passed to the solver.
     solve_many : callable, optional
-        ``solve_many(scenes, rtol=...)`` returning an object with array
-        attribute ``pi1`` (and optionally ``settled``); default
-        :func:`isoslide.solve_many`.
+        The batch solver (:mod:`isoslide.studies.solving`); of its answers the grid reads
+        ``pi1``, and ``settled`` where they have it.
 
     Returns
     -------
@@ -254,8 +253,7 @@ def compare_grid(names, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
         fit values (``a_p`` [m/s^2], ``T_p`` [s], ``t_peak`` [s], ``r2``, ...),
         ``pga`` [g], ``pgv`` [m/s], ``duration`` [s].
     """
-    if solve_many is None:
-        solve_many = solver.solve_many
+    solve_many = batch_solver(solve_many)
     recs = [resolve_record(n) for n in names]
     names_out = [r.name for r in recs]
     pi2_values, pi3_values = _grid_values("names", "record", names_out, pi2_values, pi3_values)
@@ -715,8 +713,8 @@ def pairs_grid(motions, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
     rtol : float, optional
         Passed to the solver.
     solve_many : callable, optional
-        ``solve_many(scenes, rtol=...)`` returning an object with array attributes ``pi1``,
-        ``peak_angle`` and ``settled``; default :func:`isoslide.solve_many`.
+        The batch solver (:mod:`isoslide.studies.solving`); of its answers the grid reads
+        ``pi1``, ``peak_angle`` and ``settled``.
 
     Returns
     -------
@@ -733,8 +731,7 @@ def pairs_grid(motions, pi2_values, pi3_values, pi4: float = 0.1, pi5: float = 1
         ``a_p``).  Over ``motion``: ``pi14``, ``pi15``, ``pi16`` and metadata (event, station,
         ``rsn``, magnitude, distance, ``pulse``).
     """
-    if solve_many is None:
-        solve_many = solver.solve_many
+    solve_many = batch_solver(solve_many)
     motions = list(motions)
     names = [gm.name for gm in motions]
     pi2_values, pi3_values = _grid_values("motions", "motion", names, pi2_values, pi3_values)
@@ -1264,12 +1261,8 @@ def check_pairs_settings(settings: dict) -> dict:
 def record_pairs_dataset(settings: dict, solve_many=None) -> xr.Dataset:
     """:func:`pairs_grid` of the configured pairs, with CF global attributes and the headline numbers.
 
-    Parameters
-    ----------
-    settings : dict
-        :func:`pairs_settings` of a complete configuration.
-    solve_many : callable, optional
-        See :func:`pairs_grid`.
+    ``settings`` of :func:`pairs_settings` and ``solve_many`` (handed to :func:`pairs_grid`) as in
+    :mod:`isoslide.studies.solving`.
 
     Returns
     -------

@@ -27,7 +27,7 @@ import xarray as xr
 
 from ..datasets import global_attrs, pi_attrs
 from ..scene import MAX_STOREYS, Scene
-from ..solver import solve_many as _solve_many
+from .solving import batch_solver
 
 __all__ = ["ISOLATORS", "MAX_STOREYS", "check_settings", "findings", "floor_summary", "scenes", "storeys_dataset",
            "storeys_settings", "storeys_study"]
@@ -134,13 +134,8 @@ def scenes(settings: Mapping) -> tuple[list, list]:
 def storeys_study(settings: Mapping, solve_many=None) -> xr.Dataset:
     """Peak sliding of the contents on every floor of every building of the study.
 
-    Parameters
-    ----------
-    settings : mapping
-        :func:`storeys_settings` of a complete configuration.
-    solve_many : callable, optional
-        ``solve_many(scenes, rtol=...)`` returning arrays ``pi1`` and ``settled``; default
-        :func:`isoslide.solve_many`.
+    ``settings`` of :func:`storeys_settings` and ``solve_many`` as in :mod:`isoslide.studies.solving`;
+    of the solver's answers the study reads ``pi1`` and ``settled``.
 
     Returns
     -------
@@ -152,8 +147,7 @@ def storeys_study(settings: Mapping, solve_many=None) -> xr.Dataset:
         floor does), ``roof_ratio`` (the roof's over the slab's) and ``upper_beats_slab``
         (``upper_ratio > 1 + tolerance``); per isolator its ``pi4``, ``pi9``, ``pi10``.
     """
-    if solve_many is None:
-        solve_many = _solve_many
+    solve_many = batch_solver(solve_many)
     section = check_settings(settings)
     rtol = settings["solver"]["rtol"]
     tol = section["tolerance"]
