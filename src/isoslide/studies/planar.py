@@ -83,6 +83,16 @@ def _group_list(key: str, name: str, values) -> list:
     return out
 
 
+def _groups(prefix: str, section: Mapping, spec) -> dict:
+    """The Pi-group keys of ``section`` checked, in the order of ``spec``.
+
+    ``spec`` holds ``(name, check)`` pairs: ``section[name]`` checked by ``check``
+    (:func:`_group_value` or :func:`_group_list`) against the range of the group ``name``, an
+    error naming ``planar.<prefix><name>``.
+    """
+    return {name: check(prefix + name, name, section[name]) for name, check in spec}
+
+
 def _fraction(key: str, value) -> float:
     ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
     if not (ok and 0.0 <= value <= 1.0):
@@ -122,17 +132,12 @@ def check_settings(settings: Mapping) -> dict:
         "pulse_z": _pulse("pulse_z", s["pulse_z"]),
         "pi2": {"start": start, "stop": stop, "num": int(num)},
         "pi2_values": [float(v) for v in np.linspace(start, stop, int(num))],
-        "pi3": _group_list("pi3", "pi3", s["pi3"]),
-        "pi4": _group_value("pi4", "pi4", s["pi4"]),
-        "pi14": _group_list("pi14", "pi14", s["pi14"]),
-        "pi15": _group_list("pi15", "pi15", s["pi15"]),
-        "pi16": _group_value("pi16", "pi16", s["pi16"]),
-        "pi17": _group_list("pi17", "pi17", s["pi17"]),
+        **_groups("", s, (("pi3", _group_list), ("pi4", _group_value), ("pi14", _group_list), ("pi15", _group_list),
+                          ("pi16", _group_value), ("pi17", _group_list))),
         "tolerance": _fraction("tolerance", s["tolerance"]),
     }
     pend = s["pendulum"]
-    out["pendulum"] = {"pi3": _group_value("pendulum.pi3", "pi3", pend["pi3"]),
-                       "pi9": _group_value("pendulum.pi9", "pi9", pend["pi9"])}
+    out["pendulum"] = _groups("pendulum.", pend, (("pi3", _group_value), ("pi9", _group_value)))
     if out["pendulum"]["pi3"] == 0.0 or out["pendulum"]["pi9"] == 0.0:
         raise ValueError(f"planar.pendulum = {pend!r} is not a friction pendulum; allowed: pi3 > 0 (its period over "
                          "T_p) and pi9 > 0 (its friction mu_b g / a_p)")
@@ -147,11 +152,8 @@ def check_settings(settings: Mapping) -> dict:
                              f"{out['pulse_z']!r} ({err})") from None
     q = s["pi5"]
     out["pi5"] = {
-        "pi5": _group_list("pi5.pi5", "pi5", q["pi5"]),
-        "pi6": _group_value("pi5.pi6", "pi6", q["pi6"]),
-        "pi3": _group_list("pi5.pi3", "pi3", q["pi3"]),
-        "pi14": _group_list("pi5.pi14", "pi14", q["pi14"]),
-        "pi15": _group_value("pi5.pi15", "pi15", q["pi15"]),
+        **_groups("pi5.", q, (("pi5", _group_list), ("pi6", _group_value), ("pi3", _group_list), ("pi14", _group_list),
+                              ("pi15", _group_value))),
         "spread_tolerance": _fraction("pi5.spread_tolerance", q["spread_tolerance"]),
     }
     return out
