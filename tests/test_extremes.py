@@ -12,7 +12,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-import time
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -25,8 +25,8 @@ from isoslide.pulses import PULSE_NAMES, sampled
 from isoslide.scene import G_STANDARD, PI_RANGES
 from isoslide.solver import DEFAULT_HORIZON, peak_stuck_demand, solve_many
 
-COST_LIMIT_S = 5.0
-"""No scene of the domain may take longer than this (wall clock, on a loaded 2-core machine)."""
+from work_bounds import assert_work_bounded  # tests/ is on sys.path
+
 
 HYP = settings(deadline=None, max_examples=40, suppress_health_check=[HealthCheck.too_slow],
                derandomize=True)
@@ -131,21 +131,14 @@ def test_corners_of_the_base(pi2, pi3, pi4):
     """Every corner of (Pi2, Pi3, xi_b), with the friction and mass groups at their corners too."""
     for pi5, pi6, pi7, pi8 in itertools.product(CORNERS["pi5"], CORNERS["pi6"], CORNERS["pi7"], CORNERS["pi8"]):
         sc = Scene(pi2=pi2, pi3=pi3, pi4=pi4, pi5=pi5, pi6=pi6, pi7=pi7, pi8=pi8)
-        t0 = time.perf_counter()
         s = solve(sc)
-        assert time.perf_counter() - t0 < COST_LIMIT_S, sc
         check_solution(s, sc)
+        assert_work_bounded(s, sc)
 
 
 # ----------------------------------------------------------------------------------------------
 # properties over the whole domain
 # ----------------------------------------------------------------------------------------------
-
-BUILDING_COST_LIMIT_S = 60.0
-"""No general building of the domain may take longer than this.  The slowest are undamped and
-followed to the horizon (200 isolation periods) with a stiff elastic branch (a bilinear bearing with
-``Pi10`` near 0, period ``~ sqrt(Pi10/Pi9)``) or a stiff superstructure: millions of steps."""
-
 
 @st.composite
 def buildings(draw, pulses=pulse_s):
@@ -166,20 +159,16 @@ def buildings(draw, pulses=pulse_s):
 @given(buildings())
 def test_valid_building_is_solved_finite_nonnegative_and_bounded(sc):
     """Bearings with true stick or yielding, flexible superstructures, both floors, every corner."""
-    t0 = time.perf_counter()
     s = solve(sc, horizon=50.0)
-    dt = time.perf_counter() - t0
     check_solution(s, sc, horizon=50.0)
-    assert dt < BUILDING_COST_LIMIT_S, f"{dt:.2f} s for {sc!r}"
+    assert_work_bounded(s, sc)
 
 @HYP
 @given(scenes())
-def test_valid_scene_is_solved_finite_nonnegative_and_fast(sc):
-    t0 = time.perf_counter()
+def test_valid_scene_is_solved_finite_nonnegative_in_bounded_work(sc):
     s = solve(sc)
-    dt = time.perf_counter() - t0
     check_solution(s, sc)
-    assert dt < COST_LIMIT_S, f"{dt:.2f} s for {sc!r}"
+    assert_work_bounded(s, sc)
     if s.pi1 == 0.0:
         assert "no-slide" in s.model
     if sc.static_level > peak_stuck_demand(sc) * (1 + 1e-9):
@@ -355,11 +344,10 @@ def test_accuracy_settings_agree(sc):
 @settings(deadline=None, max_examples=400, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
 @given(scenes())
 def test_valid_scene_heavy_sweep(sc):
-    """Many more scenes of the domain (slow): finite, non-negative, fast, batch = single."""
-    t0 = time.perf_counter()
+    """Many more scenes of the domain (slow): finite, non-negative, in bounded work, batch = single."""
     s = solve(sc)
-    assert time.perf_counter() - t0 < COST_LIMIT_S, sc
     check_solution(s, sc)
+    assert_work_bounded(s, sc)
     assert solve_many([sc]).pi1[0] == s.pi1
 
 
@@ -414,23 +402,30 @@ def test_hard_scenes_meet_the_asked_rtol(scene, rtol):
     assert abs(p - conv) <= rtol * conv, (p, conv)
 
 
-def test_plateau_at_threshold_is_solved_fast():
-    """A stuck demand lying on the static level for the whole rectangular pulse (stiff over-damped
-    base, heavy contents, strong viscous contact) is solved in ~2000 transitions in under a second,
-    without chattering through millions of stick/slip transitions.  Runs in a subprocess: the
-    compiled kernel cannot be interrupted from Python."""
+PLATEAU = {"pi2": 1.0, "pi3": 1e-3, "pi4": 10.0, "pi7": 56.2, "pi8": 1.0, "pulse": "rectangular"}
+"""A stuck demand lying on the static level for the whole rectangular pulse (stiff over-damped base,
+heavy contents, strong viscous contact): the arguments of its Scene."""
+
+
+def test_plateau_at_threshold_is_solved_in_bounded_work():
+    """The plateau scene is solved in a few thousand transitions and bounded work, without chattering
+    through millions of stick/slip transitions.  Runs in a subprocess that must end within 60 s: the
+    compiled kernel cannot be interrupted from Python, so a chattering run would hang the suite."""
     import subprocess
     import sys
 
-    code = ("import time; from isoslide import Scene, solve; solve(Scene(pi2=0.2, pi3=1.0)); "
-            "sc = Scene(pi2=1.0, pi3=1e-3, pi4=10.0, pi7=56.2, pi8=1.0, pulse='rectangular'); "
-            "t = time.perf_counter(); s = solve(sc); print(time.perf_counter() - t, s.pi1)")
+    code = (f"from isoslide import Scene, solve; s = solve(Scene(**{PLATEAU!r})); "
+            "print(s.pi1, s.n_steps, s.n_events, s.tau_end)")
     try:
-        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=30)
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     except subprocess.TimeoutExpired:
-        pytest.fail("over 30 s")
-    dt, pi1 = map(float, out.stdout.split())
-    assert dt < COST_LIMIT_S and pi1 >= 0.0
+        pytest.fail("no answer within 60 s")
+    assert out.returncode == 0, out.stderr
+    pi1, n_steps, n_events, tau_end = out.stdout.split()
+    s = SimpleNamespace(pi1=float(pi1), n_steps=int(n_steps), n_events=int(n_events), tau_end=float(tau_end))
+    assert s.pi1 >= 0.0
+    assert 0 < s.n_events <= 10_000, s
+    assert_work_bounded(s, Scene(**PLATEAU))
 
 
 MANY = Scene(pi2=1.4999999949765033, pi3=1e-3, pi4=0.0, pi8=0.0, pulse="rectangular")
