@@ -485,7 +485,7 @@ def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code,
     return True, hs, herr
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _earliest_demand_event(kind, peak, limit, bm, im, tau, y, y1, h, t_end, P, code, params, atol, rtol, check, K,
                            ye, yb, work, cnt, best, best_sig, hbest, herr_best):
     """The earliest of :func:`_demand_event` in both directions, if before the best event so far.
@@ -502,19 +502,30 @@ def _earliest_demand_event(kind, peak, limit, bm, im, tau, y, y1, h, t_end, P, c
     return best, best_sig, hbest, herr_best
 
 
-@njit(cache=True)
-def _speed_event(kind, bm, im, tau, y, y1, h, t_end, just_started, check, P, code, params, atol, rtol, K, ye, work,
-                 cnt):
-    """End of a sliding (or yielding) phase inside the accepted step ``(tau, y) -> (t_end, y1)`` of length ``h``.
+@njit(cache=True, inline="always")
+def _speed_candidate(kind, bm, im, tau, y, y1, h, t_end, just_started, check, P, code, params, atol, rtol, K, ye,
+                     work, cnt):
+    """:func:`_speed_event` where the speed event ``kind`` is not positive at the step's end ``(t_end, y1)``.
 
-    The phase ends where the speed event ``kind`` reaches zero (``g1 <= 0`` at the step's end).
-    When the phase began at the step's start (``just_started``, speed 0) an interior point of
-    positive speed is found first by halving; without one the phase ends at once.
-    Returns ``(found, hs, herr)``; ``ye`` holds the state at ``tau + hs``.
+    Returns ``(found, hs, herr)``: ``found`` False (and zeros) while the phase goes on.
     """
     g1, r1 = _event(kind, 0.0, bm, im, t_end, y1, P, code, params, work)
     if g1 > 0.0:
         return False, 0.0, 0.0
+    hs, herr = _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, params, atol, rtol, K, ye,
+                            work, cnt)
+    return True, hs, herr
+
+
+@njit(cache=True)
+def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, params, atol, rtol, K, ye, work,
+                 cnt):
+    """End of a sliding (or yielding) phase inside the accepted step: ``g1 <= 0`` (rate ``r1``) at its end.
+
+    When the phase began at the step's start (``just_started``, speed 0) an interior point of
+    positive speed is found first by halving; without one the phase ends at once.
+    Returns ``(hs, herr)``; ``ye`` holds the state there.
+    """
     g0, r0 = _event(kind, 0.0, bm, im, tau, y, P, code, params, work)
     if just_started or g0 <= 0.0:
         hp = h
@@ -527,15 +538,13 @@ def _speed_event(kind, bm, im, tau, y, y1, h, t_end, just_started, check, P, cod
             if gp > 0.0 or hp < 1e-300:
                 break
         if gp > 0.0:
-            hs, herr = locate(kind, 0.0, bm, im, tau, y, hp, gp, h, g1, -1.0, check, P, code, params, atol, rtol,
-                              K, ye, work, cnt)
-            return True, hs, herr
+            return locate(kind, 0.0, bm, im, tau, y, hp, gp, h, g1, -1.0, check, P, code, params, atol, rtol,
+                          K, ye, work, cnt)
         for i in range(y.shape[0]):
             ye[i] = y[i]
-        return True, 0.0, 0.0
-    hs, herr = locate(kind, 0.0, bm, im, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, code,
-                      params, atol, rtol, K, ye, work, cnt)
-    return True, hs, herr
+        return 0.0, 0.0
+    return locate(kind, 0.0, bm, im, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h), check, P, code, params,
+                  atol, rtol, K, ye, work, cnt)
 
 
 # --- modes ----------------------------------------------------------------------
@@ -877,8 +886,8 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 EV_BLOCK, EV_BPEAK, thr, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
                 ye, yb, work, cnt, best, best_sig, hbest, herr_best)
         else:
-            found, hs, herr = _speed_event(EV_BSPEED, bm, im, tau, y, y1, h, t_end_step, b_just, check, P, code,
-                                           params, atol, rtol, K, ye, work, cnt)
+            found, hs, herr = _speed_candidate(EV_BSPEED, bm, im, tau, y, y1, h, t_end_step, b_just, check, P, code,
+                                               params, atol, rtol, K, ye, work, cnt)
             if found and hs < hbest:
                 best, hbest, herr_best = EV_BSPEED, hs, herr
                 copy_state(yb, ye)
@@ -913,8 +922,8 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                             best, best_sig, hbest, herr_best = EV_YIELD, sig, hs, herr
                             copy_state(yb, ye)
         elif kind == KIND_SLIDING or kind == KIND_BILINEAR:
-            found, hs, herr = _speed_event(EV_ISPEED, bm, im, tau, y, y1, h, t_end_step, i_just, check, P, code,
-                                           params, atol, rtol, K, ye, work, cnt)
+            found, hs, herr = _speed_candidate(EV_ISPEED, bm, im, tau, y, y1, h, t_end_step, i_just, check, P, code,
+                                               params, atol, rtol, K, ye, work, cnt)
             if found and hs < hbest:
                 best, hbest, herr_best = EV_ISPEED, hs, herr
                 copy_state(yb, ye)
