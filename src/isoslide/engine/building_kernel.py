@@ -74,8 +74,8 @@ from ..model.friction import stribeck
 from . import free_phase
 from .modes import candidates
 from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, C, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
-                     _step_factor, _step_target, advance, bracket_open, bracket_step, copy_state,
-                     doubling_error, hermite_root, scaled_error, stage_state)
+                     _step_factor, _step_target, bracket_open, bracket_step, copy_state, doubling_error,
+                     end_state, hermite_root, scaled_error, stage_state)
 from ..pulses import accel_at, jerk_at
 
 Y_X, Y_XD, Y_XS = range(3)
@@ -385,7 +385,6 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
 # --- one Runge-Kutta step ---------------------------------------------------
 
 
-
 @njit(cache=True)
 def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
     """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
@@ -401,7 +400,7 @@ def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
         stage_state(y, h, K, st, ys)
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
         deriv(bm, im, ts, ys, P, code, params, K[st])
-    advance(y, h, K, ynew)
+    end_state(y, h, K, ynew)
     deriv(bm, im, t_left, ynew, P, code, params, K[NS])
     return scaled_error(K, y, ynew, h, atol, rtol, ny - 3, ny - 1)
 
@@ -730,7 +729,6 @@ def _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params):
     return nh
 
 
-
 @njit(cache=True)
 def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol,
         hist_cap, h_restart, settle, max_steps, Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh):
@@ -833,20 +831,13 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         if tau >= tau_end and bm == 0.0 and im == 0.0:
             held = _held(im, P)
             W, Cd, V, L = (Wh, Ch, Vh, Lh) if held else (Wm, Cm, Vm, Lm)
-            nm = W.shape[0]
-            if nm > 0 and V.shape[1] == nm:
-                free_phase.modal_coordinates(W, y, 0, a_x[:nm])
-                offsets[1, 0] = P[P_KD] * y[Y_X] if held else 0.0
-                hf = min(free_phase.safe_step(a_x[:nm], a_y[:nm], L, Cd, offsets, limits), tau_stop - tau)
-                if hist_cap > 0:
-                    hf = min(hf, h_max_free)
-                if hf >= h_max_free or tau + hf >= tau_stop:
-                    free_phase.advance(a_x[:nm], L, V, hf, y, 0)
-                    tau = tau_stop if tau + hf >= tau_stop else tau + hf
-                    steps += 1
-                    xmax = max(xmax, abs(y[Y_X]))
-                    nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
-                    continue
+            taken, tau = free_phase.exact_step(W, Cd, V, L, y, -1, held, P[P_KD], limits, offsets, a_x, a_y, tau,
+                                               tau_stop, h_max_free, hist_cap > 0)
+            if taken:
+                steps += 1
+                xmax = max(xmax, abs(y[Y_X]))
+                nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+                continue
         # --- step length ---------------------------------------------------------
         ib = _next_breakpoint(breakpoints, ib, tau)
         # after the pulse, steps are held to h_max_free while a demand is watched for its limit

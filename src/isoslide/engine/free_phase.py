@@ -136,5 +136,56 @@ def advance(a, lam, V, h, y, o):
             y[o + i] = acc
 
 
+@njit(cache=True)
+def exact_step(W, C, V, lam, y, oy, held, kd, limits, offsets, a_x, a_y, tau, tau_stop, h_useful, capped):
+    """One exact step of the free phase from ``(tau, y)``, where :func:`safe_step` proves a useful one safe.
+
+    Parameters
+    ----------
+    W, C, V, lam : ndarray of complex128
+        The phase's modal data (:func:`isoslide.engine.building.modal_data`; empty: no step).
+    y : ndarray of float64
+        The state, advanced in place: the x axis's states from 0, the y axis's from ``oy``
+        (``oy < 0`` along a line, where ``a_y`` stays zero).
+    held : bool
+        A sliding bearing holds the slab: its demand has the constant part ``kd`` times the slab's
+        displacement (``kd`` its pendulum stiffness, units of ``M_b / T_p^2``).
+    limits, offsets, a_x, a_y : ndarray
+        The demands' limits, scratch space for their constant parts ``(n_demands, 2)`` and for the
+        modal coordinates of each axis (at least as long as the modes).
+    tau, tau_stop : float
+        The step's start and the end of the run (units of ``T_p``).
+    h_useful : float
+        Shortest step worth taking (a Runge-Kutta step is held to it); with ``capped`` (a history
+        recorded) also the longest.
+
+    Returns
+    -------
+    tuple
+        ``(taken, tau)``: whether a step was taken and the time reached (``tau_stop`` at the end).
+    """
+    nm = W.shape[0]
+    if nm == 0 or V.shape[1] != nm:
+        return False, tau
+    ax = a_x[:nm]
+    ay = a_y[:nm]
+    modal_coordinates(W, y, 0, ax)
+    if oy >= 0:
+        modal_coordinates(W, y, oy, ay)
+    if held:
+        offsets[1, 0] = kd * y[0]
+        if oy >= 0:
+            offsets[1, 1] = kd * y[oy]
+    hf = min(safe_step(ax, ay, lam, C, offsets, limits), tau_stop - tau)
+    if capped:
+        hf = min(hf, h_useful)
+    if not (hf >= h_useful or tau + hf >= tau_stop):
+        return False, tau
+    advance(ax, lam, V, hf, y, 0)
+    if oy >= 0:
+        advance(ay, lam, V, hf, y, oy)
+    return True, (tau_stop if tau + hf >= tau_stop else tau + hf)
+
+
 # numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
 jit_cache.seed(advance)

@@ -127,8 +127,6 @@ def _demand_bound(y, m):
     return math.sqrt(2.0 * energy * (cw * cw / mt + w2)) / mt
 
 
-
-
 @njit(cache=True, inline="always")
 def _hermite_coeffs(g0, d0, g1, d1, h):
     """Coefficients ``c, e`` of the cubic Hermite interpolant ``g0 + d0 t + c t^2 + e t^3`` on [0, h]."""
@@ -202,7 +200,7 @@ def stage_state(y, h, K, st, ys):
 
 
 @njit(cache=True, inline="always")
-def advance(y, h, K, ynew):
+def end_state(y, h, K, ynew):
     """The eighth-order end state ``ynew = y + h sum_j B[j] K[j]`` of a step of length ``h``."""
     for i in range(y.shape[0]):
         acc = 0.0
@@ -324,7 +322,6 @@ def checkpoint(stick, s, just_started, slipped, events, demand, y, m, after_puls
     return False, stick, s, just_started, slipped, events, amax, settled
 
 
-
 @njit(cache=True, inline="always")
 def _update_peak(u, tau, umax, tpeak, upeak):
     """Largest ``|u|`` so far, its time and ``u`` there: ``(umax, tpeak, upeak)`` updated with ``u`` at ``tau``."""
@@ -442,7 +439,7 @@ def rk_step(stick, s, tau, y, h, m, code, params, atol, rtol, K, ynew):
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
         K[st, 0], K[st, 1], K[st, 2], K[st, 3] = deriv4(
             stick, s, ts, y[0] + h * a0, y[1] + h * a1, y[2] + h * a2, y[3] + h * a3, m, code, params)
-    advance(y, h, K, ynew)
+    end_state(y, h, K, ynew)
     K[NS, 0], K[NS, 1], K[NS, 2], K[NS, 3] = deriv4(stick, s, t_left, ynew[0], ynew[1], ynew[2],
                                                     ynew[3], m, code, params)
     return scaled_error(K, y, ynew, h, atol, rtol, 2, 4)

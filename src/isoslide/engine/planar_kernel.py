@@ -69,8 +69,8 @@ from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness,
                               _storey_force, friction, normal)
 from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, C, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
-                     _step_factor, _step_target, advance, bracket_open, bracket_step, copy_state,
-                     doubling_error, hermite_root, scaled_error, stage_state)
+                     _step_factor, _step_target, bracket_open, bracket_step, copy_state, doubling_error,
+                     end_state, hermite_root, scaled_error, stage_state)
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
@@ -489,7 +489,6 @@ def _turning(which, md, tau, y, P, ex, rate, tmp, dx, dy):
     return (px - mx) / (2.0 * eps), (py - my) / (2.0 * eps)
 
 
-
 @njit(cache=True)
 def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
     """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
@@ -507,7 +506,7 @@ def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
         stage_state(y, h, K, st, ys)
         ts = t_left if C[st] == 1.0 else tau + C[st] * h
         deriv(md, ts, ys, P, ex, K[st], tmp)
-    advance(y, h, K, ynew)
+    end_state(y, h, K, ynew)
     deriv(md, t_left, ynew, P, ex, K[NS], tmp)
     return scaled_error(K, y, ynew, h, atol, rtol, U, ny)
 
@@ -781,7 +780,6 @@ def _record(hist, nh, hist_cap, tau, y, md):
     return nh
 
 
-
 @njit(cache=True)
 def _select(md, free_b, free_i, tau, y, P, ex, work):
     """Modes of the interfaces at rest (``free_b``: the block, ``free_i``: a sliding bearing), set in ``md``.
@@ -964,24 +962,13 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         if tau >= tau_end and md[M_BM] == 0.0 and md[M_IM] == 0.0 and not hold:
             held = _held(0.0, P)
             W, Cd, V, L = (Wh, Ch, Vh, Lh) if held else (Wm, Cm, Vm, Lm)
-            nm = W.shape[0]
-            if nm > 0 and V.shape[1] == nm:
-                free_phase.modal_coordinates(W, y, 0, a_x[:nm])
-                free_phase.modal_coordinates(W, y, nb_, a_y[:nm])
-                if held:
-                    offsets[1, 0] = P[P_KD] * y[0]
-                    offsets[1, 1] = P[P_KD] * y[nb_]
-                hf = min(free_phase.safe_step(a_x[:nm], a_y[:nm], L, Cd, offsets, limits), tau_stop - tau)
-                if hist_cap > 0:
-                    hf = min(hf, h_max_free)
-                if hf >= h_max_free or tau + hf >= tau_stop:
-                    free_phase.advance(a_x[:nm], L, V, hf, y, 0)
-                    free_phase.advance(a_y[:nm], L, V, hf, y, nb_)
-                    tau = tau_stop if tau + hf >= tau_stop else tau + hf
-                    steps += 1
-                    xmax = max(xmax, math.sqrt(y[0] ** 2 + y[nb_] ** 2))
-                    nh = _record(hist, nh, hist_cap, tau, y, md)
-                    continue
+            taken, tau = free_phase.exact_step(W, Cd, V, L, y, nb_, held, P[P_KD], limits, offsets, a_x, a_y, tau,
+                                               tau_stop, h_max_free, hist_cap > 0)
+            if taken:
+                steps += 1
+                xmax = max(xmax, math.sqrt(y[0] ** 2 + y[nb_] ** 2))
+                nh = _record(hist, nh, hist_cap, tau, y, md)
+                continue
         # --- step length ---------------------------------------------------------------
         ib = _next_breakpoint(breakpoints, ib, tau)
         # after the pulses, steps are held to h_max_free while a demand is watched for its limit

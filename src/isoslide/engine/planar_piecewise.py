@@ -267,8 +267,8 @@ def run(m, gx, gy, tau0, dtau, tau_end, tau_stop, hist_cap, settle, max_steps, P
         _full_state(ax, ay, u, yfull)
         kb = max(k - 2, 0)
         res = planar_kernel.run(P, ex, breakpoints[kb:], t, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol,
-                                max(hist_cap - nh, 0), h_restart, settle, max(max_steps - steps, 0), Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh,
-                                yfull, md, slaved, True, final)
+                                max(hist_cap - nh, 0), h_restart, settle, max(max_steps - steps, 0), Wm, Cm, Vm, Lm,
+                                Wh, Ch, Vh, Lh, yfull, md, slaved, True, final)
         ints, floats, rows = res
         steps += ints[I_STEPS]
         events += ints[I_EVENTS]
