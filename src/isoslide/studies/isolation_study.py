@@ -31,6 +31,7 @@ from ..config import ConfigError
 from ..datasets import global_attrs, open_dataset, pi_attrs
 from .intensity import floor_peaks
 from .record_study import resolve_record
+from .solving import batch_solver
 from ..records import G
 from ..scene import FLOORS, Scene
 from .sweep import normalise_study
@@ -292,7 +293,8 @@ def design_comparison(settings: dict, solve_many=None) -> xr.Dataset:
     settings : dict
         :func:`isolation_settings` of a complete configuration.
     solve_many : callable, optional
-        ``solve_many(scenes, rtol=...)``; default :func:`isoslide.solve_many`.
+        The batch solver (:mod:`isoslide.studies.solving`); of its answers the comparison reads
+        ``pi1`` and ``settled``.
 
     Returns
     -------
@@ -305,8 +307,7 @@ def design_comparison(settings: dict, solve_many=None) -> xr.Dataset:
         evaluated back at ``D``; per ``excitation``: ``kind``, ``a_p``, ``T_p``; ``best``, the
         system of the smallest mean ``u_max`` over ``mu_k`` (per excitation, ``""`` if none slides).
     """
-    if solve_many is None:
-        solve_many = solver.solve_many
+    solve_many = batch_solver(solve_many)
     sec = settings["isolation"]["design"]
     defaults = settings["defaults"]
     rtol = settings["solver"]["rtol"]

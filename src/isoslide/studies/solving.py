@@ -3,8 +3,9 @@
 The study functions that solve grids of scenes from the configuration
 (:func:`isoslide.studies.planar.planar_study`, :func:`~isoslide.studies.planar.pi5_study`,
 :func:`isoslide.studies.storeys.storeys_study`,
-:func:`isoslide.studies.record_study.record_pairs_dataset` and the ``*_dataset`` functions built on
-them) take these two arguments alike, and the grids of records
+:func:`isoslide.studies.record_study.record_pairs_dataset`,
+:func:`isoslide.studies.isolation_study.design_comparison` and the ``*_dataset`` functions built
+on them) take these two arguments alike, and the grids of records
 (:func:`~isoslide.studies.record_study.compare_grid`, :func:`~isoslide.studies.record_study.pairs_grid`)
 take ``solve_many`` alike; each function names only its own settings function and what it reads of
 the solver's answers.
