@@ -13,6 +13,8 @@
 
 import os
 import re
+import shlex
+import sys
 
 from snakemake.utils import min_version, validate
 
@@ -23,6 +25,14 @@ min_version("9.0")
 # a cluster, where each job reads this file again).
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ[_var] = "1"
+
+
+# The compiled kernels: where the ones shipped with the package do not fit this machine (another
+# processor level or numba), compile them once here, saying so in one line, before any job starts;
+# the jobs, parallel or on a cluster's nodes, then load them from numba's cache instead of each
+# compiling them again (isoslide.jit_cache warm; a quick check when the shipped kernels fit).
+onstart:
+    shell(f"{shlex.quote(sys.executable)} -m isoslide.jit_cache warm")
 
 
 configfile: "config/config.yaml"

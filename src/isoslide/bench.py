@@ -50,6 +50,8 @@ from pathlib import Path
 import numpy as np
 
 from . import accuracy, config, records
+from .accuracy import kernel_targets
+from .accuracy.scenes import BUILDING_POINTS, BUILDINGS, STOREYS, STOREYS_NAME
 from .scene import Scene
 from .studies import fragility_planar
 from .solver import DEFAULT_RTOL, solve, warm_up
@@ -294,23 +296,6 @@ def report_records(res: dict, summ: dict, file=sys.stdout) -> None:
       f"model='full')")
 
 
-BUILDING_POINTS = [dict(pi2=pi2, pi3=pi3, pi4=0.05, pi8=0.01) for pi2 in (0.05, 0.1, 0.2, 0.3) for pi3 in (2.0, 3.0)]
-"""Pi points of the buildings section: the paper's model at each, and every building beside it."""
-STOREYS = (2, 5, 8)
-"""Storey counts of the uniform N-storey buildings timed beside the others."""
-STOREYS_NAME = "{} storeys, contents on the roof"
-"""Row name of the uniform building of ``n`` storeys (``STOREYS_NAME.format(n)``)."""
-BUILDINGS = {
-    "paper model (linear isolator, rigid)": {},
-    "friction pendulum (pi9 = 0.05)": dict(pi9=0.05),
-    "lead-rubber bearing (pi9 = 0.05, pi10 = 0.005)": dict(pi9=0.05, pi10=0.005),
-    "flexible superstructure, contents on the base": dict(pi11=0.6, pi12=0.2, pi13=0.02),
-    "flexible superstructure, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
-    "friction pendulum, flexible, roof": dict(pi9=0.05, pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
-    **{STOREYS_NAME.format(n): dict(pi11=0.6, pi12=0.2, pi13=0.02, storeys=n, floor="roof")
-       for n in STOREYS},
-}
-"""Buildings timed side by side on :data:`BUILDING_POINTS` (keyword arguments of :class:`isoslide.Scene`)."""
 TARGET_BUILDING_RATIO = 3.0
 """Aim: a general building of one storey costs at most this many times the paper model's scene."""
 TARGET_STOREYS_RATIO = 5.0
@@ -622,6 +607,8 @@ SECTION_FLAGS = (
     ("--planar-only", "only the planar section (planar scenes beside their 1-D twins, recorded pairs per "
                       "sample, the planar fragility study's cost per analysis; about a minute)"),
     ("--no-planar", "leave out the planar section"),
+    ("--cpu-targets", "only the kernels compiled for this processor against the portable level the shipped "
+                      "ones are compiled for, on the buildings section's scenes (isoslide.accuracy.kernel_targets)"),
 )
 """The command line's section flags (each on or off) and their help: one section alone, or one left out."""
 
@@ -653,6 +640,9 @@ def main(argv=None) -> int:
     for flag, text in SECTION_FLAGS:
         ap.add_argument(flag, action="store_true", help=text)
     a = ap.parse_args(argv)
+    if a.cpu_targets:
+        _write_json(a.json, {"cpu_targets": kernel_targets.report(kernel_targets.run(rounds=5 if a.quick else 15))})
+        return 0
     if a.planar_only:
         _write_json(a.json, {"planar": run_report_planar(quick=a.quick)})
         return 0

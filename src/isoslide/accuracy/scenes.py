@@ -1,4 +1,4 @@
-"""The representative scene set: study subsamples and the hard cases."""
+"""The representative scene set: study subsamples and the hard cases; the buildings timed beside the paper's scene."""
 
 from __future__ import annotations
 
@@ -208,3 +208,22 @@ def scene_coords(entries) -> dict:
     coords["scene_label"] = ("scene", np.array([e.label for e in entries], dtype=str),
                              {"long_name": "scene description", "units": "1"})
     return coords
+
+
+BUILDING_POINTS = [dict(pi2=pi2, pi3=pi3, pi4=0.05, pi8=0.01) for pi2 in (0.05, 0.1, 0.2, 0.3) for pi3 in (2.0, 3.0)]
+"""Pi points of the buildings section: the paper's model at each, and every building beside it."""
+STOREYS = (2, 5, 8)
+"""Storey counts of the uniform N-storey buildings timed beside the others."""
+STOREYS_NAME = "{} storeys, contents on the roof"
+"""Row name of the uniform building of ``n`` storeys (``STOREYS_NAME.format(n)``)."""
+BUILDINGS = {
+    "paper model (linear isolator, rigid)": {},
+    "friction pendulum (pi9 = 0.05)": dict(pi9=0.05),
+    "lead-rubber bearing (pi9 = 0.05, pi10 = 0.005)": dict(pi9=0.05, pi10=0.005),
+    "flexible superstructure, contents on the base": dict(pi11=0.6, pi12=0.2, pi13=0.02),
+    "flexible superstructure, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
+    "friction pendulum, flexible, roof": dict(pi9=0.05, pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
+    **{STOREYS_NAME.format(n): dict(pi11=0.6, pi12=0.2, pi13=0.02, storeys=n, floor="roof")
+       for n in STOREYS},
+}
+"""Buildings timed side by side on :data:`BUILDING_POINTS` (keyword arguments of :class:`isoslide.Scene`)."""
