@@ -8,8 +8,9 @@
 # Every compute rule writes a benchmark (results/benchmarks/<rule>/...tsv).  The `resources:` of
 # each rule are sized from those of the default run (`snakemake --cores 2` from empty results/, 50
 # jobs, 2 min 26 s on 2 shared cores; the numbers are next to each rule): mem_mb about twice the
-# largest max_rss, runtime (minutes) at least ten times the longest wall time, since a cold numba
-# cache adds the kernel's compilation to the first jobs.
+# largest max_rss, runtime (minutes) at least ten times the longest wall time, since machines differ
+# in speed (about twice between two machines of this kind measured) and a job that runs outside this
+# Snakefile's start (below) compiles what the shipped kernels lack.
 
 import os
 import re
