@@ -605,30 +605,32 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
         if fails:
             te, kind, detail = min(fails)
             fail(kind, te, "rocking", detail)
-        record(sol.t[1:], s * sol.y[0, 1:], s * sol.y[1, 1:], s)
+        ys = sol.y.copy()
         if sol.status == 1:
             hits = [(float(sol.t_events[k][0]), k) for k in (0, 1) if len(sol.t_events[k])]
             te, k = min(hits)
-            ye = sol.y_events[k][0]
+            # the event's own coordinate is exactly at its value (the root is within a few ulp)
+            if rising:
+                ys[1 - k, -1] = 0.0 if k == 0 else _HALF_PI
+            else:
+                ys[k, -1] = 0.0
+        record(sol.t[1:], s * ys[0, 1:], s * ys[1, 1:], s)
+        if sol.status == 1:
             zero_len = zero_len + 1 if te <= t else 0
             if zero_len > 8:
                 raise RuntimeError(f"rocking events of zero length repeat at t = {te!r} s")
             t = te
-            psi, dpsi = float(ye[0]), float(ye[1])
+            psi, dpsi = float(ys[0, -1]), float(ys[1, -1])
             if rising:
                 if k == 0:                        # apex
-                    dpsi = 0.0
                     note_peak(t, psi)
                     rising = False
                 else:                             # overturned
-                    psi = _HALF_PI
                     overturned, t_over = True, t
                     note_peak(t, psi)
-                    record(t, s * psi, s * dpsi, s)
                     break
             else:
                 if k == 1:                        # turns up again
-                    dpsi = 0.0
                     rising = True
                     continue
                 # impact: the other corner strikes; theta' keeps its sign, times e
