@@ -24,15 +24,16 @@ On the current corner ``s = sgn(theta)`` the state is ``(psi, psi')`` with ``psi
 the floor enters only through ``s A_F``, so a mirrored floor (``A_F -> -A_F``) gives the bit-for-bit
 mirrored response.  Each excursion away from the floor is integrated in two segments, up to its
 apex (event ``psi' = 0``, or overturn ``psi = pi/2``) and back down (events ``psi = 0``, an impact,
-or ``psi' = 0``, the block turning up again before reaching the floor), so no segment starts on a
-zero of its own terminal event and no small excursion can hide inside one step.  Segments also end
+or ``psi' = 0``, the block turning up again before reaching the floor): a segment that starts on a
+zero of one of its terminal events leaves it in the direction that event ignores, and no small
+excursion can hide inside one step (the apex splits it).  Segments also end
 at the floor's breakpoints (where ``A_F`` or ``a_v`` jump), at which the floor is evaluated from the
 left inside each segment.  At rest the integration only scans time for the uplift condition
 ``(1 + a_v/g) sin(alpha) + s (A_F/g) cos(alpha) < 0`` (uplift onto corner ``s``, i.e. ``-s A_F > (g +
 a_v) tan(alpha)``), the friction limit ``|A_F| > mu_s (g + a_v)`` and flight ``g + a_v < 0``; the
 events are roots of functions of time alone, located by ``solve_ivp``'s Brent iteration to a few
-ulp.  The onset is moved forward by at most a few ulp where needed so that ``psi''`` is strictly
-positive when rocking starts.
+ulp.  The onset is then moved forward where needed (by doubling steps from one ulp, at most
+``2^24`` ulp; in practice none or one) so that ``psi''`` is strictly positive when rocking starts.
 
 End of the impact cascade (return to rest)
 ------------------------------------------
