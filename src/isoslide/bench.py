@@ -50,7 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from . import accuracy, config, records
-from .accuracy import kernel_targets
+from .accuracy import kernel_targets, opensees_cost
 from .accuracy.scenes import BUILDING_POINTS, BUILDINGS, STOREYS, STOREYS_NAME
 from .scene import Scene
 from .studies import fragility_planar
@@ -607,6 +607,8 @@ SECTION_FLAGS = (
     ("--planar-only", "only the planar section (planar scenes beside their 1-D twins, recorded pairs per "
                       "sample, the planar fragility study's cost per analysis; about a minute)"),
     ("--no-planar", "leave out the planar section"),
+    ("--opensees", "only OpenSees against isoslide on every building class, OpenSees at the coarsest step within "
+                   "1e-3 of Pi1 (isoslide.accuracy.opensees_cost; a few minutes)"),
     ("--cpu-targets", "only the kernels compiled for this processor against the portable level the shipped "
                       "ones are compiled for, on the buildings section's scenes (isoslide.accuracy.kernel_targets)"),
 )
@@ -640,6 +642,9 @@ def main(argv=None) -> int:
     for flag, text in SECTION_FLAGS:
         ap.add_argument(flag, action="store_true", help=text)
     a = ap.parse_args(argv)
+    if a.opensees:
+        _write_json(a.json, {"opensees": opensees_cost.report(opensees_cost.run(repeats=3 if a.quick else 5))})
+        return 0
     if a.cpu_targets:
         _write_json(a.json, {"cpu_targets": kernel_targets.report(kernel_targets.run(rounds=5 if a.quick else 15))})
         return 0

@@ -1,0 +1,41 @@
+"""The bench's side-by-side sections: OpenSees at the coarsest step within a tolerance, kernel targets' ratios."""
+from __future__ import annotations
+
+import io
+
+import pytest
+
+from isoslide import Scene
+from isoslide.accuracy import kernel_targets, opensees_cost
+from isoslide.peers import opensees_available
+
+COARSE = ((4e-2, 1e-3), (2e-2, 1e-4), (1e-2, 1e-5))
+
+
+@pytest.mark.skipif(not opensees_available(), reason="OpenSees not installed (pip install -e .[peers])")
+def test_opensees_is_timed_at_the_coarsest_pair_within_the_tolerance_or_at_the_finest_when_none_reaches_it():
+    """A loose tolerance stops at the coarsest pair; an unreachable one runs every pair and says so."""
+    scene = Scene(pi2=0.2, pi3=2.0, pi4=0.1)
+    loose = opensees_cost.compare(scene, pairs=COARSE, tolerance=1.0, horizon=2.0, repeats=1)
+    assert (loose["dtau"], loose["reached"]) == (4e-2, True)
+    assert loose["opensees_error"] <= 1.0 and loose["isoslide_error"] < 1e-5
+    strict = opensees_cost.compare(scene, pairs=COARSE, tolerance=1e-14, horizon=2.0, repeats=1)
+    assert (strict["dtau"], strict["stick"], strict["reached"]) == (1e-2, 1e-5, False)
+    assert strict["opensees_error"] < loose["opensees_error"]
+    assert strict["opensees_s"] > 0.0 and strict["opensees_steps"] > loose["opensees_steps"]
+
+
+def test_kernel_target_report_gives_each_targets_median_ratio_to_host_tuned_and_the_largest_pi1_difference():
+    """Per point the median over rounds; per class the median over points of target / host; dPi1 relative."""
+    times = {"host": {"a": [[1.0, 3.0, 2.0], [4.0, 4.0, 4.0]]},
+             "portable": {"a": [[2.0, 2.0, 2.0], [4.0, 6.0, 5.0]]},
+             "x86-64-v3": {"a": [[1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]}}
+    pi1 = {"host": {"a": [1.0, 2.0]}, "portable": {"a": [1.0, 2.0]}, "x86-64-v3": {"a": [1.0, 2.0 * (1 + 1e-12)]}}
+    info = {t: {"cpu": t, "features": "", "ready_s": 0.5} for t in kernel_targets.TARGETS}
+    out = io.StringIO()
+    summ = kernel_targets.report({"targets": info, "times": times, "pi1": pi1, "rounds": 3}, file=out)
+    assert summ["a"]["portable_ratio"] == pytest.approx(1.125)   # median of 2/2 and 5/4
+    assert summ["a"]["x86-64-v3_ratio"] == pytest.approx(0.5)
+    assert summ["a"]["host_us"] == pytest.approx(3e6)            # median of the points' medians 2 and 4
+    assert summ["a"]["pi1_rel_diff"] == pytest.approx(1e-12)
+    assert "portable / host over the classes: median 1.125" in out.getvalue()
