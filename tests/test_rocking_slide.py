@@ -237,6 +237,28 @@ def test_slide_rock_scenes_keep_the_energy_balance_continuity_contact_and_fricti
     assert np.all(h.v[(h.mode == REST) | (h.mode == ROCK)] == 0)
 
 
+@pytest.mark.parametrize("name", ["sliding impact", "low restitution"])
+def test_impacts_keep_the_angular_momentum_rule_and_coulombs_law_for_the_impulse(name):
+    """Every impact: theta'+ = e theta'- - 3h/(4R^2) (u'+ - u'-) to 1e-12; the impulse (jumps of the centre of
+    mass's velocity) is within mu_s J_y when the new corner sticks and equals -mu_k sgn(u'+) J_y when it
+    slides (1e-12); J_y > 0."""
+    blk, A, kw = _scene(name)
+    res = solve_block(blk, A, 6.0, **kw)
+    kappa = 0.75 * blk.h / blk.R ** 2
+    slid = 0
+    for _, om_in, om_out, v_in, v_out in res.impacts:
+        assert om_out == pytest.approx(blk.e * om_in - kappa * (v_out - v_in), rel=1e-12, abs=1e-15)
+        jx = (v_out + blk.h * om_out) - (v_in + blk.h * om_in)     # x_c' = u' + h theta' at theta = 0
+        jy = blk.b * (abs(om_out) + abs(om_in))                   # y_c' = b psi' on either corner
+        assert jy > 0
+        if v_out == 0.0:
+            assert abs(jx) <= kw["mu_s"] * jy
+        else:
+            slid += 1
+            assert jx == pytest.approx(-kw["mu_k"] * math.copysign(1.0, v_out) * jy, rel=1e-12)
+    assert slid >= 1
+
+
 def test_rock_to_slide_rock_happens_where_the_rock_only_peer_finds_friction_exceeded():
     """The onset of slide-rock equals the time the rock-only peer raises for lack of friction (1e-9 s),
     and there the pivot needs exactly mu_s V; the corner then slides, comes to a stop and rocks on."""

@@ -16,6 +16,9 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.store.history
 :func:`simulate_si` (:mod:`.si`)
     The physical equations in SI units, for the similarity check; a general building is
     integrated by :func:`~.si_building.simulate_building_si` (:mod:`.si_building`).
+:func:`~.rocking.solve_rocking` (:mod:`.rocking`), :func:`~.slide_rock.solve_block` (:mod:`.slide_rock`)
+    A rigid block on a moving floor: rocking on stuck corners (Housner), and with Coulomb friction
+    rest, slide, rock and slide-rock (Shenton).
 :func:`solve_opensees` (:mod:`.opensees`)
     The paper's model and the general building in OpenSees, sticks regularised by elastic-plastic
     springs (extra ``peers``; :func:`opensees_available`).

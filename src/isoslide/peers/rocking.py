@@ -12,7 +12,8 @@ Friction is assumed to hold the pivot.  With a finite static coefficient ``mu_s`
 it: when the horizontal contact force needed exceeds ``mu_s`` times the vertical one (at rest, or
 while rocking with ``|theta| < alpha``) it raises :class:`RockingContactError` naming the time; the
 same for flight, a vertical contact force that would become negative.  Sliding and slide-rock
-modes, and the block leaving the floor, belong to a later, more general model.  The impacts
+are modelled by :func:`isoslide.peers.slide_rock.solve_block`, which reduces to this peer when
+friction holds; the block leaving the floor is outside both.  The impacts
 themselves (Housner's instantaneous, non-bouncing, non-sliding impact) are not checked.  Past the
 unstable equilibrium (``|theta| > alpha``) the contact is assumed to hold without checks: a block
 toppling freely loses its vertical contact force near ``cos(alpha - |theta|) = 1/3`` whatever

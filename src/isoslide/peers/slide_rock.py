@@ -58,8 +58,8 @@ time, on the integrator's dense output):
 ``sigma = -sgn(A_F)``, once ``|A_F| > mu_s Gam``; it never rocks from rest, since that needs ``|A_F|
 > Gam b/h``, which is reached no earlier.  With ``mu_s > b/h`` it uplifts onto the corner ``s =
 -sgn(A_F)`` once ``|A_F| > Gam b/h`` and never slides from rest.  At the uplift the pivot needs
-``|H|/V = b/h`` and, as ``psi''`` grows, more (``d(|H|/V)/d|A_F| = 1/(4 Gam V)`` at the threshold
-in units of ``m``); if the friction needed already exceeds ``mu_s V`` when the motion starts (a
+``|H|/V = b/h`` and, as ``psi''`` grows, more (``d(|H|/V)/d|A_F| = 1/(4 Gam) > 0`` at the
+threshold); if the friction needed already exceeds ``mu_s V`` when the motion starts (a
 jump of the floor above the threshold, or ``mu_s`` just above ``b/h``), the block enters
 slide-rock at once: Shenton's (1996) slide-rock onset from rest.  At ``mu_s = b/h`` both limits
 are reached together; the rule gives slide (a stuck pivot cannot rock there, since the friction
@@ -70,7 +70,7 @@ mu_s Gam``; else the block slides back (``sigma = -sgn(A_F)``).
 
 *slide -> slide-rock*: the resultant of the normal force would have to pass the leading corner,
 ``mu_k > b/h``.  This holds or not for the whole slide; it can only happen on a slide entered from
-slide-rock (``mu_s > b/h``), where the block tips at once onto the corner ``s = sigma`` (checked
+slide-rock through a sliding impact (``mu_s > b/h``), where the block tips at once onto the corner ``s = sigma`` (checked
 against ``psi'' > 0``).
 
 *rock -> slide-rock*: the friction the pivot needs exceeds ``mu_s V`` (events ``mu_s V -+ H =
@@ -113,7 +113,7 @@ Why this rule: it is the only one of the usual choices consistent with the angul
 balance that defines Housner's ``e`` and with Coulomb friction at the striking corner, and it
 reduces exactly to the rock-only peer's ``theta' -> e theta'`` when the base sticks before and
 after.  Continuity of the centre of mass's horizontal velocity would contradict Housner's own
-impact, whose horizontal impulse ``m h theta'^- (1 - e_H)`` is not zero.  With ``u'^- = 0`` the
+impact, whose horizontal impulse ``-m h theta'^- (1 - e_H)`` is not zero.  With ``u'^- = 0`` the
 sticking impact needs ``mu_s >= (h/b)(1 - e)/(1 + e)``, which Housner's ``e`` meets whenever
 ``mu_s > b/h`` (``(h/b)(1 - e_H)/(1 + e_H) = 3 sin(alpha) cos(alpha) / (4 - 3 sin^2(alpha))``);
 a smaller ``e`` can make a rocking block's impacts slide.
