@@ -131,7 +131,7 @@ def _triple(name: str, value, lo: float, lo_in: bool, names=None) -> tuple:
     if len(vals) != 3:
         raise ValueError(f"{name} = {value!r} must be one value or three; got {len(vals)}")
     names = names or [f"{name}{i}" for i in (1, 2, 3)]
-    return tuple(check_range(n, v, lo, math.inf, lo_in, False) for n, v in zip(names, vals))
+    return tuple(check_range(n, v, lo, math.inf, lo_in, False) for n, v in zip(names, vals, strict=True))
 
 
 @dataclass(frozen=True)
@@ -184,7 +184,7 @@ class TripleFrictionPendulum:
                                  "for constant friction, or mu_slow with rate > 0")
         else:
             slow = _triple("mu_slow", self.mu_slow, 0.0, True)
-            for i, (s, f) in enumerate(zip(slow, self.mu), start=1):
+            for i, (s, f) in enumerate(zip(slow, self.mu, strict=True), start=1):
                 if s > f:
                     raise ValueError(f"mu_slow{i} = {s!r} exceeds mu{i} = {f!r}; the law mu(v) = mu_fast - "
                                      "(mu_fast - mu_slow) exp(-rate |v|) needs mu_slow <= mu_fast")
@@ -201,7 +201,7 @@ class TripleFrictionPendulum:
         if self.mu_slow is None:
             return self.mu
         v = abs(float(v))
-        return tuple(f - (f - s) * math.exp(-r * v) for f, s, r in zip(self.mu, self.mu_slow, self.rate))
+        return tuple(f - (f - s) * math.exp(-r * v) for f, s, r in zip(self.mu, self.mu_slow, self.rate, strict=True))
 
     def at_speed(self, v: float) -> TripleFrictionPendulum:
         """The constant-friction bearing with the friction of speed ``v`` (m/s)."""
@@ -448,7 +448,7 @@ def _polyline(bearing, fs, states) -> tuple:
     """Vertices (u, F), stages and surface states along force levels ``fs`` (duplicates dropped)."""
     d2, d3 = bearing.d[1], bearing.d[2]
     us, Fs, stages, surf = [], [], [], []
-    for f, s in zip(fs, states):
+    for f, s in zip(fs, states, strict=True):
         if surf and abs(f * bearing.W - Fs[-1]) <= 1e-14 * bearing.W and np.allclose(s, surf[-1], 0.0, 1e-15):
             continue
         if surf:
@@ -479,7 +479,7 @@ def backbone(bearing: TripleFrictionPendulum, amplitude: float) -> Loop:
         raise ValueError(f"amplitude = {amplitude!r} is negative; allowed: 0 <= amplitude <= capacity")
     b = regime_boundaries(bearing)
     FA = force(bearing, A)[0] if A > 0.0 else b.F[0]
-    fs = [0.0] + [F / bearing.W for F, u in zip(b.F, b.u) if u < A] + [FA / bearing.W]
+    fs = [0.0] + [F / bearing.W for F, u in zip(b.F, b.u, strict=True) if u < A] + [FA / bearing.W]
     states = [np.zeros(4)] + [_surfaces_backbone(bearing, f) for f in fs[1:]]
     us, Fs, stages, surf = _polyline(bearing, fs, states)
     return Loop(np.array(us), np.array(Fs), np.array(stages), np.array(surf))
@@ -556,9 +556,11 @@ def loop_force(bearing: TripleFrictionPendulum, amplitude: float, u, branch: str
 
 
 def dissipated_energy(bearing: TripleFrictionPendulum, amplitude: float) -> float:
-    """Energy dissipated in one cycle of amplitude ``A`` (J): the loop's area ``-2 \\int F_down du``.
+    """Energy dissipated in one cycle of amplitude ``A`` (J): the area of the loop.
 
-    The reloading branch is the mirror image of the unloading one, ``F_up(u) = -F_down(-u)``.
+    The area is ``-2`` times the integral of ``F_down du`` over ``[-A, A]``, because the
+
+    reloading branch is the mirror image of the unloading one, ``F_up(u) = -F_down(-u)``.
     """
     down = unloading_branch(bearing, amplitude)
     u, F = down.u[1:], down.F[1:]

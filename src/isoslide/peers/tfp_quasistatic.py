@@ -414,7 +414,7 @@ def orbit_points(radius: float, n: int = 360, cycles: int = 2, start: float = 0.
 
 
 def path_work(path: QuasiStaticPath, first: int = 0, last: int | None = None) -> float:
-    """Work ``\\int F . du`` (J) done on the bearing between vertices ``first`` and ``last`` (trapezoids)."""
+    """Work (J), the integral of ``F . du``, done on the bearing between vertices ``first`` and ``last`` (trapezoids)."""
     u = path.u[first:last]
     F = path.F[first:last]
     du = np.diff(u, axis=0)
