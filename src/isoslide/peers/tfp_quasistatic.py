@@ -266,11 +266,11 @@ def _rim(q, un, R, W, m, d):
     a, b = grid[k] - step, grid[k] + step
     th = grid[k]
     if dg(a) < 0.0 < dg(b):
-        th = brentq(dg, a, b, xtol=1e-15, rtol=4.5e-16)
+        th = brentq(dg, a, b, xtol=1e-15, rtol=1e-15)
     elif dg(th) != 0.0:
         lo, hi = (a, th) if dg(th) > 0.0 else (th, b)
         if dg(lo) < 0.0 < dg(hi):
-            th = brentq(dg, lo, hi, xtol=1e-15, rtol=4.5e-16)
+            th = brentq(dg, lo, hi, xtol=1e-15, rtol=1e-15)
     u = point(th)
     up = np.array([-u[1], u[0]])
     w = u - un
@@ -319,29 +319,46 @@ def _chain(F, un, R, m, d, W):
 
 
 def _solve_increment(U_t, F, un, R, m, d, W, tol):
-    """The force and surface displacements at total displacement ``U_t`` (Newton on the force)."""
+    """The force and surface displacements at total displacement ``U_t``.
+
+    Newton's method on the force with a backtracking line search; where every surface sticks
+    (no slope) or the line search fails, a bracketed root search along the residual's direction,
+    along which the total displacement grows monotonically.
+    """
     u, U, J = _chain(F, un, R, m, d, W)
     r = U - U_t
-    kick = W / R.min()
-    for _ in range(500):
+    for _ in range(200):
         nr = math.hypot(r[0], r[1])
         if nr <= tol:
             return F, u
-        if np.max(np.abs(J)) * W < 1e-12 * R.max():      # every surface sticks: push the force out
-            F = F - kick * r
-            kick *= 2.0
-            u, U, J = _chain(F, un, R, m, d, W)
-            r = U - U_t
-            continue
-        step = -np.linalg.lstsq(J, r, rcond=1e-12)[0]
-        alpha = 1.0
-        while True:
-            u2, U2, J2 = _chain(F + alpha * step, un, R, m, d, W)
-            r2 = U2 - U_t
-            if math.hypot(r2[0], r2[1]) < (1.0 - 1e-4 * alpha) * nr or alpha < 1e-12:
+        if np.max(np.abs(J)) * W > 1e-12 * R.max():
+            step = -np.linalg.lstsq(J, r, rcond=1e-12)[0]
+            alpha = 1.0
+            while alpha > 1e-6:
+                u2, U2, J2 = _chain(F + alpha * step, un, R, m, d, W)
+                r2 = U2 - U_t
+                if math.hypot(r2[0], r2[1]) < (1.0 - 1e-4 * alpha) * nr:
+                    break
+                alpha *= 0.5
+            if alpha > 1e-6:
+                F, u, J, r = F + alpha * step, u2, J2, r2
+                continue
+        e = -r / nr
+
+        def along(s, e=e, F=F):
+            return (_chain(F + s * e, un, R, m, d, W)[1] - U_t) @ e
+
+        hi = W * nr / R.sum()
+        for _ in range(200):
+            if along(hi) > 0.0:
                 break
-            alpha *= 0.5
-        F, u, J, r = F + alpha * step, u2, J2, r2
+            hi *= 2.0
+        else:
+            raise RuntimeError(f"no force reaches U = {U_t} from F = {F}")
+        s = brentq(along, 0.0, hi, xtol=1e-15 * W, rtol=1e-15)
+        F = F + s * e
+        u, U, J = _chain(F, un, R, m, d, W)
+        r = U - U_t
     raise RuntimeError(f"the increment to U = {U_t} did not converge (residual {math.hypot(*r):g} m)")
 
 
