@@ -120,7 +120,8 @@ STAGES = (1, 2, 3, 4, 5)
 STAGE_NAMES = {0: "stuck", 1: "I", 2: "II", 3: "III", 4: "IV", 5: "V"}
 """Roman numeral of each regime number."""
 
-_SLIDING = {1: "2 and 3", 2: "1 and 3", 3: "1 and 4", 4: "2 and 4", 5: "2 and 3"}
+_ROUNDING = 1e-12
+"""Round-off allowed in the admissibility conditions (friction coefficients and ``d/L``, both O(0.1))."""
 
 
 def _triple(name: str, value, lo: float, lo_in: bool, names=None) -> tuple:
@@ -238,22 +239,23 @@ class TripleFrictionPendulum:
         lo32, hi32 = self._difference_range(2, 1)
         _, hi31 = self._difference_range(2, 0)
         speeds = " at every speed" if self.mu_slow is not None else ""
-        if lo21 < 0.0:
+        eps = _ROUNDING
+        if lo21 < -eps:
             raise ValueError(f"mu1 = {mu1!r} exceeds mu2 = {mu2!r}{speeds}; the five regimes need mu1 <= mu2 "
                              "<= mu3 (the inner surfaces slide first, then surface 1, then surface 4)")
-        if lo32 < 0.0:
+        if lo32 < -eps:
             raise ValueError(f"mu2 = {mu2!r} exceeds mu3 = {mu3!r}{speeds}; the five regimes need mu1 <= mu2 "
                              "<= mu3 (the inner surfaces slide first, then surface 1, then surface 4)")
-        if d2 / L2 < hi32:
+        if d2 / L2 < hi32 - eps:
             raise ValueError(f"d2 = {d2!r} is too small: surface 1 would reach its restrainer before surface 4 "
                              f"slides; allowed: d2/L2 >= mu3 - mu2{speeds} (d2 >= {hi32 * L2:g})")
-        if d3 / L3 - d2 / L2 < -lo32:
+        if d3 / L3 - d2 / L2 < -lo32 - eps:
             raise ValueError(f"d3 = {d3!r} is too small: surface 4 would reach its restrainer before surface 1; "
                              f"allowed: mu2 + d2/L2 <= mu3 + d3/L3{speeds} (d3 >= {(d2 / L2 - lo32) * L3:g})")
-        if d1 / L1 < hi31:
+        if d1 / L1 < hi31 - eps:
             raise ValueError(f"d1 = {d1!r} is too small: surface 3 would reach its restrainer before regime V; "
                              f"allowed: d1/L1 >= mu3 - mu1{speeds} (d1 >= {hi31 * L1:g})")
-        if d1 / L1 + d2 / L2 - d3 / L3 < hi31:
+        if d1 / L1 + d2 / L2 - d3 / L3 < hi31 - eps:
             need = (hi31 - d2 / L2 + d3 / L3) * L1
             raise ValueError(f"d1 = {d1!r} is too small: surface 2 would reach its restrainer before surface 4 "
                              f"reaches its own; allowed: mu3 + d3/L3 <= mu1 + d1/L1 + d2/L2{speeds} "
