@@ -424,11 +424,14 @@ def _surfaces_down(bearing, f: float, start: np.ndarray) -> np.ndarray:
 
 
 def _stage_of(moving: tuple, at_stop: tuple) -> int:
-    """Regime number of a stretch from the surfaces that move and the outer ones at a restrainer."""
+    """Regime number of a stretch from the surfaces that move and the outer ones at a restrainer.
+
+    The inner pair sliding is regime V when both outer surfaces rest on their restrainers, else I.
+    """
     if not moving:
         return 0
     if moving == (1, 2):
-        return 5 if any(at_stop) else 1
+        return 5 if all(at_stop) else 1
     return {(0, 2): 2, (0, 3): 3, (1, 3): 4}.get(moving, -1)
 
 
@@ -437,7 +440,8 @@ class Loop(NamedTuple):
 
     ``u`` (m) and ``F`` (N) are the vertices in order; ``stage[k]`` is the regime of the stretch
     from vertex ``k - 1`` to vertex ``k`` (``stage[0] = 0``; 0 for a vertical stretch where every
-    surface sticks); ``surfaces[k]`` the displacements ``(u_1, u_2, u_3, u_4)`` at vertex ``k``.
+    surface sticks; the inner pair sliding is V with both outer surfaces at their restrainers, else I;
+    -1 for other sets of sliding surfaces); ``surfaces[k]`` the displacements ``(u_1, u_2, u_3, u_4)`` at vertex ``k``.
     """
 
     u: np.ndarray

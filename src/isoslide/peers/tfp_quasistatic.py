@@ -50,7 +50,10 @@ def _surfaces(bearing):
 
 
 def _stage(moving: tuple, outer_at_stop: bool) -> int:
-    """The regime of Fenz and Constantinou from the surfaces that move (0 none, -1 none of the five)."""
+    """The regime of Fenz and Constantinou from the surfaces that move (0 none, -1 none of the five).
+
+    ``outer_at_stop``: both outer surfaces rest on their restrainers (the inner pair sliding is then V).
+    """
     if not moving:
         return 0
     if moving == (1, 2):
@@ -219,7 +222,7 @@ def solve_path(bearing, targets, max_events: int = 100000) -> QuasiStaticPath:
                     u[snap[0]] = snap[1]
                 moving = np.abs(du) > 1e-12
                 mid = u - 0.5 * h * du
-                at_stop = abs(abs(mid[0]) - d[0]) <= tol_u or abs(abs(mid[3]) - d[3]) <= tol_u
+                at_stop = abs(abs(mid[0]) - d[0]) <= tol_u and abs(abs(mid[3]) - d[3]) <= tol_u
                 stage = _stage(tuple(np.flatnonzero(moving)), at_stop)
                 if h <= tol_u:
                     continue
@@ -392,7 +395,7 @@ def solve_planar(bearing, points) -> QuasiStaticPath:
             raise ValueError(f"point {p.tolist()} lies beyond the bearing's total travel {reach!r} m")
         F, u = _solve_increment(p, F, un, R, m, d, W, tol)
         moving = np.hypot(*(u - un).T) > 1e-12 * reach
-        at_stop = any(math.hypot(*u[i]) >= d[i] * (1.0 - 1e-12) and math.hypot(*un[i]) >= d[i] * (1.0 - 1e-12)
+        at_stop = all(math.hypot(*u[i]) >= d[i] * (1.0 - 1e-12) and math.hypot(*un[i]) >= d[i] * (1.0 - 1e-12)
                       for i in (0, 3))
         rec_u.append(p.copy())
         rec_F.append(F.copy())
