@@ -1,7 +1,7 @@
 r"""The triple friction pendulum bearing: parameters and the closed-form quasi-static behaviour.
 
 Conventions (those of OpenSees's ``TripleFrictionPendulum`` element)
--------------------------------------------------------------------
+--------------------------------------------------------------------
 The bearing has four concave sliding surfaces, numbered bottom to top: surface 1 (outer, effective
 radius ``L2``, friction ``mu2``, limit ``d2``), surfaces 2 and 3 (the two identical inner surfaces of
 the articulated slider: radius ``L1``, friction ``mu1``, limit ``d1`` each) and surface 4 (outer,

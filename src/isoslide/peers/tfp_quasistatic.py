@@ -24,7 +24,9 @@ one, so the vertices of the force-displacement path are exact to round-off.  :fu
 drives it in the plane through given points, each increment solved implicitly (the incremental
 problem of each surface is a closed-form return to its friction circle, or a one-dimensional
 minimisation on its restrainer circle; the common force by Newton's method), which is exact along a
-straight line.
+straight line.  Along a line at most two surfaces slide at a time (Fenz and Constantinou's regimes);
+in the plane the reaction of a sliding outer surface keeps its magnitude but turns, so the inner
+surface it carries can slide with it and more than two surfaces may slide at once.
 
 Units: lengths m, forces N.
 """
