@@ -120,7 +120,7 @@ from ..pulses import Pulse, accel_at, get_pulse
 from ..scene import G_STANDARD, Scene
 from ..model.validation import check_range
 
-__all__ = ["TFPBuilding", "TFPRun", "run_tfp", "single_pendulum_scene"]
+__all__ = ["ENERGY_NAMES", "TFPBuilding", "TFPRun", "default_horizon", "run_tfp", "single_pendulum_scene"]
 
 _ULP4 = 4e-15
 """Relative slack of the stick limits (round-off of a limit reached at an event)."""
