@@ -91,7 +91,10 @@ friction and the held bearing needs ``F_need = 0``, which the choice of modes ha
 energy that could be released), which is the single friction pendulum's energy bound of
 :mod:`isoslide.peers.reference_building` with zero energy.  A run not settled by the horizon
 (default ``tau_end + 50 max(1, T_3)``, ``T_3 = 2 pi sqrt((L2 + L3)/G)`` the period of regime III)
-ends with ``settled = False``.
+ends with ``settled = False``.  The rule needs the slab to stop (``x' = 0``): with a damper that
+overdamps the sliding regime the slab can creep towards the force-free point of its last regime
+without ever stopping, and such a run ends at the horizon unsettled (its contents stuck, their need
+decaying); without a damper a sliding slab always stops in finite time.
 
 Energy
 ------
