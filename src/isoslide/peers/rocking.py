@@ -218,6 +218,186 @@ def _check_callable(name, f):
     return f
 
 
+def _check_floor(block, A_F, a_v, g, t0, t_end) -> tuple[float, float, float]:
+    """The block, the floor motion and the time span checked: ``(g, t0, t_end)``."""
+    if not isinstance(block, Block):
+        raise ValueError(f"block = {block!r} is invalid; allowed: an isoslide.model.rocking.Block")
+    _check_callable("A_F", A_F)
+    if a_v is not None:
+        _check_callable("a_v", a_v)
+    g = check_range("g", g, 0.0, math.inf, lo_in=False, hi_in=False)
+    t0 = check_range("t0", t0, -math.inf, math.inf, lo_in=False, hi_in=False)
+    t_end = check_range("t_end", t_end, t0, math.inf, lo_in=False, hi_in=False)
+    return g, t0, t_end
+
+
+def _check_mu_s(mu_s, *, zero_ok: bool) -> float:
+    """``mu_s`` checked: ``inf``, or finite and positive (``zero_ok``: or 0)."""
+    if not (isinstance(mu_s, (int, float)) and not isinstance(mu_s, bool) and mu_s == math.inf):
+        mu_s = check_range("mu_s", mu_s, 0.0, math.inf, lo_in=zero_ok, hi_in=False)
+    return mu_s
+
+
+@dataclass(frozen=True)
+class _Run:
+    """The checked settings of a run, and the rules that need nothing else.
+
+    Shared by :func:`solve_rocking` and :func:`~isoslide.peers.slide_rock.solve_block`.
+    """
+
+    block: Block
+    g: float
+    t_end: float
+    t_quiet: float | None
+    theta_eps: float
+    rtol: float
+    atol: float
+    p: float
+    max_step: float
+    max_impacts: int
+    window_samples: int
+    bps: tuple[float, ...]
+
+    def quiet(self, t):
+        """From ``t`` on the floor is at rest for ever."""
+        return self.t_quiet is not None and t >= self.t_quiet
+
+    def step_at(self, t):
+        """The largest step from ``t`` while the block moves: on a quiet floor at least ``0.1 / p``."""
+        return max(self.max_step, 0.1 / self.p) if self.quiet(t) else self.max_step
+
+    def segment(self, t):
+        """The end of the segment that starts at ``t``, and the last time before it.
+
+        A segment ends at the next breakpoint, or at the horizon; inside it the floor is evaluated at
+        times clipped to ``[t, last]``, so from the left at a breakpoint.
+        """
+        nxt = [b for b in self.bps if b > t]
+        t_seg = min(nxt[0], self.t_end) if nxt else self.t_end
+        return t_seg, math.nextafter(t_seg, -math.inf)
+
+    def scan_rest(self, events, t, t_seg):
+        """The block at rest: ``solve_ivp`` over ``[t, t_seg]`` up to the first root of ``events``.
+
+        ``events`` are functions of time alone; each ends the scan where it falls through 0.
+        """
+        for ev in events:
+            ev.terminal, ev.direction = True, -1.0
+        sol = solve_ivp(lambda tt, y: np.zeros(1), (t, t_seg), np.zeros(1), method="DOP853",
+                        rtol=self.rtol, atol=self.atol, events=events, max_step=self.max_step)
+        if sol.status < 0:
+            raise RuntimeError(f"solve_ivp failed at rest from t = {t!r} s: {sol.message}")
+        return sol
+
+    def landing(self, t_i, w, floor):
+        """``rest_by`` if a block rocking on stuck pivots stays below ``theta_eps``, else None.
+
+        The end-of-cascade rule of the module docstring, for an impact at ``t_i`` that the block leaves
+        at the angular speed ``w``.  ``floor(t)`` gives ``(A_F, G = 1 + a_v/g)``.
+        """
+        alpha, e, g = self.block.alpha, self.block.e, self.g
+        p2, theta_eps = self.p * self.p, self.theta_eps
+        sin_ae, cos_ae = math.sin(alpha - theta_eps), math.cos(alpha - theta_eps)
+        if self.quiet(t_i):
+            if w * w / (2.0 * p2) <= math.cos(alpha - theta_eps) - math.cos(alpha):
+                return t_i + 2.0 * w / (p2 * sin_ae * (1.0 - e))
+            return None
+        A_i, G_i = floor(t_i)
+        d0 = p2 * (G_i * sin_ae - abs(A_i) * cos_ae / g)
+        if d0 <= 0.0 or w * w / (2.0 * d0) > theta_eps:
+            return None
+        length = 4.0 * w / (d0 * (1.0 - e))
+        for _ in range(3):
+            ts = t_i + length * np.linspace(0.0, 1.0, self.window_samples + 1)
+            Fs = np.array([floor(float(t)) for t in ts])
+            A_s, G_s = Fs[:, 0], Fs[:, 1]
+            dA = float(np.max(np.abs(np.diff(A_s))))
+            dG = float(np.max(np.abs(np.diff(G_s))))
+            A_lo, A_hi = float(A_s.min()) - dA, float(A_s.max()) + dA
+            G_lo, G_hi = float(G_s.min()) - dG, float(G_s.max()) + dG
+            d = p2 * (G_lo * sin_ae - max(abs(A_lo), abs(A_hi)) * cos_ae / g)
+            if d <= 0.0 or w * w / (2.0 * d) > theta_eps:
+                return None
+            delta = 0.5 * p2 * ((G_hi - G_lo) * math.sin(alpha) + (A_hi - A_lo) / g)
+            r = e * math.sqrt(1.0 + 2.0 * delta / d)
+            if r >= 1.0:
+                return None
+            need = 2.0 * w / (d * (1.0 - r))
+            if need <= length:
+                return t_i + need
+            length = 2.0 * need
+        return None
+
+    def too_many_impacts(self, t, w):
+        """The error past ``max_impacts`` impacts, the last at ``t`` leaving at ``w`` (rad/s)."""
+        return RuntimeError(f"more than max_impacts = {self.max_impacts} impacts by t = {t!r} s (outgoing speed "
+                            f"{w:.3g} rad/s): the cascade did not meet the end-of-cascade rule")
+
+
+def _check_run(block: Block, g, t0, t_end, *, t_quiet, breakpoints, theta_eps, rtol, atol, method, max_step,
+               max_impacts, window_samples) -> _Run:
+    """The settings after the floor and friction checked (``g``, ``t0``, ``t_end`` already are)."""
+    if t_quiet is not None:
+        t_quiet = check_range("t_quiet", t_quiet, -math.inf, math.inf, lo_in=False, hi_in=False)
+    alpha = block.alpha
+    if theta_eps is None:
+        theta_eps = 1e-3 * alpha
+    theta_eps = check_range("theta_eps", theta_eps, 0.0, alpha, lo_in=False, hi_in=False)
+    rtol = check_range("rtol", rtol, 1e-14, 1e-3)
+    atol = check_range("atol", atol, 0.0, 1.0, lo_in=False)
+    if method not in _METHODS:
+        raise ValueError(f"method = {method!r} is invalid; allowed: one of {_METHODS}")
+    p = block.p(g)
+    if max_step is None:
+        max_step = 0.1 / p
+    max_step = check_range("max_step", max_step, 0.0, math.inf, lo_in=False, hi_in=False)
+    if isinstance(max_impacts, bool) or not isinstance(max_impacts, int) or max_impacts < 1:
+        raise ValueError(f"max_impacts = {max_impacts!r} is invalid; allowed: a positive integer")
+    if isinstance(window_samples, bool) or not isinstance(window_samples, int) or window_samples < 2:
+        raise ValueError(f"window_samples = {window_samples!r} is invalid; allowed: an integer >= 2")
+    bps = sorted({check_range("breakpoints", b, -math.inf, math.inf, lo_in=False, hi_in=False)
+                  for b in breakpoints} | ({t_quiet} if t_quiet is not None else set()))
+    return _Run(block=block, g=g, t_end=t_end, t_quiet=t_quiet, theta_eps=theta_eps, rtol=rtol, atol=atol, p=p,
+                max_step=max_step, max_impacts=max_impacts, window_samples=window_samples,
+                bps=tuple(b for b in bps if t0 < b < t_end))
+
+
+def _advance(t_e, ok):
+    """The first time from ``t_e`` on (doubling steps from one ulp, at most 2^24 ulp) where ``ok``."""
+    step = math.ulp(max(abs(t_e), 1.0))
+    tt = t_e
+    for _ in range(24):
+        if ok(tt):
+            return tt
+        tt = t_e + step
+        step *= 2.0
+    return tt
+
+
+def _excursion_events(rising, i):
+    """The two terminal events of a segment of an excursion, with ``psi = y[i]`` and ``psi' = y[i + 1]``.
+
+    Rising: the apex (``psi'`` falls through 0) and the overturn (``psi`` rises through ``pi/2``).
+    Falling: the impact (``psi`` falls through 0) and the block turning up again before it reaches the
+    floor (``psi'`` rises through 0).
+    """
+    if rising:
+        def ev_main(tt, y):
+            return y[i + 1]
+
+        def ev_over(tt, y):
+            return y[i] - _HALF_PI
+    else:
+        def ev_main(tt, y):
+            return y[i]
+
+        def ev_over(tt, y):
+            return y[i + 1]
+    ev_main.direction, ev_over.direction = -1.0, 1.0
+    ev_main.terminal = ev_over.terminal = True
+    return ev_main, ev_over
+
+
 def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STANDARD, t0: float = 0.0,
                   theta0: float = 0.0, omega0: float = 0.0, mu_s: float = math.inf,
                   t_quiet: float | None = None, breakpoints=(), theta_eps: float | None = None,
@@ -285,41 +465,18 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
         More than ``max_impacts`` impacts, or the integrator failed.
     """
     # ---------------------------------------------------------------- validation
-    if not isinstance(block, Block):
-        raise ValueError(f"block = {block!r} is invalid; allowed: an isoslide.model.rocking.Block")
-    _check_callable("A_F", A_F)
-    if a_v is not None:
-        _check_callable("a_v", a_v)
-    g = check_range("g", g, 0.0, math.inf, lo_in=False, hi_in=False)
-    t0 = check_range("t0", t0, -math.inf, math.inf, lo_in=False, hi_in=False)
-    t_end = check_range("t_end", t_end, t0, math.inf, lo_in=False, hi_in=False)
+    g, t0, t_end = _check_floor(block, A_F, a_v, g, t0, t_end)
     theta0 = check_range("theta0", theta0, -_HALF_PI, _HALF_PI, lo_in=False, hi_in=False)
     omega0 = check_range("omega0", omega0, -math.inf, math.inf, lo_in=False, hi_in=False)
-    if not (isinstance(mu_s, (int, float)) and not isinstance(mu_s, bool) and mu_s == math.inf):
-        mu_s = check_range("mu_s", mu_s, 0.0, math.inf, lo_in=False, hi_in=False)
-    if t_quiet is not None:
-        t_quiet = check_range("t_quiet", t_quiet, -math.inf, math.inf, lo_in=False, hi_in=False)
-    alpha = block.alpha
-    if theta_eps is None:
-        theta_eps = 1e-3 * alpha
-    theta_eps = check_range("theta_eps", theta_eps, 0.0, alpha, lo_in=False, hi_in=False)
-    rtol = check_range("rtol", rtol, 1e-14, 1e-3)
-    atol = check_range("atol", atol, 0.0, 1.0, lo_in=False)
-    if method not in _METHODS:
-        raise ValueError(f"method = {method!r} is invalid; allowed: one of {_METHODS}")
-    p = block.p(g)
-    if max_step is None:
-        max_step = 0.1 / p
-    max_step = check_range("max_step", max_step, 0.0, math.inf, lo_in=False, hi_in=False)
-    if isinstance(max_impacts, bool) or not isinstance(max_impacts, int) or max_impacts < 1:
-        raise ValueError(f"max_impacts = {max_impacts!r} is invalid; allowed: a positive integer")
-    if isinstance(window_samples, bool) or not isinstance(window_samples, int) or window_samples < 2:
-        raise ValueError(f"window_samples = {window_samples!r} is invalid; allowed: an integer >= 2")
-    bps = sorted({check_range("breakpoints", b, -math.inf, math.inf, lo_in=False, hi_in=False)
-                  for b in breakpoints} | ({t_quiet} if t_quiet is not None else set()))
-    bps = [b for b in bps if t0 < b < t_end]
+    mu_s = _check_mu_s(mu_s, zero_ok=False)
+    run = _check_run(block, g, t0, t_end, t_quiet=t_quiet, breakpoints=breakpoints, theta_eps=theta_eps,
+                     rtol=rtol, atol=atol, method=method, max_step=max_step, max_impacts=max_impacts,
+                     window_samples=window_samples)
+    rtol, atol, p = run.rtol, run.atol, run.p
+    quiet = run.quiet
 
     # ---------------------------------------------------------------- constants
+    alpha = block.alpha
     p2 = p * p
     R = block.R
     e = block.e
@@ -332,9 +489,6 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
         A = float(A_F(t))
         G = 1.0 if a_v is None else 1.0 + float(a_v(t)) / g
         return A, G
-
-    def quiet(t):
-        return t_quiet is not None and t >= t_quiet
 
     # ---------------------------------------------------------------- bookkeeping
     nfev = 0
@@ -359,10 +513,6 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
         nonlocal peak, t_peak
         if psi > peak:
             peak, t_peak = psi, t
-
-    def segment_end(t):
-        nxt = [b for b in bps if b > t]
-        return min(nxt[0], t_end) if nxt else t_end
 
     def contact(s, psi, dpsi, ddpsi, A, G):
         """``(V/(m g), s H/(m g))``: the contact force on corner ``s``."""
@@ -392,43 +542,6 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
         """``G sin(alpha) + s (A/g) cos(alpha)``: ``-psi''/p^2`` at ``psi = 0`` on corner ``s``."""
         return G * sin_a + s * (A / g) * cos_a
 
-    # ---------------------------------------------------------------- end-of-cascade rule
-    v_eps = math.cos(alpha - theta_eps) - cos_a
-    sin_ae, cos_ae = math.sin(alpha - theta_eps), math.cos(alpha - theta_eps)
-
-    def landing(t_i, w):
-        """``rest_by`` if the block provably stays below ``theta_eps`` after leaving at ``w``, else None."""
-        if quiet(t_i):
-            if w * w / (2.0 * p2) <= v_eps:
-                return t_i + 2.0 * w / (p2 * sin_ae * (1.0 - e))
-            return None
-        A_i, G_i = floor_raw(t_i)
-        d0 = p2 * (G_i * sin_ae - abs(A_i) * cos_ae / g)
-        if d0 <= 0.0 or w * w / (2.0 * d0) > theta_eps:
-            return None
-        length = 4.0 * w / (d0 * (1.0 - e))
-        for _ in range(3):
-            ts = t_i + length * np.linspace(0.0, 1.0, window_samples + 1)
-            Fs = np.array([floor_raw(float(t)) for t in ts])
-            A_s, G_s = Fs[:, 0], Fs[:, 1]
-            dA = float(np.max(np.abs(np.diff(A_s)))) if len(A_s) > 1 else 0.0
-            dG = float(np.max(np.abs(np.diff(G_s)))) if len(G_s) > 1 else 0.0
-            A_lo, A_hi = float(A_s.min()) - dA, float(A_s.max()) + dA
-            G_lo, G_hi = float(G_s.min()) - dG, float(G_s.max()) + dG
-            a_max = max(abs(A_lo), abs(A_hi))
-            d = p2 * (G_lo * sin_ae - a_max * cos_ae / g)
-            if d <= 0.0 or w * w / (2.0 * d) > theta_eps:
-                return None
-            delta = 0.5 * p2 * ((G_hi - G_lo) * sin_a + (A_hi - A_lo) / g)
-            r = e * math.sqrt(1.0 + 2.0 * delta / d)
-            if r >= 1.0:
-                return None
-            need = 2.0 * w / (d * (1.0 - r))
-            if need <= length:
-                return t_i + need
-            length = 2.0 * need
-        return None
-
     # ---------------------------------------------------------------- initial state
     t = t0
     if theta0 != 0.0:
@@ -448,8 +561,7 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
 
     # ---------------------------------------------------------------- main loop
     while t < t_end:
-        t_seg = segment_end(t)
-        t_clip = math.nextafter(t_seg, -math.inf)
+        t_seg, t_clip = run.segment(t)
 
         def floor(tt, t_lo=t, t_hi=t_clip):
             return floor_raw(min(max(tt, t_lo), t_hi))
@@ -489,13 +601,8 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
                     return mu_s * G + A / g
 
                 events += [ev_slide_r, ev_slide_l]
-            for ev in events:
-                ev.terminal, ev.direction = True, -1.0
-            sol = solve_ivp(lambda tt, y: np.zeros(1), (t, t_seg), np.zeros(1), method="DOP853",
-                            rtol=rtol, atol=atol, events=events, max_step=max_step)
+            sol = run.scan_rest(events, t, t_seg)
             nfev += sol.nfev
-            if sol.status < 0:
-                raise RuntimeError(f"solve_ivp failed at rest from t = {t!r} s: {sol.message}")
             if sol.status == 1:
                 hits = [(float(te[0]), k) for k, te in enumerate(sol.t_events) if len(te)]
                 te, k = min(hits)
@@ -507,14 +614,7 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
                     fail("slide", te, "at rest", f"|A_F|/(g + a_v) = {abs(A) / (g * G):.6g}")
                 s = 1 if k == 0 else -1
                 # onset: the first time from te on (a few ulp at most) at which psi'' > 0 strictly
-                step = math.ulp(max(abs(te), 1.0))
-                tt = te
-                for _ in range(24):
-                    if uplift_margin(s, *floor_raw(tt)) < 0.0:
-                        break
-                    tt = te + step
-                    step *= 2.0
-                t = tt
+                t = _advance(te, lambda tt, s=s: uplift_margin(s, *floor_raw(tt)) < 0.0)
                 if uplift_margin(s, *floor_raw(t)) < 0.0:
                     mode, psi, dpsi, rising = s, 0.0, 0.0, True
                     uplifts.append(t)
@@ -543,23 +643,7 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
             V, sH = contact(s, psi, dpsi, acc, A, G)
             check_contact(t, V, sH, "rocking")
 
-        if rising:
-            def ev_main(tt, y):
-                return y[1]                       # apex: psi' falls through 0
-            ev_main.direction = -1.0
-
-            def ev_over(tt, y):
-                return y[0] - _HALF_PI            # overturn
-            ev_over.direction = 1.0
-        else:
-            def ev_main(tt, y):
-                return y[0]                       # impact: psi falls through 0
-            ev_main.direction = -1.0
-
-            def ev_over(tt, y):
-                return y[1]                       # turns up again before reaching the floor (no overturn)
-            ev_over.direction = 1.0
-        ev_main.terminal = ev_over.terminal = True
+        ev_main, ev_over = _excursion_events(rising, 0)   # apex and overturn, or impact and turning up
 
         def ev_alpha(tt, y):
             return y[0] - alpha
@@ -583,7 +667,7 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
             ev.terminal, ev.direction = False, -1.0
 
         sol = solve_ivp(rhs, (t, t_seg), np.array([psi, dpsi]), method=method, rtol=rtol, atol=atol,
-                        events=events, max_step=max(max_step, 0.1 / p) if quiet(t) else max_step)
+                        events=events, max_step=run.step_at(t))
         nfev += sol.nfev
         if sol.status < 0:
             raise RuntimeError(f"solve_ivp failed while rocking from t = {t!r} s: {sol.message}")
@@ -642,11 +726,9 @@ def solve_rocking(block: Block, A_F, t_end: float, *, a_v=None, g: float = G_STA
                 impacts.append((t, s * dpsi, -s * w))
                 mode, psi, dpsi, rising = -s, 0.0, w, True
                 record(t, 0.0, -s * w, -s)
-                if n_impacts > max_impacts:
-                    raise RuntimeError(f"more than max_impacts = {max_impacts} impacts by t = {t!r} s "
-                                       f"(outgoing speed {w:.3g} rad/s): the cascade did not meet the "
-                                       "end-of-cascade rule")
-                by = landing(t, w) if w > 0.0 else t
+                if n_impacts > run.max_impacts:
+                    raise run.too_many_impacts(t, w)
+                by = run.landing(t, w, floor_raw) if w > 0.0 else t
                 if by is not None:
                     mode, psi, dpsi, rising = REST, 0.0, 0.0, None
                     t_rest, rest_by = t, by

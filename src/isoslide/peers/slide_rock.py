@@ -158,15 +158,14 @@ from scipy.integrate import solve_ivp
 
 from ..model.rocking import G_STANDARD, Block
 from ..model.validation import check_range
-from .rocking import RockingContactError
+from .rocking import (_HALF_PI, RockingContactError, _advance, _check_floor, _check_mu_s, _check_run,
+                      _excursion_events)
 
 __all__ = ["BlockHistory", "BlockResult", "MODE_NAMES", "OVERTURNED", "REST", "ROCK", "SLIDE", "SLIDE_ROCK",
            "solve_block"]
 
 REST, SLIDE, ROCK, SLIDE_ROCK, OVERTURNED = 0, 1, 2, 3, 4
 MODE_NAMES = ("rest", "slide", "rock", "slide-rock", "overturned")
-_METHODS = ("DOP853", "Radau")
-_HALF_PI = 0.5 * math.pi
 
 
 @dataclass(frozen=True)
@@ -275,13 +274,6 @@ class BlockResult:
     history: BlockHistory | None = field(default=None, repr=False)
 
 
-def _check_callable(name, f):
-    if not callable(f):
-        raise ValueError(f"{name} = {f!r} is not callable; allowed: a function of time t (s) returning "
-                         "an acceleration (m/s^2)")
-    return f
-
-
 def _sgn(x: float) -> float:
     return 1.0 if x > 0.0 else (-1.0 if x < 0.0 else 0.0)
 
@@ -348,48 +340,24 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
         More than ``max_impacts`` impacts, or the integrator failed.
     """
     # ---------------------------------------------------------------- validation
-    if not isinstance(block, Block):
-        raise ValueError(f"block = {block!r} is invalid; allowed: an isoslide.model.rocking.Block")
-    _check_callable("A_F", A_F)
-    if a_v is not None:
-        _check_callable("a_v", a_v)
-    g = check_range("g", g, 0.0, math.inf, lo_in=False, hi_in=False)
-    t0 = check_range("t0", t0, -math.inf, math.inf, lo_in=False, hi_in=False)
-    t_end = check_range("t_end", t_end, t0, math.inf, lo_in=False, hi_in=False)
-    if not (isinstance(mu_s, (int, float)) and not isinstance(mu_s, bool) and mu_s == math.inf):
-        mu_s = check_range("mu_s", mu_s, 0.0, math.inf, lo_in=True, hi_in=False)
+    g, t0, t_end = _check_floor(block, A_F, a_v, g, t0, t_end)
+    mu_s = _check_mu_s(mu_s, zero_ok=True)
     if mu_k is None:
         mu_k = mu_s if math.isfinite(mu_s) else 0.0
     else:
         mu_k = check_range("mu_k", mu_k, 0.0, min(mu_s, 1e300), lo_in=True, hi_in=True)
-    if t_quiet is not None:
-        t_quiet = check_range("t_quiet", t_quiet, -math.inf, math.inf, lo_in=False, hi_in=False)
-    alpha = block.alpha
-    if theta_eps is None:
-        theta_eps = 1e-3 * alpha
-    theta_eps = check_range("theta_eps", theta_eps, 0.0, alpha, lo_in=False, hi_in=False)
-    rtol = check_range("rtol", rtol, 1e-14, 1e-3)
-    atol = check_range("atol", atol, 0.0, 1.0, lo_in=False)
-    if method not in _METHODS:
-        raise ValueError(f"method = {method!r} is invalid; allowed: one of {_METHODS}")
-    p = block.p(g)
-    if max_step is None:
-        max_step = 0.1 / p
-    max_step = check_range("max_step", max_step, 0.0, math.inf, lo_in=False, hi_in=False)
-    if isinstance(max_impacts, bool) or not isinstance(max_impacts, int) or max_impacts < 1:
-        raise ValueError(f"max_impacts = {max_impacts!r} is invalid; allowed: a positive integer")
-    if isinstance(window_samples, bool) or not isinstance(window_samples, int) or window_samples < 2:
-        raise ValueError(f"window_samples = {window_samples!r} is invalid; allowed: an integer >= 2")
-    bps = sorted({check_range("breakpoints", x, -math.inf, math.inf, lo_in=False, hi_in=False)
-                  for x in breakpoints} | ({t_quiet} if t_quiet is not None else set()))
-    bps = [x for x in bps if t0 < x < t_end]
+    run = _check_run(block, g, t0, t_end, t_quiet=t_quiet, breakpoints=breakpoints, theta_eps=theta_eps,
+                     rtol=rtol, atol=atol, method=method, max_step=max_step, max_impacts=max_impacts,
+                     window_samples=window_samples)
+    theta_eps, rtol, atol, max_step = run.theta_eps, run.rtol, run.atol, run.max_step
+    quiet = run.quiet
 
     # ---------------------------------------------------------------- constants
+    alpha = block.alpha
     b, h, R = block.b, block.h, block.R
     tan_a = b / h
     k = 0.75 / R                      # 1/R times m R^2 / I_O
     kappa = 0.75 * h / (R * R)        # 3 h / (4 R^2)
-    p2 = p * p
     e = block.e
     sin_a, cos_a = math.sin(alpha), math.cos(alpha)
     can_rock = mu_s > tan_a
@@ -399,8 +367,10 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
         """``(A_F, a_v)`` at ``t``."""
         return float(A_F(t)), (0.0 if a_v is None else float(a_v(t)))
 
-    def quiet(t):
-        return t_quiet is not None and t >= t_quiet
+    def floor_G(t):
+        """``(A_F, G = 1 + a_v/g)`` at ``t``, the floor of the end-of-cascade rule."""
+        A, av = floor_raw(t)
+        return A, 1.0 + av / g
 
     def indeterminate(t, detail):
         raise RockingContactError(f"no consistent contact mode at t = {t!r} s: {detail}", t, "indeterminate")
@@ -475,61 +445,10 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
         if psi > th_peak:
             th_peak, t_th_peak = psi, t
 
-    def segment_end(t):
-        nxt = [x for x in bps if x > t]
-        return min(nxt[0], t_end) if nxt else t_end
-
     def flight(t, where, detail):
         raise RockingContactError(
             f"the block would leave the floor at t = {t!r} s ({where}): the vertical contact force would "
             f"become negative ({detail}); flight is outside this model", t, "flight")
-
-    def advance(t_e, ok):
-        """The first time from ``t_e`` on (doubling steps from one ulp, at most 2^24 ulp) where ``ok``."""
-        step = math.ulp(max(abs(t_e), 1.0))
-        tt = t_e
-        for _ in range(24):
-            if ok(tt):
-                return tt
-            tt = t_e + step
-            step *= 2.0
-        return tt
-
-    # ---------------------------------------------------------------- end-of-cascade rule (stuck pivot)
-    v_eps = math.cos(alpha - theta_eps) - cos_a
-    sin_ae, cos_ae = math.sin(alpha - theta_eps), math.cos(alpha - theta_eps)
-
-    def landing(t_i, w):
-        """``rest_by`` if a block rocking on stuck pivots from ``t_i`` at ``w`` stays below ``theta_eps``."""
-        if quiet(t_i):
-            if w * w / (2.0 * p2) <= v_eps:
-                return t_i + 2.0 * w / (p2 * sin_ae * (1.0 - e))
-            return None
-        A_i, av_i = floor_raw(t_i)
-        d0 = p2 * ((1.0 + av_i / g) * sin_ae - abs(A_i) * cos_ae / g)
-        if d0 <= 0.0 or w * w / (2.0 * d0) > theta_eps:
-            return None
-        length = 4.0 * w / (d0 * (1.0 - e))
-        for _ in range(3):
-            ts = t_i + length * np.linspace(0.0, 1.0, window_samples + 1)
-            Fs = np.array([floor_raw(float(tt)) for tt in ts])
-            A_s, G_s = Fs[:, 0], 1.0 + Fs[:, 1] / g
-            dA = float(np.max(np.abs(np.diff(A_s))))
-            dG = float(np.max(np.abs(np.diff(G_s))))
-            A_lo, A_hi = float(A_s.min()) - dA, float(A_s.max()) + dA
-            G_lo, G_hi = float(G_s.min()) - dG, float(G_s.max()) + dG
-            d = p2 * (G_lo * sin_ae - max(abs(A_lo), abs(A_hi)) * cos_ae / g)
-            if d <= 0.0 or w * w / (2.0 * d) > theta_eps:
-                return None
-            delta = 0.5 * p2 * ((G_hi - G_lo) * sin_a + (A_hi - A_lo) / g)
-            r = e * math.sqrt(1.0 + 2.0 * delta / d)
-            if r >= 1.0:
-                return None
-            need = 2.0 * w / (d * (1.0 - r))
-            if need <= length:
-                return t_i + need
-            length = 2.0 * need
-        return None
 
     # ---------------------------------------------------------------- impact
     def impact(t, s, q, v):
@@ -587,8 +506,7 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
 
     # ---------------------------------------------------------------- main loop
     while t < t_end:
-        t_seg = segment_end(t)
-        t_clip = math.nextafter(t_seg, -math.inf)
+        t_seg, t_clip = run.segment(t)
 
         def floor(tt, t_lo=t, t_hi=t_clip):
             return floor_raw(min(max(tt, t_lo), t_hi))
@@ -625,14 +543,8 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
                 def ev_flight(tt, _y):
                     return g + floor(tt)[1]
 
-                events = [ev_r, ev_l, ev_flight]
-                for ev in events:
-                    ev.terminal, ev.direction = True, -1.0
-                sol = solve_ivp(lambda tt, _y: np.zeros(1), (t, t_seg), np.zeros(1), method="DOP853",
-                                rtol=rtol, atol=atol, events=events, max_step=max_step)
+                sol = run.scan_rest([ev_r, ev_l, ev_flight], t, t_seg)
                 nfev += sol.nfev
-                if sol.status < 0:
-                    raise RuntimeError(f"solve_ivp failed at rest from t = {t!r} s: {sol.message}")
                 if sol.status != 1:
                     record(sol.t[1:], np.repeat(y[:, None], len(sol.t) - 1, axis=1), REST, s, sig, floor)
                     t = t_seg
@@ -642,7 +554,7 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
                 if kk == 2:
                     flight(te, "at rest", f"1 + a_v/g = {1.0 + floor_raw(te)[1] / g:.6g}")
                 side = 1 if kk == 0 else -1
-                t = advance(te, lambda tt, side=side, m=margin: m(side, tt) < 0.0)
+                t = _advance(te, lambda tt, side=side, m=margin: m(side, tt) < 0.0)
                 if not margin(side, t) < 0.0:
                     continue
                 go = [side]
@@ -739,22 +651,7 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
                 record(t, y, mode, s, sig, floor_raw)
                 continue
 
-        if rising:
-            def ev_main(tt, yy):
-                return yy[3]                      # apex: psi' falls through 0
-            ev_main.direction = -1.0
-
-            def ev_over(tt, yy):
-                return yy[2] - _HALF_PI           # overturn
-            ev_over.direction = 1.0
-        else:
-            def ev_main(tt, yy):
-                return yy[2]                      # impact: psi falls through 0
-            ev_main.direction = -1.0
-
-            def ev_over(tt, yy):
-                return yy[3]                      # turns up again before reaching the floor
-            ev_over.direction = 1.0
+        ev_main, ev_over = _excursion_events(rising, 2)   # apex and overturn, or impact and turning up
 
         def ev_flight(tt, yy):
             return contact_at(tt, yy)[1] if yy[2] < alpha else 1.0
@@ -785,7 +682,7 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
             ev.direction = -1.0
 
         sol = solve_ivp(rhs, (t, t_seg), y, method=method, rtol=rtol, atol=atol, events=events,
-                        max_step=max(max_step, 0.1 / p) if quiet(t) else max_step)
+                        max_step=run.step_at(t))
         nfev += sol.nfev
         if sol.status < 0:
             raise RuntimeError(f"solve_ivp failed in {MODE_NAMES[md]} from t = {t!r} s: {sol.message}")
@@ -845,15 +742,14 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
         v_new, r, _, _ = impact(t, s, q, v)
         lost += kinetic(s, v, 0.0, q) - kinetic(-s, v_new, 0.0, r)
         impacts.append((t, s * q, -s * r, v, v_new))
-        if n_impacts > max_impacts:
-            raise RuntimeError(f"more than max_impacts = {max_impacts} impacts by t = {t!r} s "
-                               f"(outgoing speed {r:.3g} rad/s): the cascade did not meet the end-of-cascade rule")
+        if n_impacts > run.max_impacts:
+            raise run.too_many_impacts(t, r)
         s = -s
         y[1], y[2], y[3] = v_new, 0.0, r
         rising = True
         if v_new == 0.0:
             mode, sig = ROCK, 0.0
-            by = landing(t, r)
+            by = run.landing(t, r, floor_G)
             if by is not None:
                 lost += kinetic(s, 0.0, 0.0, r)
                 y[3] = 0.0
