@@ -10,24 +10,9 @@ from scipy.optimize import brentq
 from isoslide.model.rocking import G_STANDARD, Block
 from isoslide.peers.rocking import RockingContactError, solve_rocking
 from isoslide.peers.slide_rock import REST, ROCK, SLIDE, SLIDE_ROCK, solve_block
+from rocking_cases import rectangular, ricker  # tests/ is on sys.path
 
 G = G_STANDARD
-
-
-def ricker(a_p, T_p):
-    """Symmetric Ricker floor acceleration (m/s^2), peak a_p at t = 0, support [-2 T_p, 2 T_p)."""
-    def f(t):
-        if not -2 * T_p <= t < 2 * T_p:
-            return 0.0
-        s = (math.pi * t / T_p) ** 2
-        return a_p * (1 - 2 * s) * math.exp(-s)
-    return f
-
-
-def rectangular(a, t_d):
-    def f(t):
-        return a if 0.0 <= t < t_d else 0.0
-    return f
 
 
 def sine(a, T, cycles):
