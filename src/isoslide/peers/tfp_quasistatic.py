@@ -45,10 +45,10 @@ _CARRIER = {1: 0, 2: 3}
 
 
 def _surfaces(bearing):
-    """Radii, friction strengths (N) and limits of surfaces 1..4 (indices 0..3)."""
+    """Radii, friction strengths (N) and limits of surfaces 1..4 (indices 0..3), and the weight (N)."""
     (L1, L2, L3), (mu1, mu2, mu3), (d1, d2, d3) = bearing.L, bearing.mu, bearing.d
     W = bearing.W
-    return (np.array([L2, L1, L1, L3]), W * np.array([mu2, mu1, mu1, mu3]), np.array([d2, d1, d1, d3]))
+    return (np.array([L2, L1, L1, L3]), W * np.array([mu2, mu1, mu1, mu3]), np.array([d2, d1, d1, d3]), W)
 
 
 def _stage(moving: tuple, outer_at_stop: bool) -> int:
@@ -177,8 +177,7 @@ def solve_path(bearing, targets, max_events: int = 100000) -> QuasiStaticPath:
     ValueError
         When a target lies beyond the bearing's total travel ``2 d1 + d2 + d3``.
     """
-    R, m, d = _surfaces(bearing)
-    W = bearing.W
+    R, m, d, W = _surfaces(bearing)
     tol_q, tol_u = 1e-10 * W, 1e-12 * float(d.max())
     u, F, U = np.zeros(4), 0.0, 0.0
     rec_u, rec_F, rec_stage, rec_slide, rec_surf = [0.0], [0.0], [0], [np.zeros(4, bool)], [u.copy()]
@@ -384,8 +383,7 @@ def solve_planar(bearing, points) -> QuasiStaticPath:
     ValueError
         When a point lies beyond the bearing's total travel ``2 d1 + d2 + d3``.
     """
-    R, m, d = _surfaces(bearing)
-    W = bearing.W
+    R, m, d, W = _surfaces(bearing)
     pts = np.asarray(points, dtype=float).reshape(-1, 2)
     reach = float(d.sum())
     tol = 1e-13 * reach
