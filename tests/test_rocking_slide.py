@@ -336,3 +336,5 @@ def test_flight_raises_naming_the_time_and_bad_friction_input_is_rejected():
         solve_block(blk, lambda t: 0.0, 1.0, mu_s=0.3, mu_k=0.5)
     with pytest.raises(ValueError, match=r"mu_s = -1\.0 is out of range"):
         solve_block(blk, lambda t: 0.0, 1.0, mu_s=-1.0)
+    with pytest.raises(ValueError, match=r"mu_s = 0\.0 is out of range; allowed range: 0 < value < inf"):
+        solve_block(blk, lambda t: 0.0, 1.0, mu_s=0.0)

@@ -296,7 +296,7 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
     t_end : float
         Horizon (s), ``> t0``.
     mu_s : float
-        Static friction coefficient, ``>= 0``; ``inf``: the base never slides (the rock-only model).
+        Static friction coefficient, ``> 0``; ``inf``: the base never slides (the rock-only model).
     mu_k : float or None
         Kinetic friction coefficient, ``0 <= mu_k <= mu_s``; None: ``mu_s``.
     a_v : callable or None
@@ -341,7 +341,7 @@ def solve_block(block: Block, A_F, t_end: float, *, mu_s: float, mu_k: float | N
     """
     # ---------------------------------------------------------------- validation
     g, t0, t_end = _check_floor(block, A_F, a_v, g, t0, t_end)
-    mu_s = _check_mu_s(mu_s, zero_ok=True)
+    mu_s = _check_mu_s(mu_s, zero_ok=False)
     if mu_k is None:
         mu_k = mu_s if math.isfinite(mu_s) else 0.0
     else:
