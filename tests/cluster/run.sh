@@ -21,12 +21,13 @@
 # Without root or apt-get it says so and exits 0.  Each snakemake runs under `timeout -s KILL`
 # (the SLURM executor can wait forever when status checks fail).
 # Environment: ISOSLIDE_SLURM_DIR (private directory; default: a new /tmp/isoslide-slurm.*, removed
-# on success), ISOSLIDE_SLURM_TIMEOUT (seconds per snakemake run; default 600).
+# on success), ISOSLIDE_SLURM_TIMEOUT (seconds per snakemake run; default 1800: the run took 530 s on
+# one machine of this kind and processors differ about twofold in speed).
 set -euo pipefail
 
 REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 PACKAGES=(munge slurmctld slurmd slurm-client slurmdbd mariadb-server)
-RUN_TIMEOUT=${ISOSLIDE_SLURM_TIMEOUT:-600}
+RUN_TIMEOUT=${ISOSLIDE_SLURM_TIMEOUT:-1800}
 CLUSTER=isoslide
 ACCOUNT=isoslide
 PARTITION=main          # the partition named in profiles/slurm/config.yaml
