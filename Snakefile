@@ -29,9 +29,9 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 
 
 # The compiled kernels: where the ones shipped with the package do not fit (another numba, a non-x86
-# machine, ISOSLIDE_CPU_TARGET=host), compile them once here, saying so in one line, before any job starts;
-# the jobs, parallel or on a cluster's nodes, then load them from numba's cache instead of each
-# compiling them again (isoslide.jit_cache warm; a quick check when the shipped kernels fit).
+# machine, ISOSLIDE_CPU_TARGET=host), compile them once here, saying so in one line, before any job
+# starts; the jobs, parallel or on a cluster's nodes, then load them from numba's cache instead of
+# each compiling them again (isoslide.jit_cache warm; a quick check when the shipped kernels fit).
 onstart:
     shell(f"{shlex.quote(sys.executable)} -m isoslide.jit_cache warm")
 
