@@ -165,9 +165,7 @@ def select_target() -> Target:
 
 def target_in_force() -> tuple[str, str]:
     """The processor name and feature string numba compiles for in this process (its cache key)."""
-    from numba.core.registry import cpu_target
-
-    _triple, cpu, features = cpu_target.target_context.codegen().magic_tuple()
+    _triple, cpu, features = _host_magic()
     return cpu, features
 
 
@@ -257,6 +255,7 @@ def read_index(path: Path) -> tuple[str, bytes, dict]:
 
 
 def _host_magic() -> tuple:
+    """The cache key of the code numba compiles in this process: (triple, processor, features)."""
     from numba.core.registry import cpu_target
 
     return cpu_target.target_context.codegen().magic_tuple()
