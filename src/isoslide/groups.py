@@ -27,6 +27,8 @@ Pi14   a_py / a_p           transverse-to-main pulse amplitude ratio    0 <= Pi1
 Pi15   T_py / T_p           transverse-to-main pulse period ratio       0 < Pi15 <= 1e4
 Pi16   t_y / T_p            transverse pulse time shift                 -1e4 <= Pi16 <= 1e4
 Pi17   a_pz / g             vertical ground acceleration over gravity   0 <= Pi17 <= 1e3
+Pi22   mu_slow / mu_fast    bearing breakaway-to-fast friction ratio    0 < Pi22 <= 1
+Pi23   a a_p T_p            bearing friction rate group                 0 <= Pi23 <= 1e12
 =====  ===================  ==========================================  ================
 
 ``M_b = m_b + m_st`` is the whole isolated mass (base slab and superstructure,
@@ -35,7 +37,11 @@ period with the isolator's post-yield (or linear) stiffness ``k_d``.  Pi11 is
 read only with a flexible superstructure (``Pi12 > 0``), where ``0 < Pi11 < 1``
 (checked by :class:`isoslide.Scene`).  Pi14 to Pi16 shape the second horizontal component,
 ``a_gy = Pi14 a_p p_y((tau - Pi16)/Pi15)`` of a scene's ``pulse_y`` (read only with one).  Pi17 scales the vertical ground acceleration
-``a_gz = Pi17 g p_z(t/T_p)`` of a scene's ``pulse_z``; it acts through the normal forces.
+``a_gz = Pi17 g p_z(t/T_p)`` of a scene's ``pulse_z``; it acts through the normal forces.  Pi22 and
+Pi23 give a sliding bearing (``Pi9 > 0``, ``Pi10 = 0``) the speed-dependent friction of PTFE-type
+surfaces (Constantinou, Mokha and Reinhorn 1990), ``mu(v) = mu_fast - (mu_fast - mu_slow)
+exp(-a |v|)`` with ``Pi9 = mu_fast g / a_p`` (read only with a sliding bearing).  The numbers
+Pi18 to Pi21 are kept for the rocking block's groups.
 
 Scene validation, dataset attributes, figure labels, the similarity check's
 definitions, study dimension names and the command-line help are all derived
@@ -194,6 +200,17 @@ INPUTS = (
           comment="amplitude of the vertical ground acceleration a_gz = Pi17 g p_z(t/T_p) over g; it acts "
                   "through the normal forces (contents, sliding bearing): N = m (g + a_gz); 0 = no vertical "
                   "motion"),
+    Group("pi22", "mu_slow / mu_fast", "bearing breakaway-to-fast friction ratio", r"\Pi_{22}",
+          r"\mu_{slow}/\mu_{fast}", "Π₂₂", lo_in=False, hi=1.0, default=1.0,
+          comment="a sliding bearing's friction coefficient at breakaway (zero speed) over its value at high "
+                  "speed, mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|), with Pi9 = mu_fast g / a_p; the "
+                  "bearing sticks while the force that holds it is within mu_slow N; 1 = constant friction; "
+                  "read only with a sliding bearing (Pi9 > 0, Pi10 = 0)"),
+    Group("pi23", "a a_p T_p", "bearing friction rate group", r"\Pi_{23}", r"a\,a_p T_p", "Π₂₃",
+          hi=1e12, default=0.0,
+          comment="rate a (s/m) of the sliding bearing's friction law mu(v) = mu_fast - (mu_fast - mu_slow) "
+                  "exp(-a |v|) times the pulse's velocity scale a_p T_p; 0 = mu_slow at every speed (constant "
+                  "friction Pi9 Pi22); read only with a sliding bearing (Pi9 > 0, Pi10 = 0)"),
 )
 """The input groups, in the order of :class:`isoslide.Scene`'s arguments."""
 
@@ -209,9 +226,13 @@ PAPER_NAMES = INPUT_NAMES[:7]
 BUILDING_NAMES = INPUT_NAMES[7:12]
 """The general building's groups ``("pi9", ..., "pi13")``: zero in the paper's model."""
 
-EXCITATION_NAMES = INPUT_NAMES[12:]
+EXCITATION_NAMES = ("pi14", "pi15", "pi16", "pi17")
 """The groups of the excitation beyond the main horizontal pulse (``("pi14", ..., "pi17")``): at their
 defaults in the paper's model (without a ``pulse_y`` and a ``pulse_z`` they have no effect)."""
+
+BEARING_FRICTION_NAMES = ("pi22", "pi23")
+"""The sliding bearing's speed-dependent friction (``Pi22``, ``Pi23``): at their defaults (constant
+friction) in the paper's model and read only with a sliding bearing."""
 
 
 def group(name: str) -> Group:

@@ -152,6 +152,15 @@ class Scene:
         ``pulse_z``.
     pulse_z : str or Pulse or record, optional
         Shape of the vertical ground acceleration, on the main pulse's time axis.
+    pi22 : float, default 1
+        ``mu_slow / mu_fast`` of a sliding bearing whose friction depends on its speed,
+        ``mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|)`` (Constantinou, Mokha and Reinhorn
+        1990), ``Pi9 = mu_fast g / a_p``: the bearing sticks while the force that holds it is within
+        ``Pi9 Pi22`` (times the normal-force factor) and slides with ``Pi9 (1 - (1 - Pi22)
+        exp(-Pi23 |x'|))``; 1 is constant friction.  Read only with a sliding bearing.
+    pi23 : float, default 0
+        ``a a_p T_p``, the rate of that law (``a`` in s/m); 0 is constant friction ``Pi9 Pi22``.
+        Read only with a sliding bearing.
     angle : float, default 0
         Angle (radians, counter-clockwise) from the building's x axis to the excitation's x axis:
         the horizontal ground acceleration in the building's axes is the excitation's rotated by
@@ -187,6 +196,8 @@ class Scene:
     pi16: float = _DEFAULTS["pi16"]
     pi17: float = _DEFAULTS["pi17"]
     pulse_z: Pulse | str | None = None
+    pi22: float = _DEFAULTS["pi22"]
+    pi23: float = _DEFAULTS["pi23"]
     angle: float = 0.0
     scale: PhysicalScale | None = field(default=None, compare=False)
 
@@ -222,7 +233,8 @@ class Scene:
     def from_physical(cls, a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0,
                       g=G_STANDARD, pulse="ricker", Q_d=0.0, D_y=0.0, m_st=0.0, T_s=0.0, xi_s=0.0,
                       floor="base", storeys=1, floor_masses=None, storey_stiffnesses=None, a_pz=0.0,
-                      pulse_z=None, pulse_y=None, a_py=None, T_py=None, t_y=0.0, angle=0.0) -> "Scene":
+                      pulse_z=None, pulse_y=None, a_py=None, T_py=None, t_y=0.0, angle=0.0, Q_slow=None,
+                      rate=0.0) -> "Scene":
         """Build a scene from physical parameters in SI units.
 
         Parameters
@@ -286,6 +298,13 @@ class Scene:
             Time (s) by which the second horizontal component lags the main one.
         angle : float
             Angle (radians) from the building's x axis to the excitation's (see :class:`Scene`).
+        Q_slow : float, optional
+            Breakaway strength ``mu_slow M_b g`` of a sliding bearing whose friction depends on its
+            speed, N (``0 < Q_slow <= Q_d``; ``None``: ``Q_d`` at every speed); ``Q_d`` is then the
+            strength at high speed, ``mu_fast M_b g`` (see :func:`friction_pendulum`).
+        rate : float
+            Rate ``a`` of the bearing's law ``mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|)``,
+            s/m (>= 0; 0: ``Q_slow`` at every speed).
         """
         v = {"a_p": a_p, "T_p": T_p, "M_b": M_b, "T_b": T_b, "xi_b": xi_b, "m_ec": m_ec, "mu_s": mu_s,
              "mu_k": mu_k, "beta": beta, "gamma": gamma, "g": g, "Q_d": Q_d, "D_y": D_y, "T_s": T_s,
@@ -310,6 +329,17 @@ class Scene:
         a_py = a_p if a_py is None else check_range("a_py", a_py, 0.0, math.inf, True, False)
         T_py = T_p if T_py is None else check_range("T_py", T_py, 0.0, math.inf, False, False)
         t_y = check_range("t_y", t_y, -math.inf, math.inf, False, False)
+        rate = check_range("rate", rate, 0.0, math.inf, True, False)
+        if Q_slow is None:
+            if rate != 0.0:
+                raise ValueError(f"rate = {rate!r} is given without Q_slow; allowed: rate = 0 when Q_slow is None "
+                                 "(constant bearing friction)")
+            Q_slow = Q_d
+        elif Q_d == 0.0 or D_y != 0.0:
+            raise ValueError(f"Q_slow = {Q_slow!r} is given without a sliding bearing (Q_d = {Q_d!r}, "
+                             f"D_y = {D_y!r}); allowed: Q_slow with Q_d > 0 and D_y = 0")
+        else:
+            Q_slow = check_range("Q_slow", Q_slow, 0.0, Q_d, False, True)
         return cls(
             pi2=mu_k * g / a_p, pi3=T_b / T_p, pi4=xi_b, pi5=mu_k / mu_s,
             pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b,
@@ -320,6 +350,7 @@ class Scene:
             pulse_y=None if pulse_y is None else _resolve_pulse(pulse_y, a_p=a_p, T_p=T_p),
             pi14=a_py / a_p, pi15=T_py / T_p, pi16=t_y / T_p, angle=angle, pi17=a_pz / g,
             pulse_z=None if pulse_z is None else _resolve_pulse(pulse_z, a_p=a_pz if a_pz > 0.0 else None, T_p=T_p),
+            pi22=Q_slow / Q_d if Q_d > 0.0 else 1.0, pi23=rate * a_p * T_p,
             scale=PhysicalScale(a_p, T_p, M_b, g),
         )
 
@@ -538,7 +569,7 @@ def _check_shape(name: str, values, storeys: int):
     return tuple(check_range(f"{name}[{i}]", v, 0.0, math.inf, False, False) for i, v in enumerate(values))
 
 
-def friction_pendulum(R, mu, M_b, g=G_STANDARD) -> dict:
+def friction_pendulum(R, mu, M_b, g=G_STANDARD, mu_slow=None, rate=0.0) -> dict:
     """Isolator parameters of a friction pendulum (single concave sliding surface).
 
     Parameters
@@ -546,23 +577,45 @@ def friction_pendulum(R, mu, M_b, g=G_STANDARD) -> dict:
     R : float
         Radius of curvature of the sliding surface, m (> 0).
     mu : float
-        Friction coefficient of the slider (> 0).
+        Friction coefficient of the slider (> 0); with ``mu_slow`` its value at high speed,
+        ``mu_fast``.
     M_b : float
         Whole isolated mass carried, kg (> 0).
     g : float
         Gravitational acceleration, m/s^2.
+    mu_slow : float, optional
+        Friction coefficient at breakaway (zero speed) of a PTFE-type surface whose friction rises
+        with speed, ``mu(v) = mu - (mu - mu_slow) exp(-rate |v|)`` (Constantinou, Mokha and Reinhorn
+        1990), ``0 < mu_slow <= mu``; ``None``: ``mu`` at every speed.
+    rate : float
+        ``a`` of that law, s/m (>= 0); 0 gives ``mu_slow`` at every speed.
 
     Returns
     -------
     dict
         ``T_b = 2 pi sqrt(R/g)`` (s; the pendulum's stiffness ``k_d = M_b g / R``), ``Q_d = mu M_b g``
-        (N) and ``D_y = 0`` (true stick): keyword arguments for :meth:`Scene.from_physical`.
+        (N) and ``D_y = 0`` (true stick): keyword arguments for :meth:`Scene.from_physical`.  With
+        ``mu_slow`` and ``rate > 0`` also ``Q_slow = mu_slow M_b g`` (N, the breakaway strength) and
+        ``rate``; with ``rate = 0`` the friction is constant, ``Q_d = mu_slow M_b g``, exactly as
+        ``friction_pendulum(R, mu_slow, M_b, g)``.  The friction forces scale with the bearing's
+        normal force, vertical ground motion included (:class:`Scene`, ``Pi17``).
     """
     R = check_range("R", R, 0.0, math.inf, False, False)
     mu = check_range("mu", mu, 0.0, math.inf, False, False)
     M_b = check_range("M_b", M_b, 0.0, math.inf, False, False)
     g = check_range("g", g, 0.0, math.inf, False, False)
-    return {"T_b": 2.0 * math.pi * math.sqrt(R / g), "Q_d": mu * M_b * g, "D_y": 0.0}
+    rate = check_range("rate", rate, 0.0, math.inf, True, False)
+    out = {"T_b": 2.0 * math.pi * math.sqrt(R / g), "Q_d": mu * M_b * g, "D_y": 0.0}
+    if mu_slow is None:
+        if rate != 0.0:
+            raise ValueError(f"rate = {rate!r} is given without mu_slow; allowed: rate = 0 when mu_slow is None "
+                             "(constant friction)")
+        return out
+    mu_slow = check_range("mu_slow", mu_slow, 0.0, mu, False, True)
+    if rate == 0.0:
+        out["Q_d"] = mu_slow * M_b * g
+        return out
+    return {**out, "Q_slow": mu_slow * M_b * g, "rate": rate}
 
 
 def _resolve_pulse(pulse, a_p=None, T_p=None) -> Pulse:

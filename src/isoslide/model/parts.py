@@ -14,7 +14,8 @@ part               groups
 fixed base         none (``Pi3 = 0``: the slab moves with the ground)
 linear isolator    ``Pi3 = T_b/T_p``, ``Pi4 = xi_b``
 bilinear bearing   ``Pi3``, ``Pi4``, ``Pi9 = Q/(M_b a_p)``, ``Pi10 = D_y/(a_p T_p^2)``
-sliding bearing    ``Pi3``, ``Pi4``, ``Pi9`` (true stick: no yield displacement)
+sliding bearing    ``Pi3``, ``Pi4``, ``Pi9`` (true stick: no yield displacement), and for friction
+                   that rises with speed ``Pi22 = mu_slow/mu_fast``, ``Pi23 = a a_p T_p``
 rigid              none (``Pi12 = 0``)
 shear building     ``Pi11 = m_st/M_b``, ``Pi12 = T_s/T_p``, ``Pi13 = xi_s``, ``storeys``, the
                    floors' masses and storeys' stiffnesses (uniform by default)
@@ -54,6 +55,16 @@ class Isolator:
         ``Pi9 = Q / (M_b a_p)`` of a bilinear or sliding bearing (0 otherwise).
     yield_displacement : float
         ``Pi10 = D_y / (a_p T_p^2)`` of a bilinear bearing (0 otherwise).
+    slow : float
+        ``Pi22 = mu_slow / mu_fast`` of a sliding bearing whose friction rises with its speed
+        (1 otherwise).
+    rate : float
+        ``Pi23 = a a_p T_p`` of that bearing (0: constant friction ``strength`` at every speed).
+
+    A sliding bearing's friction level (units ``M_b a_p``, before the normal-force factor) at the
+    slab's speed ``v`` (units ``a_p T_p``) is ``strength (1 - (1 - slow) exp(-rate v))``
+    (:meth:`level`); it sticks while the force that holds the slab is within :attr:`breakaway`.
+    :func:`building_of` gives constant friction as ``slow = 1, rate = 0``.
     """
 
     kind: str
@@ -61,10 +72,28 @@ class Isolator:
     damping: float = 0.0
     strength: float = 0.0
     yield_displacement: float = 0.0
+    slow: float = 1.0
+    rate: float = 0.0
 
     def __post_init__(self):
         if self.kind not in ISOLATOR_KINDS:
             raise ValueError(f"kind = {self.kind!r} is invalid; allowed: {ISOLATOR_KINDS}")
+
+    @property
+    def speed_dependent(self) -> bool:
+        """True for a sliding bearing whose friction rises with its speed (``rate > 0``, ``slow < 1``)."""
+        return self.rate > 0.0 and self.slow < 1.0
+
+    @property
+    def breakaway(self) -> float:
+        """Breakaway strength ``Pi9 Pi22`` of a sliding bearing (the strength of any other kind)."""
+        return self.strength * self.slow
+
+    def level(self, v: float) -> float:
+        """Friction level of a sliding bearing at the speed ``|v|`` (units ``M_b a_p``)."""
+        if not self.speed_dependent:
+            return self.strength
+        return self.strength * (1.0 - (1.0 - self.slow) * math.exp(-self.rate * abs(v)))
 
     @property
     def omega(self) -> float:
@@ -214,7 +243,7 @@ def building_of(scene) -> Building:
     groups = {"fixed": {}, "linear": dict(period=scene.pi3, damping=scene.pi4),
               "bilinear": dict(period=scene.pi3, damping=scene.pi4, strength=scene.pi9,
                                yield_displacement=scene.pi10),
-              "sliding": dict(period=scene.pi3, damping=scene.pi4, strength=scene.pi9)}[kind]
+              "sliding": _sliding(scene)}[kind]
     iso = Isolator(kind, **groups)
     flexible = scene.pi12 > 0.0
     sup = Superstructure(scene.pi11, scene.pi12, scene.pi13, scene.storeys, scene.floor_masses,
@@ -222,3 +251,17 @@ def building_of(scene) -> Building:
     contents = Contents(floor=scene.floor_index if flexible else 0, mass=scene.pi8, kinetic=scene.pi2,
                         static=scene.pi2 / scene.pi5, sharpness=scene.pi6, viscous=scene.pi7)
     return Building(iso, sup, contents)
+
+
+def _sliding(scene) -> dict:
+    """The groups of a sliding bearing; a friction that does not depend on speed is stored as constant.
+
+    ``Pi23 = 0`` is the constant friction ``Pi9 Pi22`` and ``Pi22 = 1`` the constant ``Pi9``, both
+    as ``slow = 1, rate = 0``: the same arrays, hence the same answer to the bit, as a scene given
+    that constant strength.
+    """
+    groups = dict(period=scene.pi3, damping=scene.pi4, strength=scene.pi9)
+    if scene.pi23 == 0.0 or scene.pi22 == 1.0:
+        groups["strength"] = scene.pi9 * scene.pi22
+        return groups
+    return {**groups, "slow": scene.pi22, "rate": scene.pi23}
