@@ -16,7 +16,13 @@ relative to the ground):
   - ``Q > 0, D_y = 0``, a **sliding bearing** (friction pendulum of radius
     ``R`` and friction ``mu_b``: ``k_d = M_b g / R``, ``Q = mu_b M_b g``, see
     :func:`isoslide.friction_pendulum`), rigid-plastic with true stick: the
-    slab stays still while the force that holds it is within ``Q``.
+    slab stays still while the force that holds it is within ``Q``.  A
+    PTFE-type surface's friction rises with speed, ``mu(v) = mu_fast -
+    (mu_fast - mu_slow) exp(-a |v|)`` (``Pi22 = mu_slow/mu_fast``, ``Pi23 = a
+    a_p T_p``): the slab is held while that force is within the breakaway
+    strength ``Q_s = Pi22 Q`` and slides against ``Q (1 - (1 - Pi22)
+    exp(-Pi23 |x'|))``.  Every friction force and stick limit scales with the
+    normal force ``1 + Pi17 p_z`` (vertical ground motion).
 
 * **Superstructure**: rigid, or a mass ``m_st`` on the slab through ``k_s`` and
   ``c_s`` (``T_s = 2 pi sqrt(m_st/k_s)``, ``xi_s = c_s / (2 sqrt(k_s m_st))``).
@@ -44,8 +50,8 @@ The smallest exact model (:func:`reduction`)
     the force holding the slab is ``-(p + R)`` with ``|R| <= Pi8 max|p|`` for
     speed-independent contact (``Pi7 = 0``; a stuck block needs ``Pi8 |p|``,
     a sliding one ``Pi8 phi <= Pi8 mu_s g/a_p < Pi8 max|p|``), so
-    ``(1 + Pi8) max|p| <= Pi9`` proves it; the scene runs as the paper's fixed
-    base.
+    ``(1 + Pi8) max|p| <= Q_s`` (the breakaway strength, ``Pi9`` or ``Pi9
+    Pi22``) proves it; the scene runs as the paper's fixed base.
 ``bearing-elastic``
     A bilinear bearing under a rigid superstructure that provably never
     yields: the slab obeys ``x'' + c_b x' + (k_d + k_e) x = -p + R`` with
@@ -126,7 +132,7 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
         return "general", None
     if contents.viscous == 0.0:
         demand = (1.0 + contents.mass) * peak_accel(scene)
-        if iso.kind == "sliding" and demand <= iso.strength:
+        if iso.kind == "sliding" and demand <= iso.breakaway:
             return "bearing-stuck", replace(scene, pi3=0.0, pi4=0.0, **paper_keys)
         if iso.kind == "bilinear":
             kd, ke = iso.stiffness, iso.elastic_stiffness
@@ -181,6 +187,8 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
         P[bk.P_CS] = Cs[0, 0]
         P[bk.P_FLOOR] = contents.floor
     P[bk.P_Q] = iso.strength
+    P[bk.P_QS] = iso.breakaway
+    P[bk.P_QA] = iso.rate if iso.speed_dependent else 0.0
     P[bk.P_KE] = iso.elastic_stiffness
     P[bk.P_THR] = contents.static
     P[bk.P_PI2] = contents.kinetic

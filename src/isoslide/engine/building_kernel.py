@@ -82,12 +82,15 @@ Y_X, Y_XD, Y_XS = range(3)
 """Fixed state indices: slab displacement and velocity, the first floor's displacement."""
 
 (P_MB, P_MST, P_M, P_KD, P_CB, P_KS, P_CS, P_Q, P_KE, P_THR, P_PI2, P_PI6, P_PI7, P_COULOMB, P_ROOF,
- P_KIND, P_FLEX, P_N, P_FLOOR, P_ZAMP, P_ZCODE) = range(21)
-P_ARRAYS = 21
+ P_KIND, P_FLEX, P_N, P_FLOOR, P_ZAMP, P_ZCODE, P_QS, P_QA) = range(23)
+P_ARRAYS = 23
 """Start of the arrays in the model parameters: floor masses ``(n,)``, then ``Ks`` and ``Cs``
 ``(n, n)`` row by row, then the vertical pulse's parameters; ``P_N`` holds ``n``, ``P_FLOOR`` the
 contents' floor (0 the slab), ``P_ZAMP`` the vertical amplitude ``Pi17`` (0: no vertical motion)
-and ``P_ZCODE`` the vertical pulse's shape code (:mod:`isoslide.pulses`)."""
+and ``P_ZCODE`` the vertical pulse's shape code (:mod:`isoslide.pulses`).  ``P_Q`` is the
+isolator's strength (a sliding bearing's at high speed), ``P_QS`` its breakaway strength (``P_Q``
+unless a sliding bearing's friction rises with speed) and ``P_QA`` the rate ``Pi23`` of that rise
+(0: constant)."""
 
 
 def n_parameters(n: int, n_z: int = 0) -> int:
@@ -148,6 +151,21 @@ def friction(v, P):
 
 
 @njit(cache=True)
+def bearing_level(v, P):
+    """A sliding bearing's friction level at the slab's speed ``|v|`` and its derivative ``d/d|v|``.
+
+    ``q(|v|) = q_s + (q - q_s) (1 - exp(-a |v|))`` with the strength ``q = P_Q`` at high speed, the
+    breakaway strength ``q_s = P_QS`` and the rate ``a = P_QA`` (units ``M_b a_p``, before the
+    normal-force factor); ``a = 0`` is the constant ``q``.
+    """
+    a = P[P_QA]
+    if a == 0.0:
+        return P[P_Q], 0.0
+    e = (P[P_Q] - P[P_QS]) * math.exp(-a * abs(v))
+    return P[P_Q] - e, a * e
+
+
+@njit(cache=True)
 def _held(im, P):
     """True while the slab is held to the ground (stuck sliding bearing, or a fixed base)."""
     kind = P[P_KIND]
@@ -185,12 +203,12 @@ def _stiffness(nz, P):
 
 @njit(cache=True)
 def _hysteretic(im, nz, y, P):
-    """Hysteretic isolator force of a moving slab (bilinear: the state; sliding: ``q nz im``)."""
+    """Hysteretic isolator force of a moving slab (bilinear: the state; sliding: ``q(|x'|) nz im``)."""
     kind = P[P_KIND]
     if kind == KIND_BILINEAR:
         return y[y.shape[0] - 1]
     if kind == KIND_SLIDING:
-        return P[P_Q] * nz * im
+        return bearing_level(y[Y_XD], P)[0] * nz * im
     return 0.0
 
 
@@ -334,7 +352,7 @@ def _bearing_need(bm, x, zp, zv, p, rs, kd, P):
 def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)``.
 
-    EV_BLOCK  ``sig A_F - thr`` (stuck block)      EV_BEAR  ``sig fh_need - q`` (stuck bearing)
+    EV_BLOCK  ``sig A_F - thr`` (stuck block)      EV_BEAR  ``sig fh_need - q_s`` (stuck bearing)
     EV_YIELD  ``sig fh - q`` (elastic bilinear)    EV_BSPEED ``bm u'``   EV_ISPEED ``im x'``
     EV_BPEAK, EV_IPEAK: the rates of EV_BLOCK and EV_BEAR (derivative not given: NaN).
     EV_XD     ``sig x'`` (the rate of an elastic bilinear bearing's ``sig fh``, over ``ke``)
@@ -362,7 +380,9 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     za = work[Y_XS + n:Y_XS + 2 * n]
     if kind == EV_BLOCK or kind == EV_BPEAK:
         fh = _hysteretic(im, nz, y, P)
-        dfh = work[fhi] + dkd * y[Y_X] + P[P_Q] * dnz * im * _pendulum(P)
+        lev, dlev = bearing_level(y[Y_XD], P)
+        # a sliding bearing's fh = q(|x'|) nz im: its rate adds q' |x'|' nz im = q' x'' nz while sliding
+        dfh = work[fhi] + dkd * y[Y_X] + (lev * dnz * im + dlev * work[Y_XD] * nz * im * im) * _pendulum(P)
         g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, kd, P) - P[P_THR] * nz
         dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], zv, za, dfh, pd, kd, P) - P[P_THR] * dnz
         if kind == EV_BPEAK:
@@ -375,8 +395,8 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
         ph, dph = friction(y[ud], P)
         rs = P[P_M] * bm * ph * nz
         rsd = P[P_M] * (dph * work[ud] * nz + bm * ph * dnz)
-    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, kd, P) - P[P_Q] * nz
-    dg = sig * (_bearing_need(bm, 0.0, zv, za, pd, rsd, kd, P) - dkd * y[Y_X]) - P[P_Q] * dnz
+    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, kd, P) - P[P_QS] * nz
+    dg = sig * (_bearing_need(bm, 0.0, zv, za, pd, rsd, kd, P) - dkd * y[Y_X]) - P[P_QS] * dnz
     if kind == EV_IPEAK:
         return dg, math.nan
     return g, dg
@@ -565,7 +585,7 @@ def _consistent(b, i, free_b, free_i, p, nz, y, P, A):
             return False
     if free_i:
         if i == 0.0:
-            if abs(fh) > P[P_Q] * nz:
+            if abs(fh) > P[P_QS] * nz:
                 return False
         elif not i * (Ab - p) > 0.0:
             return False
@@ -638,7 +658,7 @@ def _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
         return False
     if kind == KIND_BILINEAR and im != 0.0:
         return False
-    limits = np.array([P[P_THR], P[P_Q]])
+    limits = np.array([P[P_THR], P[P_QS]])
     if _held(im, P):
         if _energy_settled(im, y, P):
             return True
@@ -673,7 +693,7 @@ def _energy_settled(im, y, P):
         smax = math.sqrt(2.0 * energy * (ks + cs * cs / mst))
         if roof and smax / mst > thr:
             return False
-        if kind == KIND_SLIDING and abs(P[P_KD] * y[Y_X]) + smax > P[P_Q]:
+        if kind == KIND_SLIDING and abs(P[P_KD] * y[Y_X]) + smax > P[P_QS]:
             return False
         return True
     kd = P[P_KD]
@@ -708,6 +728,42 @@ def _energy_settled(im, y, P):
     if kind == KIND_BILINEAR and abs(d0) + math.sqrt(2.0 * energy * ke * ke / kk) > P[P_Q]:
         return False
     return True
+
+
+@njit(cache=True)
+def _creep_settled(bm, im, y, P, xmax):
+    """True when a sliding bearing whose friction rises with speed provably leaves the block stuck.
+
+    After the pulse (``p = 0``, ``nz = 1``), a rigid superstructure, the block stuck on the slab and
+    the bearing sliding in the direction ``s = im``: the slab of mass ``M = mb + m`` obeys
+    ``M x'' = -kd x - cb x' - s q(|x'|)``.  About ``x* = -s q_s / kd`` (the edge of the stick band)
+    the energy ``E = M x'^2/2 + kd (x - x*)^2/2`` has ``E' = -cb x'^2 - s x' (q(|x'|) - q_s) <= 0``
+    while ``s x' > 0``, since ``q >= q_s``.  So while the bearing keeps moving that way,
+    ``|x'| <= w = sqrt(2 E / M)``, ``|x - x*| <= sqrt(2 E / kd)`` and the block's demand
+    ``|A_F| = |kd (x - x*) + cb x' + s (q - q_s)| / M <= (sqrt(2 E kd) + cb w + (q - q_s)(1 -
+    exp(-a w))) / M``.  Where the linearised damping ``cb + (q - q_s) a`` over-damps the
+    pendulum, the slab creeps towards ``x*`` with a speed that decays exponentially and never
+    reaches zero in finite time; if instead it stops, it stops within ``sqrt(2 E / kd)`` of
+    ``x*``, inside the stick band ``|kd x| <= q_s`` when ``sqrt(2 E kd) <= 2 q_s``, and then
+    nothing moves again (no force acts on a held slab after the pulse).  Either way the block
+    never slips again and ``|x|`` stays within ``(q_s + sqrt(2 E kd)) / kd``; the run settles when
+    the demand bound is within the block's limit, the stop lands in the band and that ``|x|``
+    bound is within the peak ``xmax`` already reached.
+    """
+    if bm != 0.0 or im == 0.0 or P[P_QA] == 0.0 or P[P_KIND] != KIND_SLIDING or P[P_FLEX] != 0.0:
+        return False
+    v = y[Y_XD]
+    if im * v <= 0.0:
+        return False
+    kd = P[P_KD]
+    qs = P[P_QS]
+    M = P[P_MB] + P[P_M]
+    dx = y[Y_X] + im * qs / kd
+    energy = 0.5 * M * v * v + 0.5 * kd * dx * dx
+    w = math.sqrt(2.0 * energy / M)
+    reach = math.sqrt(2.0 * energy * kd)
+    demand = (reach + P[P_CB] * w + (P[P_Q] - qs) * (1.0 - math.exp(-P[P_QA] * w))) / M
+    return demand <= P[P_THR] and reach <= 2.0 * qs and (qs + reach) / kd <= xmax
 
 
 # --- one scene ------------------------------------------------------------------
@@ -756,6 +812,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     """
     thr = P[P_THR]
     q = P[P_Q]
+    qs = P[P_QS]
     kind = P[P_KIND]
     nfl = int(P[P_N])
     ny = 2 * nfl + 5
@@ -794,7 +851,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     nh = _record(hist, 0, hist_cap, tau, y, bm, im, P, code, params)
     a_x = np.empty(max(Wm.shape[0], Wh.shape[0]), dtype=np.complex128)
     a_y = np.zeros(a_x.shape[0], dtype=np.complex128)
-    limits = np.array([thr, q])
+    limits = np.array([thr, qs])
     offsets = np.zeros((2, 2))
     zone = 0.0
     if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < thr:
@@ -807,7 +864,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             nz_now, _ = normal(tau, P)
             Ab, AF, udd, fh, R = _accels(bm, im, p_now, nz_now, y, P, A)
             free_b = bm == 0.0 and abs(AF) > thr * nz_now
-            free_i = kind == KIND_SLIDING and im == 0.0 and abs(fh) > q * nz_now
+            free_i = kind == KIND_SLIDING and im == 0.0 and abs(fh) > qs * nz_now
             if free_b or free_i:
                 nb_, ni_ = _select_modes(bm, im, free_b, free_i, tau, y, P, code, params)
                 if nb_ != bm:
@@ -821,7 +878,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             y[Y_FH] = im * q
             moved = True
             iso_events += 1
-        if tau >= tau_end and _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
+        if tau >= tau_end and (_settled(bm, im, y, P, Wm, Cm, Wh, Ch) or _creep_settled(bm, im, y, P, xmax)):
             settled = True
             if settle:
                 break
@@ -884,7 +941,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 copy_state(yb, ye)
         if kind == KIND_SLIDING and im == 0.0:
             best, best_sig, hbest, herr_best = _earliest_demand_event(
-                EV_BEAR, EV_IPEAK, q, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
+                EV_BEAR, EV_IPEAK, qs, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
                 ye, yb, work, cnt, best, best_sig, hbest, herr_best)
         elif kind == KIND_BILINEAR and im == 0.0:
             for sig in (1.0, -1.0):
