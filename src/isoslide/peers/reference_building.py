@@ -105,6 +105,50 @@ event of the free phase, and changes only where the run stops, never ``Pi1``.  A
 settled by the horizon (default ``tau_end + max(50 max(1, Pi3, Pi12), 50/rate)``, ``tau_end`` the
 later end of the two pulses, ``rate`` the
 slowest decay rate of the free system, 0 for an undamped one) ends with ``settled = False``.
+
+Creep of a bearing whose friction rises with speed
+--------------------------------------------------
+After the pulse (``p = 0``, ``n = 1``) a bearing moving in ``s`` that would come to rest where
+``q0 < |kd x| <= Pi9`` cannot be held there (its need exceeds ``q0``), yet moving it meets a
+friction ``q(|x'|) > q0`` that balances the spring at a small speed.  About the edge of the stick
+band, ``x* = -s q0/kd``, the motion is linearised as ``M x'' + (cb + (Pi9 - q0) Pi23) x' +
+kd (x - x*) = 0`` (``q'(0) = Pi9 (1 - Pi22) Pi23``); when that is over-damped, ``x`` tends to ``x*``
+with ``x'`` decaying exponentially and never zero: the bearing creeps to the edge of its band and
+does not stop in finite time.  Nothing special is done for it (the stop event simply does not
+occur), so without the rule below the run ends at the horizon with ``settled = False``: ``Pi1``
+and the residual slide are those up to the horizon and the slab is still creeping.  The horizon's
+``rate`` is the free pendulum's (``kd``, ``cb``), not the slower creep's
+(``~ kd/(cb + (Pi9 - q0) Pi23)`` when strongly over-damped).
+
+For a rigid superstructure (``Pi12 = 0``) with the contents stuck (on the slab; ``M = 1 + m``) and
+the bearing moving in ``s`` after the pulse, the run settles by an exact bound.  With
+``E = M x'^2/2 + kd (x - x*)^2/2``, as ``kd x + s q0 = kd (x - x*)``::
+
+    M x'' = -kd (x - x*) - cb x' - s (q(|x'|) - q0)
+    dE/dtau = x' (M x'' + kd (x - x*)) = -cb x'^2 - s x' (q(|x'|) - q0) = -cb x'^2 - |x'| (q(|x'|) - q0) <= 0
+
+since ``s x' = |x'|`` and ``q(v) >= q0``: ``E`` does not increase while the bearing moves in
+``s``.  The contents' demand is ``A_F = x''``; by Cauchy-Schwarz in the energy's norm
+``|kd (x - x*) + cb x'| <= sqrt(2 E (kd + cb^2/M))`` (at most ``sqrt(2 E kd) + cb sqrt(2 E/M)``), and
+``0 <= q(v) - q0 = (Pi9 - q0)(1 - exp(-Pi23 v)) <= (Pi9 - q0) min(1, Pi23 v)`` with
+``v = |x'| <= sqrt(2 E/M)``, so
+
+    ``|A_F| <= [sqrt(2 E (kd + cb^2/M)) + (Pi9 - q0) min(1, Pi23 sqrt(2 E/M))] / M``,
+
+a bound that grows with ``E`` and so does not grow in time.  When it is within ``thr`` the contents
+do not slip while the bearing moves in ``s``.  If the bearing stops, it does so from the side
+``s``, so there ``s x'' <= 0``, and at ``x' = 0`` ``M s x'' = -kd s (x - x*)``: the stop is at
+``0 <= s (x - x*) <= sqrt(2 E/kd)`` (``kd (x - x*)^2/2`` is then all of ``E``, no more than now).
+The stick band ``|kd x| <= q0`` is ``0 <= s (x - x*) <= 2 q0/kd``, so with
+``sqrt(2 E/kd) <= 2 q0/kd`` the stop lands inside it: the bearing is held (``|fh_needed| = |kd x|
+<= q0``, the contents' demand ``p = 0``) and, ``p = 0`` with a rigid building, nothing moves again.
+Either way the contents never slip again, and the run settles at the first moment both
+conditions hold (at a phase start, or as a terminal event of the phase, like the bound above).
+``Pi1`` and the residual slide are then final; the slab's last state is not its rest (it may
+still creep or stop).  A bearing of constant friction stops in finite time and is then judged by
+the free system's bound, so this rule is used only for one whose friction rises with speed; under
+a flexible superstructure, or with the contents sliding, the run goes on until the bearing stops
+(or the horizon).
 """
 
 from __future__ import annotations
@@ -626,6 +670,31 @@ def _settle_margin_fn(B: Building, y0, si: int):
     return g
 
 
+def _slide_settle_margin_fn(B: Building, s: int):
+    """``g(y)``: the settlement margin of a rigid building's bearing sliding in ``s`` after the pulse.
+
+    For a bearing whose friction rises with speed, the contents stuck on the slab (module
+    docstring, "Creep of a bearing whose friction rises with speed"): with ``x* = -s q/kd`` and ``E = M x'^2/2 + kd (x - x*)^2/2``
+    (``M = 1 + m``), the smaller of the contents' margin
+    ``thr - (sqrt(2 E (kd + cb^2/M)) + (q_fast - q) min(1, rate sqrt(2 E/M)))/M`` and the
+    re-stick margin ``2 q - sqrt(2 E kd)``.  Non-decreasing while the bearing moves in ``s``;
+    ``g >= 0`` means the contents never slip again and the bearing, if it stops, stays held.
+    """
+    M = B.mb + B.m
+    kd, cb, thr = B.kd, B.cb, B.thr
+    x_eq = -s * B.q / kd
+    drop = B.q_fast - B.q
+    stiff = kd + cb * cb / M
+
+    def g(t, yy):
+        dx, v = yy[X] - x_eq, yy[XD]
+        two_e = max(M * v * v + kd * dx * dx, 0.0)
+        demand = (math.sqrt(two_e * stiff) + drop * min(1.0, B.rate * math.sqrt(two_e / M))) / M
+        return min(thr - demand, 2.0 * B.q - math.sqrt(two_e * kd))
+
+    return g
+
+
 def _slowest_rate(B: Building) -> float:
     """Slowest decay rate of the free linear systems (0 if one of them is undamped)."""
     rates = []
@@ -837,6 +906,11 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         if free and settle:
             settle_g = _settle_margin_fn(B, y, si)
             if settle_g is None or settle_g(tau, y) >= 0.0:
+                settled = True
+                break
+        elif settle and tau >= tau_end and sb == 0 and si != 0 and B.speed_dependent and not B.flexible:
+            settle_g = _slide_settle_margin_fn(B, si)
+            if settle_g(tau, y) >= 0.0:
                 settled = True
                 break
         if tau >= horizon:
