@@ -10,9 +10,17 @@ cross-check it.
 
 Model (dimensionless: ``tau = t/T_p``, lengths ``a_p T_p**2``, masses ``M_b``, forces ``M_b a_p``)
 ------------------------------------------------------------------------------------------------
-Parameters: ``kd = (2 pi/Pi3)**2``, ``cb = 2 Pi4 (2 pi/Pi3)``, ``q = Pi9``, ``ke = Pi9/Pi10``
+Parameters: ``kd = (2 pi/Pi3)**2``, ``cb = 2 Pi4 (2 pi/Pi3)``, ``q = Pi9`` and ``ke = Pi9/Pi10``
 (bilinear), ``m = Pi8``, ``thr = Pi2/Pi5`` and the friction level
-``phi(v) = thr sech(Pi6 v) + Pi2 (1 - sech(Pi6 v)) + Pi7 |v|``.
+``phi(v) = thr sech(Pi6 v) + Pi2 (1 - sech(Pi6 v)) + Pi7 |v|``.  A sliding bearing's friction may
+rise with its speed (Constantinou, Mokha and Reinhorn 1990): its level at the slab's speed ``|x'|``
+is ``q(|x'|) = Pi9 (1 - (1 - Pi22) exp(-Pi23 |x'|))``, from the breakaway level ``q0 = q(0) =
+Pi9 Pi22`` up to ``Pi9``, and its stick limit is ``q0``.  With ``Pi23 = 0`` (``q0`` at every speed)
+or ``Pi22 = 1`` (``Pi9``) the friction is constant: the bearing is then the constant-strength one of
+``q(|x'|) = q0``, with the same numbers to the bit as a scene given ``Pi9 = Pi9 Pi22``.  While the
+bearing slides in ``s`` its friction is computed as ``q(s x')``, whose smooth continuation past
+``s x' = 0`` the integrator sees only inside the step that reaches a stop: the stop is then located
+as accurately as any other event (``q(|x'|)`` has a kink there).
 
 Superstructure.  Rigid when ``Pi12 = 0``: no floor states, slab mass ``mb = 1``, and the contents
 are on the slab whatever ``scene.floor`` says.  Flexible when ``Pi12 > 0``: ``N = scene.storeys``
@@ -40,9 +48,9 @@ unused floor slot at zero).  ``Ab = p + x''`` is the slab's absolute acceleratio
 Block: stuck ``u' = 0``, ``R = -m A_F`` while ``|A_F| <= thr``; sliding in ``s = sgn(u')``,
 ``R = m s phi(|u'|)``.  Isolator: linear ``fh = 0``; bilinear (elastic-perfectly-plastic,
 stiffness ``ke``, strength ``q``) ``fh' = ke x'`` while elastic, ``fh = +-q`` while yielding (from
-``|fh| = q`` until ``x'`` changes sign); sliding bearing ``fh = q sgn(x')`` while sliding, held
-(``x' = x'' = 0``, ``Ab = p``) while the force it must supply,
-``fh_needed = -mb p - kd x + sum_j f_j + [R on the slab]``, is within ``|fh_needed| <= q``.  A fixed
+``|fh| = q`` until ``x'`` changes sign); sliding bearing ``fh = q(|x'|) sgn(x')`` while sliding,
+held (``x' = x'' = 0``, ``Ab = p``) while the force it must supply,
+``fh_needed = -mb p - kd x + sum_j f_j + [R on the slab]``, is within ``|fh_needed| <= q0``.  A fixed
 base (``Pi3 = 0``) is a bearing held for ever.  Every acceleration is explicit in the mode (no
 linear solve; the floors' forces depend on the state only): with the slab held ``Ab = p``;
 moving, ``Ab = (-F + S)/(mb + m)`` (block stuck on the slab), ``(-F + S + R)/mb`` (sliding on the
@@ -56,10 +64,12 @@ breakpoints and events) the interfaces at zero relative velocity (a stuck one, o
 stopped) get their modes chosen together: the combinations of (stuck, +1, -1) are tried in the
 order all stuck; block stuck & bearing sliding; block sliding & bearing stuck; both sliding, and
 the first *consistent* one is taken: every stuck interface's needed force within its limit
-(``|A_F| <= thr``, ``|fh_needed| <= q``) and every sliding one accelerating in its own direction
-(``s u'' > 0``, ``s x'' > 0``).  An interface whose stick limit was just reached (a breakaway
-event) slides in the direction of its needed force; breakaways are force-continuous
-(``phi(0) = thr``), so the other interface keeps its mode unless it is inconsistent by itself.
+(``|A_F| <= thr``, ``|fh_needed| <= q0``) and every sliding one accelerating in its own direction
+(``s u'' > 0``, ``s x'' > 0``; a bearing leaving rest does so against its breakaway friction
+``q(0) = q0``, the level of its stick limit).  An interface whose stick limit was just reached (a
+breakaway event) slides in the direction of its needed force; breakaways are force-continuous
+(``phi(0) = thr``, ``q(0) = q0``), so the other interface keeps its mode unless it is inconsistent
+by itself.
 The bilinear bearing's yield (``|fh| = q``) and unloading (``x' = 0``) are force-continuous too.
 The rule and the state's layout are :mod:`isoslide.peers.stick_slip`, shared with the SI peer.
 ``Pi1 = max |u|``, taken at the block's stops and at the end (``|u|`` peaks only there).
@@ -73,8 +83,8 @@ With ``Pi17 > 0`` and a vertical pulse shape ``p_z`` (``scene.vertical``; upward
 ``Pi17 g p_z(tau)`` on the horizontal pulse's time axis) the building, rigid vertically, moves up
 and down with the ground, so every normal force carries the factor ``n(tau) = 1 + Pi17 p_z(tau)``
 (``> 0``; the scene refuses lift-off).  The contents slide against ``R = m s n phi(|u'|)`` and stick
-while ``|A_F| <= n thr``; a sliding bearing (friction pendulum) has the strength ``q n``, is held
-while ``|fh_needed| <= q n`` with ``fh_needed = -mb p - kd n x + S + [R on the slab]``, and its
+while ``|A_F| <= n thr``; a sliding bearing (friction pendulum) has the friction ``q(|x'|) n``, is
+held while ``|fh_needed| <= q0 n`` with ``fh_needed = -mb p - kd n x + S + [R on the slab]``, and its
 restoring stiffness is ``kd n`` (the pendulum's force ``W x / R`` scales with the weight).  Linear
 and bilinear isolators and the superstructure do not change.  The vertical pulse's breakpoints are
 phase breakpoints, and "after the pulse" below means after both pulses (``n = 1`` again): from
@@ -95,6 +105,50 @@ event of the free phase, and changes only where the run stops, never ``Pi1``.  A
 settled by the horizon (default ``tau_end + max(50 max(1, Pi3, Pi12), 50/rate)``, ``tau_end`` the
 later end of the two pulses, ``rate`` the
 slowest decay rate of the free system, 0 for an undamped one) ends with ``settled = False``.
+
+Creep of a bearing whose friction rises with speed
+--------------------------------------------------
+After the pulse (``p = 0``, ``n = 1``) a bearing moving in ``s`` that would come to rest where
+``q0 < |kd x| <= Pi9`` cannot be held there (its need exceeds ``q0``), yet moving it meets a
+friction ``q(|x'|) > q0`` that balances the spring at a small speed.  About the edge of the stick
+band, ``x* = -s q0/kd``, the motion is linearised as ``M x'' + (cb + (Pi9 - q0) Pi23) x' +
+kd (x - x*) = 0`` (``q'(0) = Pi9 (1 - Pi22) Pi23``); when that is over-damped, ``x`` tends to ``x*``
+with ``x'`` decaying exponentially and never zero: the bearing creeps to the edge of its band and
+does not stop in finite time.  Nothing special is done for it (the stop event simply does not
+occur), so without the rule below the run ends at the horizon with ``settled = False``: ``Pi1``
+and the residual slide are those up to the horizon and the slab is still creeping.  The horizon's
+``rate`` is the free pendulum's (``kd``, ``cb``), not the slower creep's
+(``~ kd/(cb + (Pi9 - q0) Pi23)`` when strongly over-damped).
+
+For a rigid superstructure (``Pi12 = 0``) with the contents stuck (on the slab; ``M = 1 + m``) and
+the bearing moving in ``s`` after the pulse, the run settles by an exact bound.  With
+``E = M x'^2/2 + kd (x - x*)^2/2``, as ``kd x + s q0 = kd (x - x*)``::
+
+    M x'' = -kd (x - x*) - cb x' - s (q(|x'|) - q0)
+    dE/dtau = x' (M x'' + kd (x - x*)) = -cb x'^2 - s x' (q(|x'|) - q0) = -cb x'^2 - |x'| (q(|x'|) - q0) <= 0
+
+since ``s x' = |x'|`` and ``q(v) >= q0``: ``E`` does not increase while the bearing moves in
+``s``.  The contents' demand is ``A_F = x''``; by Cauchy-Schwarz in the energy's norm
+``|kd (x - x*) + cb x'| <= sqrt(2 E (kd + cb^2/M))`` (at most ``sqrt(2 E kd) + cb sqrt(2 E/M)``), and
+``0 <= q(v) - q0 = (Pi9 - q0)(1 - exp(-Pi23 v)) <= (Pi9 - q0) min(1, Pi23 v)`` with
+``v = |x'| <= sqrt(2 E/M)``, so
+
+    ``|A_F| <= [sqrt(2 E (kd + cb^2/M)) + (Pi9 - q0) min(1, Pi23 sqrt(2 E/M))] / M``,
+
+a bound that grows with ``E`` and so does not grow in time.  When it is within ``thr`` the contents
+do not slip while the bearing moves in ``s``.  If the bearing stops, it does so from the side
+``s``, so there ``s x'' <= 0``, and at ``x' = 0`` ``M s x'' = -kd s (x - x*)``: the stop is at
+``0 <= s (x - x*) <= sqrt(2 E/kd)`` (``kd (x - x*)^2/2`` is then all of ``E``, no more than now).
+The stick band ``|kd x| <= q0`` is ``0 <= s (x - x*) <= 2 q0/kd``, so with
+``sqrt(2 E/kd) <= 2 q0/kd`` the stop lands inside it: the bearing is held (``|fh_needed| = |kd x|
+<= q0``, the contents' demand ``p = 0``) and, ``p = 0`` with a rigid building, nothing moves again.
+Either way the contents never slip again, and the run settles at the first moment both
+conditions hold (at a phase start, or as a terminal event of the phase, like the bound above).
+``Pi1`` and the residual slide are then final; the slab's last state is not its rest (it may
+still creep or stop).  A bearing of constant friction stops in finite time and is then judged by
+the free system's bound, so this rule is used only for one whose friction rises with speed; under
+a flexible superstructure, or with the contents sliding, the run goes on until the bearing stops
+(or the horizon).
 """
 
 from __future__ import annotations
@@ -119,7 +173,8 @@ __all__ = ["LEDGER_NAMES", "Building", "BuildingRun", "building_of", "default_ho
 
 LEDGER_NAMES = ("work", "viscous", "isolator", "friction")
 """Ledger integrals appended to the state when requested: input work, viscous, isolator
-(hysteretic or bearing friction) and contents-friction dissipation, units ``M_b a_p**2 T_p**2``."""
+(hysteretic, or bearing friction at the rate ``q(|x'|) |x'|``) and contents-friction dissipation,
+units ``M_b a_p**2 T_p**2``."""
 
 _ULP4 = 4e-15   # relative slack of the stick limits (see isoslide.peers.reference)
 
@@ -209,7 +264,12 @@ class Building(StateIndex):
     omega : ndarray
         Fixed-base circular frequencies, ascending (units ``1/T_p``; empty when rigid).
     q, ke : float
-        Isolator strength and elastic stiffness (``ke = 0`` unless bilinear).
+        Isolator strength and elastic stiffness (``ke = 0`` unless bilinear); a sliding bearing's
+        ``q`` is its breakaway level ``Pi9 Pi22`` (its stick limit and its friction at zero speed).
+    q_fast, rate : float
+        A sliding bearing whose friction rises with speed: its friction at high speed ``Pi9`` and
+        the rate ``Pi23``; ``rate = 0`` (and ``q_fast = q``) for constant friction and every other
+        isolator.
     thr : float
         Static friction level ``Pi2/Pi5`` (units ``a_p``).
     kind : {"linear", "bilinear", "sliding", "fixed"}
@@ -247,6 +307,26 @@ class Building(StateIndex):
     pi17: float = 0.0
     zcode: int = -1
     zparams: np.ndarray = field(repr=False, default_factory=lambda: np.zeros(0))
+    q_fast: float = 0.0
+    rate: float = 0.0
+
+    @property
+    def speed_dependent(self) -> bool:
+        """True for a sliding bearing whose friction rises with its speed (``Pi23 > 0``, ``Pi22 < 1``)."""
+        return self.rate > 0.0
+
+    def level(self, v: float) -> float:
+        """A sliding bearing's friction level at the slab's speed ``v`` along its sliding direction.
+
+        Units ``M_b a_p``, before the normal-force factor: ``q + (q_fast - q) (1 - exp(-rate v))``,
+        which is ``Pi9 (1 - (1 - Pi22) exp(-Pi23 v))`` and is ``q`` itself at ``v = 0`` (the
+        breakaway level, to the bit) and for constant friction.  For ``v < 0`` (past a stop, inside
+        the integrator's step that reaches it) the same smooth expression continues the law, its
+        exponent capped at 50, so that the stop is located as accurately as any other event.
+        """
+        if self.rate == 0.0:
+            return self.q
+        return self.q - (self.q_fast - self.q) * math.expm1(min(-self.rate * v, 50.0))
 
     @property
     def vertical(self) -> bool:
@@ -310,6 +390,15 @@ def building_of(scene: Scene) -> Building:
         ms, Ks, Cs, omega = np.zeros(0), np.zeros((0, 0)), np.zeros((0, 0)), np.zeros(0)
         mst, floor = 0.0, 0
     q = math.inf if kind == "fixed" else scene.pi9
+    q_fast, rate = q, 0.0
+    if kind == "sliding":
+        # breakaway Pi9 Pi22; a friction that does not rise with speed (Pi23 = 0: Pi9 Pi22 at every
+        # speed, Pi22 = 1: Pi9) is the constant strength, the same numbers as a scene given it
+        q = scene.pi9 * scene.pi22
+        if scene.pi23 > 0.0 and scene.pi22 < 1.0:
+            q_fast, rate = scene.pi9, float(scene.pi23)
+        else:
+            q_fast = q
     ke = scene.pi9 / scene.pi10 if kind == "bilinear" else 0.0
     vertical = scene.vertical
     zp = scene.pulse_z if vertical else None
@@ -317,7 +406,8 @@ def building_of(scene: Scene) -> Building:
                     ke=ke, thr=scene.pi2 / scene.pi5, kind=kind, flexible=flexible, floor=floor, pi2=scene.pi2,
                     pi6=scene.pi6, pi7=scene.pi7, pi17=float(scene.pi17) if vertical else 0.0,
                     zcode=int(zp.code) if vertical else -1,
-                    zparams=np.asarray(zp.param_array, dtype=float) if vertical else np.zeros(0))
+                    zparams=np.asarray(zp.param_array, dtype=float) if vertical else np.zeros(0),
+                    q_fast=q_fast, rate=rate)
 
 
 def excitation_end(scene: Scene) -> float:
@@ -375,7 +465,7 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int, nz: float = 1.0):
     if B.kind == "bilinear":
         fh = y[B.FH]
     elif B.kind == "sliding":
-        fh = si * B.q * nz
+        fh = si * B.level(si * xd) * nz      # si xd = |x'| while sliding (continued past a stop)
     else:
         fh = 0.0
     kd = B.kd * nz if B.kind == "sliding" else B.kd     # a friction pendulum's W x / R
@@ -576,6 +666,31 @@ def _settle_margin_fn(B: Building, y0, si: int):
             two_e = 0.0
         r = math.sqrt(max(two_e, 0.0))
         return min(lim - (abs(d0) + r * s) for (lim, d0, _), s in zip(dem, scale, strict=True))
+
+    return g
+
+
+def _slide_settle_margin_fn(B: Building, s: int):
+    """``g(y)``: the settlement margin of a rigid building's bearing sliding in ``s`` after the pulse.
+
+    For a bearing whose friction rises with speed, the contents stuck on the slab (module
+    docstring, "Creep of a bearing whose friction rises with speed"): with ``x* = -s q/kd`` and ``E = M x'^2/2 + kd (x - x*)^2/2``
+    (``M = 1 + m``), the smaller of the contents' margin
+    ``thr - (sqrt(2 E (kd + cb^2/M)) + (q_fast - q) min(1, rate sqrt(2 E/M)))/M`` and the
+    re-stick margin ``2 q - sqrt(2 E kd)``.  Non-decreasing while the bearing moves in ``s``;
+    ``g >= 0`` means the contents never slip again and the bearing, if it stops, stays held.
+    """
+    M = B.mb + B.m
+    kd, cb, thr = B.kd, B.cb, B.thr
+    x_eq = -s * B.q / kd
+    drop = B.q_fast - B.q
+    stiff = kd + cb * cb / M
+
+    def g(t, yy):
+        dx, v = yy[X] - x_eq, yy[XD]
+        two_e = max(M * v * v + kd * dx * dx, 0.0)
+        demand = (math.sqrt(two_e * stiff) + drop * min(1.0, B.rate * math.sqrt(two_e / M))) / M
+        return min(thr - demand, 2.0 * B.q - math.sqrt(two_e * kd))
 
     return g
 
@@ -791,6 +906,11 @@ def run_building(scene: Scene, rtol: float = 1e-12, history: bool = False, atol:
         if free and settle:
             settle_g = _settle_margin_fn(B, y, si)
             if settle_g is None or settle_g(tau, y) >= 0.0:
+                settled = True
+                break
+        elif settle and tau >= tau_end and sb == 0 and si != 0 and B.speed_dependent and not B.flexible:
+            settle_g = _slide_settle_margin_fn(B, si)
+            if settle_g(tau, y) >= 0.0:
                 settled = True
                 break
         if tau >= horizon:
