@@ -65,6 +65,8 @@ def building_scene(name: str) -> isoslide.Scene:
         kw.update(pi9=0.05, pi10=0.01)
     elif parts[0] == "sliding-bearing":
         kw.update(pi9=0.05)
+    elif parts[0] == "sliding-bearing-speed":
+        kw.update(pi9=0.1, pi22=0.5, pi23=20.0)
     elif parts[0] == "fixed-base":
         kw.update(pi3=0.0)
     if "flexible" in parts:

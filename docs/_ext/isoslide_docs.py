@@ -4,7 +4,7 @@ Directives
 ----------
 ``.. pi-groups::``
     The Pi-group table, rendered from the registry :data:`isoslide.groups.GROUPS` at build time
-    (option ``:groups:`` ``result``, ``paper``, ``building`` or ``all``, the default).
+    (option ``:groups:`` ``result``, ``paper``, ``building``, ``bearing-friction`` or ``all``, the default).
 ``.. measurements::``
     The rows of ``docs/measurements.csv`` with a given ``:topic:`` as a table: quantity, value,
     unit, the command that measures it, and when and where it was measured.  A row whose topic is
@@ -39,7 +39,7 @@ MEASUREMENTS = Path(__file__).resolve().parent.parent / "measurements.csv"
 FIELDS = ("topic", "quantity", "value", "unit", "command", "date", "commit", "conditions")
 """Columns of ``measurements.csv``; every one is required but ``conditions``."""
 
-GROUP_SETS = ("result", "paper", "building", "all")
+GROUP_SETS = ("result", "paper", "building", "bearing-friction", "all")
 
 
 def _cell(text: str) -> list[str]:
@@ -88,6 +88,7 @@ class PiGroups(_RstDirective):
             "result": (registry.RESULT.name,),
             "paper": registry.PAPER_NAMES,
             "building": registry.BUILDING_NAMES,
+            "bearing-friction": registry.BEARING_FRICTION_NAMES,
             "all": tuple(registry.GROUPS),
         }[which]
         rows = []

@@ -127,7 +127,15 @@ def _parser() -> argparse.ArgumentParser:
                                 ("T-s", "s, superstructure period; 0 = rigid", 0.0),
                                 ("xi-s", "-, superstructure damping ratio", 0.0),
                                 ("R", "m, friction pendulum radius: sets T_b and, with --mu-b, Q_d", None),
-                                ("mu-b", "-, friction pendulum's friction coefficient", None),
+                                ("mu-b", "-, friction pendulum's friction coefficient (at high speed with "
+                                         "--mu-b-slow)", None),
+                                ("mu-b-slow", "-, friction pendulum's friction at breakaway: mu(v) = mu_b - "
+                                              "(mu_b - mu_b_slow) exp(-rate |v|); default: mu_b at every speed",
+                                 None),
+                                ("Q-slow", "N, sliding bearing's breakaway strength (with --Q-d, --rate); "
+                                           "default Q_d", None),
+                                ("rate", "s/m, rate of the sliding bearing's friction law (with --mu-b-slow "
+                                         "or --Q-slow)", 0.0),
                                 ("a-pz", "m/s^2, vertical ground acceleration amplitude (with --pulse-z)", 0.0),
                                 ("a-py", "m/s^2, second horizontal component's amplitude (with --pulse-y); "
                                          "default a_p", None),
@@ -135,7 +143,8 @@ def _parser() -> argparse.ArgumentParser:
                                  None),
                                 ("t-y", "s, time by which the second horizontal component lags the first "
                                         "(with --pulse-y or --record-y)", 0.0)]:
-        required = default is None and name not in ("a-p", "T-p", "T-b", "R", "mu-b", "a-py", "T-py")
+        required = default is None and name not in ("a-p", "T-p", "T-b", "R", "mu-b", "mu-b-slow", "Q-slow",
+                                                    "a-py", "T-py")
         q.add_argument(f"--{name}", type=float, required=required, default=default,
                        help=f"{name.replace('-', '_')} [{unit}]")
     _common(q)
@@ -236,20 +245,26 @@ def _scene(args):
         a_p = fit.a_p if a_p is None else a_p
         T_p = fit.T_p if T_p is None else T_p
     T_b, Q_d, D_y = args.T_b, args.Q_d, args.D_y
+    bearing = {"Q_slow": args.Q_slow, "rate": args.rate}
     if (args.R is None) != (args.mu_b is None):
         raise ValueError("a friction pendulum needs both --R and --mu-b; allowed: both or neither")
+    if args.mu_b_slow is not None and args.R is None:
+        raise ValueError("--mu-b-slow is given without a friction pendulum; allowed: with --R and --mu-b "
+                         "(or --Q-slow with --Q-d)")
     if args.R is not None:
-        if T_b is not None or Q_d != 0.0 or D_y != 0.0:
-            raise ValueError("--R/--mu-b set T_b, Q_d and D_y; allowed: either --R/--mu-b or --T-b/--Q-d/--D-y")
-        fp = friction_pendulum(args.R, args.mu_b, args.M_b, args.g)
+        if T_b is not None or Q_d != 0.0 or D_y != 0.0 or args.Q_slow is not None:
+            raise ValueError("--R/--mu-b set T_b, Q_d, D_y and Q_slow; allowed: either --R/--mu-b or "
+                             "--T-b/--Q-d/--D-y/--Q-slow")
+        fp = friction_pendulum(args.R, args.mu_b, args.M_b, args.g, mu_slow=args.mu_b_slow, rate=args.rate)
         T_b, Q_d, D_y = fp["T_b"], fp["Q_d"], fp["D_y"]
+        bearing = {"Q_slow": fp.get("Q_slow"), "rate": fp.get("rate", 0.0)}
     if T_b is None:
         raise ValueError("the following arguments are required: --T-b (or --R and --mu-b for a friction pendulum)")
     scene = Scene.from_physical(a_p, T_p, args.M_b, T_b, args.xi_b, args.m_ec, args.mu_s, args.mu_k,
                                 args.beta, args.gamma, args.g, excitation, Q_d=Q_d, D_y=D_y, m_st=args.m_st,
                                 T_s=args.T_s, xi_s=args.xi_s, floor=args.floor, storeys=args.storeys,
                                 a_pz=args.a_pz, pulse_z=args.pulse_z, pulse_y=second, a_py=args.a_py,
-                                T_py=args.T_py, t_y=args.t_y, angle=args.angle)
+                                T_py=args.T_py, t_y=args.t_y, angle=args.angle, **bearing)
     return scene, info
 
 

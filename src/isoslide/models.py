@@ -31,8 +31,9 @@ scene, as parts joined by ``+``:
 
 The general building (:mod:`isoslide.engine.building`) adds, in front of the friction part:
 
-``bilinear``, ``sliding-bearing``, ``linear``
-    The isolator integrated (``fixed-base`` for ``Pi3 = 0``).
+``bilinear``, ``sliding-bearing``, ``sliding-bearing-speed``, ``linear``
+    The isolator integrated (``fixed-base`` for ``Pi3 = 0``); ``sliding-bearing-speed`` is a
+    sliding bearing whose friction rises with its speed (``Pi22 < 1``, ``Pi23 > 0``).
 ``flexible``
     The superstructure is flexible (``Pi12 > 0``) and integrated; ``roof``: the contents
     sit on its top floor, ``intermediate``: on a floor between the slab and the roof.
@@ -63,7 +64,7 @@ PEER_LABELS = ("regularized", "reference")
 """Labels of the peer solvers ``solve(..., method=...)`` can run."""
 
 FACETS = {
-    "isolator": ("linear", "fixed-base", "bilinear", "sliding-bearing"),
+    "isolator": ("linear", "fixed-base", "bilinear", "sliding-bearing", "sliding-bearing-speed"),
     "superstructure": ("rigid", "flexible"),
     "floor": ("base", "roof", "intermediate"),
     "friction": FRICTION_MODELS,
@@ -153,7 +154,7 @@ def _piecewise_labels() -> tuple:
 PIECEWISE_LABELS = _piecewise_labels()
 """Labels of the exact piecewise propagation (appended after the integrator's and the peers')."""
 
-ISOLATOR_PARTS = ("linear", "bilinear", "sliding-bearing", "fixed-base")
+ISOLATOR_PARTS = ("linear", "bilinear", "sliding-bearing", "fixed-base", "sliding-bearing-speed")
 """Isolator parts of a general building's label (the last for ``Pi3 = 0``)."""
 
 BEARING_REDUCTIONS = ("bearing-stuck", "bearing-elastic")
@@ -166,7 +167,7 @@ def building_label(isolator: str, flexible: bool, floor, noslide: bool, friction
 
     Parameters
     ----------
-    isolator : {"linear", "bilinear", "sliding-bearing", "fixed-base"}
+    isolator : {"linear", "bilinear", "sliding-bearing", "fixed-base", "sliding-bearing-speed"}
         The isolator integrated.
     flexible : bool
         A flexible superstructure was integrated.
@@ -287,7 +288,8 @@ class Facets:
         piecewise = self.propagation == "piecewise"
         if self.reduction in BEARING_REDUCTIONS:
             return f"{self.reduction}+{label(fixed, not slid, self.friction, oneway, piecewise)}"
-        if self.isolator in ("bilinear", "sliding-bearing") or self.superstructure == "flexible":
+        if self.isolator in ("bilinear", "sliding-bearing", "sliding-bearing-speed") or \
+                self.superstructure == "flexible":
             return building_label(self.isolator, self.superstructure == "flexible", self.floor, not slid,
                                   self.friction, oneway)
         return label(fixed, not slid, self.friction, oneway, piecewise)

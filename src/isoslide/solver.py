@@ -769,8 +769,11 @@ def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "
     """
     parts = building_of(scene)
     kind = parts.isolator.kind
+    if kind == "sliding" and parts.isolator.speed_dependent:
+        kind = "sliding-speed"
     k, top = parts.contents.floor, parts.superstructure.storeys
-    return Facets(isolator={"fixed": "fixed-base", "sliding": "sliding-bearing"}.get(kind, kind),
+    return Facets(isolator={"fixed": "fixed-base", "sliding": "sliding-bearing",
+                            "sliding-speed": "sliding-bearing-speed"}.get(kind, kind),
                   superstructure="flexible" if parts.superstructure.flexible else "rigid",
                   floor="base" if k == 0 else ("roof" if k == top else "intermediate"),
                   friction=friction, coupling="one-way" if oneway else "two-way", propagation=propagation,

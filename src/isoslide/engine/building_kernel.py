@@ -151,17 +151,19 @@ def friction(v, P):
 
 
 @njit(cache=True)
-def bearing_level(v, P):
-    """A sliding bearing's friction level at the slab's speed ``|v|`` and its derivative ``d/d|v|``.
+def bearing_level(w, P):
+    """A sliding bearing's friction level at the speed ``w`` along its sliding direction, and ``d/dw``.
 
-    ``q(|v|) = q_s + (q - q_s) (1 - exp(-a |v|))`` with the strength ``q = P_Q`` at high speed, the
-    breakaway strength ``q_s = P_QS`` and the rate ``a = P_QA`` (units ``M_b a_p``, before the
-    normal-force factor); ``a = 0`` is the constant ``q``.
+    ``q(w) = q - (q - q_s) exp(-a w)`` with the strength ``q = P_Q`` at high speed, the breakaway
+    strength ``q_s = P_QS`` and the rate ``a = P_QA`` (units ``M_b a_p``, before the normal-force
+    factor); ``a = 0`` is the constant ``q``.  A sliding slab has ``w = s x' = |x'|``; a Runge-Kutta
+    stage past its stop (``w < 0``) sees the smooth continuation of the law (its exponent capped at
+    50), so that the step that reaches the stop is not spoilt by the kink of ``q(|x'|)`` at rest.
     """
     a = P[P_QA]
     if a == 0.0:
         return P[P_Q], 0.0
-    e = (P[P_Q] - P[P_QS]) * math.exp(-a * abs(v))
+    e = (P[P_Q] - P[P_QS]) * math.exp(min(-a * w, 50.0))
     return P[P_Q] - e, a * e
 
 
@@ -208,7 +210,7 @@ def _hysteretic(im, nz, y, P):
     if kind == KIND_BILINEAR:
         return y[y.shape[0] - 1]
     if kind == KIND_SLIDING:
-        return bearing_level(y[Y_XD], P)[0] * nz * im
+        return bearing_level(im * y[Y_XD], P)[0] * nz * im
     return 0.0
 
 
@@ -380,7 +382,7 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     za = work[Y_XS + n:Y_XS + 2 * n]
     if kind == EV_BLOCK or kind == EV_BPEAK:
         fh = _hysteretic(im, nz, y, P)
-        lev, dlev = bearing_level(y[Y_XD], P)
+        lev, dlev = bearing_level(im * y[Y_XD], P)
         # a sliding bearing's fh = q(|x'|) nz im: its rate adds q' |x'|' nz im = q' x'' nz while sliding
         dfh = work[fhi] + dkd * y[Y_X] + (lev * dnz * im + dlev * work[Y_XD] * nz * im * im) * _pendulum(P)
         g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, kd, P) - P[P_THR] * nz

@@ -28,7 +28,7 @@ import xarray as xr
 
 from . import claims
 from ..datasets import global_attrs, open_dataset, pi_attrs
-from ..groups import BUILDING_NAMES, EXCITATION_NAMES, INPUT_NAMES, INPUTS
+from ..groups import BEARING_FRICTION_NAMES, BUILDING_NAMES, EXCITATION_NAMES, INPUT_NAMES, INPUTS
 from ..groups import group as registry_group
 from ..peers.si import simulate_si
 from ..scene import FLOORS, G_STANDARD
@@ -99,14 +99,16 @@ def _study_seed(seed: int, study: str) -> int:
 def _point_pis(ds: xr.Dataset, index: tuple) -> dict:
     """Every input group at one grid point.
 
-    A building or excitation group the dataset lacks takes the value of the paper's model: 0 for
-    the building's and the vertical group, the registry's default for the second horizontal
-    component's (which have no effect without one).
+    A building, bearing-friction or excitation group the dataset lacks takes the value of the
+    paper's model: 0 for the building's and the vertical group, the registry's default for the
+    bearing's friction law (constant) and the second horizontal component's (which have no effect
+    without one).
     """
     sel = {d: i for d, i in zip(ds["pi1"].dims, index, strict=True)}
     pt = ds.isel(sel)
-    return {g: float(pt[g]) if g in pt.variables or g not in BUILDING_NAMES + EXCITATION_NAMES else
-            (registry_group(g).default if g in EXCITATION_NAMES and registry_group(g).default is not None else 0.0)
+    optional = BUILDING_NAMES + BEARING_FRICTION_NAMES + EXCITATION_NAMES
+    return {g: float(pt[g]) if g in pt.variables or g not in optional else
+            (registry_group(g).default if g not in BUILDING_NAMES and registry_group(g).default is not None else 0.0)
             for g in GROUPS}
 
 
