@@ -9,7 +9,10 @@ For a fair cost, each scene is given the coarsest ``(dtau, stick displacement)``
 is timed (one run: seconds, far above the timer's resolution). isoslide's cost on the same scene is
 the median of :func:`isoslide.solve` at its default accuracy (which stops once the scene has
 provably settled, where OpenSees runs to its horizon). The buildings are those of the buildings
-section of the bench (:data:`~isoslide.accuracy.scenes.BUILDINGS`), on :data:`POINTS`.
+section of the bench (:data:`~isoslide.accuracy.scenes.BUILDINGS`), on :data:`POINTS`; a friction
+pendulum whose friction rises with speed runs as OpenSees's ``flatSliderBearing`` with ``VelDependent``
+friction (:mod:`isoslide.peers.opensees_bearing_rate`), its yield displacement the pair's stick
+displacement.
 
 ``python -m isoslide.bench --opensees`` prints the table (a few minutes; needs ``pip install -e
 .[peers]``).
@@ -21,7 +24,9 @@ import time
 
 import numpy as np
 
+from ..model.parts import building_of
 from ..peers import opensees_available, solve_opensees
+from ..peers.opensees_bearing_rate import solve_opensees_bearing_rate
 from ..scene import Scene
 from ..solver import solve
 from ..studies.opensees_convergence import DEFAULT_HORIZON, DEFAULT_PAIRS, target_pi1
@@ -57,9 +62,13 @@ def compare(scene: Scene, pairs=DEFAULT_PAIRS, tolerance: float = TOLERANCE, hor
     _, exact = target_pi1(scene, "exact", tau_max)
     iso_s, sol = _timed(lambda: solve(scene), repeats)
     row = {"exact": exact, "isoslide_s": iso_s, "isoslide_error": abs(sol.pi1 - exact) / exact}
+    speed = building_of(scene).isolator.speed_dependent
     for dtau, stick in sorted(pairs, reverse=True):
         t0 = time.perf_counter()
-        r = solve_opensees(scene, tau_max=tau_max, dtau=dtau, stick_displacement=stick)
+        if speed:   # a flatSliderBearing with VelDependent friction beside the pendulum's spring
+            r = solve_opensees_bearing_rate(scene, uy=stick, dtau=dtau, tau_max=tau_max)
+        else:
+            r = solve_opensees(scene, tau_max=tau_max, dtau=dtau, stick_displacement=stick)
         seconds = time.perf_counter() - t0
         err = abs(r.pi1 - exact) / exact
         row.update(dtau=dtau, stick=stick, opensees_error=err, opensees_steps=r.n_steps, opensees_s=seconds,

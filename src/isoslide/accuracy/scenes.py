@@ -219,6 +219,7 @@ STOREYS_NAME = "{} storeys, contents on the roof"
 BUILDINGS = {
     "paper model (linear isolator, rigid)": {},
     "friction pendulum (pi9 = 0.05)": dict(pi9=0.05),
+    "speed-dependent pendulum (pi9 0.1, pi22 0.5)": dict(pi9=0.1, pi22=0.5, pi23=20.0),
     "lead-rubber bearing (pi9 = 0.05, pi10 = 0.005)": dict(pi9=0.05, pi10=0.005),
     "flexible superstructure, contents on the base": dict(pi11=0.6, pi12=0.2, pi13=0.02),
     "flexible superstructure, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
@@ -226,4 +227,11 @@ BUILDINGS = {
     **{STOREYS_NAME.format(n): dict(pi11=0.6, pi12=0.2, pi13=0.02, storeys=n, floor="roof")
        for n in STOREYS},
 }
-"""Buildings timed side by side on :data:`BUILDING_POINTS` (keyword arguments of :class:`isoslide.Scene`)."""
+"""Buildings timed side by side on :data:`BUILDING_POINTS` (keyword arguments of :class:`isoslide.Scene`).
+
+The speed-dependent friction pendulum breaks away at the constant one's strength (``Pi9 Pi22 = 0.05``)
+and slides against up to twice it (``Pi23 = 20``)."""
+SPEED_PENDULUM = "speed-dependent pendulum (pi9 0.1, pi22 0.5)"
+"""Row of the friction pendulum whose friction rises with speed, timed against :data:`PENDULUM`."""
+PENDULUM = "friction pendulum (pi9 = 0.05)"
+"""Row of the constant-friction pendulum."""
