@@ -147,6 +147,9 @@ def buildings(draw, pulses=pulse_s):
     kw = {**sc.pis(), "pulse": sc.pulse}
     kw["pi9"] = draw(st.one_of(st.just(0.0), log_uniform(-3, 1), st.just(10.0)))
     kw["pi10"] = draw(st.one_of(st.just(0.0), log_uniform(-5, 0), st.just(1.0)))
+    if draw(st.booleans()):   # a sliding bearing's friction rising with speed (read only when pi10 = 0)
+        kw["pi22"] = draw(st.one_of(st.floats(0.05, 1.0), st.sampled_from([0.05, 1.0])))
+        kw["pi23"] = draw(st.one_of(st.just(0.0), log_uniform(-3, 4), st.just(1e4)))
     if draw(st.booleans()):
         kw["pi11"] = draw(st.one_of(st.floats(0.01, 0.95), st.sampled_from([0.01, 0.95])))
         kw["pi12"] = draw(st.one_of(log_uniform(-2, 1), st.sampled_from([0.01, 10.0])))
@@ -158,7 +161,7 @@ def buildings(draw, pulses=pulse_s):
 @HYP
 @given(buildings())
 def test_valid_building_is_solved_finite_nonnegative_and_bounded(sc):
-    """Bearings with true stick or yielding, flexible superstructures, both floors, every corner."""
+    """Bearings with true stick or yielding (friction constant or rising with speed), flexible superstructures, both floors, every corner."""
     s = solve(sc, horizon=50.0)
     check_solution(s, sc, horizon=50.0)
     assert_work_bounded(s, sc)

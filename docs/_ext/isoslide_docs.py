@@ -31,13 +31,16 @@ from docutils.parsers.rst import Directive, directives
 from docutils.statemachine import StringList
 from sphinx.util import logging
 
+from isoslide.accuracy.measurements import FIELDS as MEASUREMENT_FIELDS
+
 logger = logging.getLogger(__name__)
 
 MEASUREMENTS = Path(__file__).resolve().parent.parent / "measurements.csv"
 """The measured figures the documentation quotes."""
 
-FIELDS = ("topic", "quantity", "value", "unit", "command", "date", "commit", "conditions")
-"""Columns of ``measurements.csv``; every one is required but ``conditions``."""
+FIELDS = MEASUREMENT_FIELDS
+"""Columns of ``measurements.csv`` (:data:`isoslide.accuracy.measurements.FIELDS`); every one is required but
+``conditions``."""
 
 GROUP_SETS = ("result", "paper", "building", "bearing-friction", "all")
 

@@ -50,7 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from . import accuracy, config, records
-from .accuracy import kernel_targets, opensees_cost
+from .accuracy import kernel_targets, measurements, opensees_cost
 from .accuracy.scenes import BUILDING_POINTS, BUILDINGS, PENDULUM, SPEED_PENDULUM, STOREYS, STOREYS_NAME
 from .scene import Scene
 from .studies import fragility_planar
@@ -622,6 +622,16 @@ SECTION_FLAGS = (
 """The command line's section flags (each on or off) and their help: one section alone, or one left out."""
 
 
+def _buildings(repeats: int, path: str | None) -> dict:
+    """The buildings section, run and printed; its rows of the measurements table rewritten when ``path`` is given."""
+    summ = report_buildings(run_buildings(repeats=repeats))
+    if path:
+        measurements.write_rows(path, "buildings", measurements.BUILDINGS_COMMAND,
+                                measurements.buildings_rows(summ, next(iter(BUILDINGS)), len(BUILDING_POINTS),
+                                                            repeats))
+    return summ
+
+
 def _write_json(path: str | None, out: dict) -> None:
     """Write ``out`` as JSON to ``path`` (numbers as floats); nothing when ``path`` is None."""
     if path:
@@ -645,12 +655,19 @@ def main(argv=None) -> int:
                     help="most right-hand-side evaluations per peer run (2000000)")
     ap.add_argument("--quick", action="store_true", help="1 scene per study, 5 repeats, 2 regularised scenes")
     ap.add_argument("--json", metavar="PATH", help="also write the records and summary as JSON")
+    ap.add_argument("--measurements", metavar="PATH",
+                    help="rewrite the buildings and OpenSees sections' rows of the documentation's measurements "
+                         "table (docs/measurements.csv) from this run (isoslide.accuracy.measurements)")
     ap.add_argument("-v", "--verbose", action="store_true", help="print every scene as it is measured")
     for flag, text in SECTION_FLAGS:
         ap.add_argument(flag, action="store_true", help=text)
     a = ap.parse_args(argv)
     if a.opensees:
-        _write_json(a.json, {"opensees": opensees_cost.report(opensees_cost.run(repeats=3 if a.quick else 5))})
+        summ = opensees_cost.report(opensees_cost.run(repeats=3 if a.quick else 5))
+        if a.measurements:
+            measurements.write_rows(a.measurements, "opensees_cost", measurements.OPENSEES_COMMAND,
+                                    measurements.opensees_rows(summ, len(opensees_cost.POINTS)))
+        _write_json(a.json, {"opensees": summ})
         return 0
     if a.cpu_targets:
         _write_json(a.json, {"cpu_targets": kernel_targets.report(kernel_targets.run(rounds=5 if a.quick else 15))})
@@ -659,7 +676,7 @@ def main(argv=None) -> int:
         _write_json(a.json, {"planar": run_report_planar(quick=a.quick)})
         return 0
     if a.buildings_only:
-        _write_json(a.json, {"buildings": report_buildings(run_buildings(repeats=3 if a.quick else 7))})
+        _write_json(a.json, {"buildings": _buildings(3 if a.quick else 7, a.measurements)})
         return 0
     if a.quick:
         a.per_study, a.repeats, a.peer_repeats, a.regularized_scenes = 1, 5, 1, 2
@@ -680,7 +697,7 @@ def main(argv=None) -> int:
     summ = summarize(res)
     report(res, summ)
     print("")
-    out["buildings"] = report_buildings(run_buildings(repeats=3 if a.quick else 7))
+    out["buildings"] = _buildings(3 if a.quick else 7, a.measurements)
     if not a.no_planar:
         print("")
         out["planar"] = run_report_planar(quick=a.quick)

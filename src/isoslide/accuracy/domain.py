@@ -32,6 +32,10 @@ DOMAIN = {
     "pi16": (-1.0, 1.0, "the transverse pulse one main period ahead to one behind"),
     "pi17": (0.0, 2.0, "0 (no vertical motion) to 2 (a vertical Ricker pulse of twice g: the normal force "
                        "falls to 11 % of its static value)"),
+    "pi22": (0.05, 1.0, "0.05 (a bearing breaking away at a twentieth of its friction at speed) to 1 (constant "
+                        "friction)"),
+    "pi23": (0.0, 1e4, "0 (constant friction at breakaway) to 1e4 (the friction at speed as soon as the slab "
+                       "moves)"),
 }
 """The domain over which isoslide is tested (``tests/test_extremes.py``) and mapped
 (:func:`domain_map`): (low, high, meaning).  The valid range of each group in
@@ -43,17 +47,19 @@ MAP_BASE = {"pi2": 0.1, "pi3": 1.0, "pi4": 0.1, "pi5": 0.7, "pi6": 1000.0, "pi7"
 model: ``pi11`` is read only with a flexible superstructure)."""
 
 MAP_COMPANIONS = {"pi10": {"pi9": 0.1}, "pi11": {"pi12": 0.2, "pi13": 0.02},
+                  "pi22": {"pi9": 0.1, "pi23": 20.0}, "pi23": {"pi9": 0.1, "pi22": 0.5},
                   "pi12": {"pi13": 0.02}, "pi13": {"pi12": 0.2}, "pi17": {"pulse_z": "ricker"},
                   **{g: {"pulse_y": "antisymmetric_ricker", "pi14": 0.7} for g in ("pi14", "pi15", "pi16")}}
 """Groups (and the vertical pulse) set beside a swept one so that it acts: a bearing for ``pi10``,
-a flexible superstructure for ``pi11`` and ``pi13``, a vertical Ricker pulse for ``pi17``, a transverse
+a flexible superstructure for ``pi11`` and ``pi13``, a vertical Ricker pulse for ``pi17``, a sliding
+bearing whose friction rises with speed for ``pi22`` and ``pi23``, a transverse
 antisymmetric Ricker pulse (the contents slide in the plane) for ``pi14`` to ``pi16``."""
 
 
 def map_values(group: str, npts: int = 9) -> np.ndarray:
     """Values of ``group`` swept by :func:`domain_map` across :data:`DOMAIN` (zero included)."""
     lo, hi, _ = DOMAIN[group]
-    if group == "pi5":
+    if group in ("pi5", "pi22"):
         return np.linspace(lo, hi, npts)
     if group == "pi4":
         return np.concatenate([[0.0], np.logspace(-3, 1, npts - 1)])
