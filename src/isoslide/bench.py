@@ -52,6 +52,7 @@ import numpy as np
 from . import accuracy, config, records
 from .accuracy import kernel_targets, measurements, opensees_cost
 from .accuracy.scenes import BUILDING_POINTS, BUILDINGS, PENDULUM, SPEED_PENDULUM, STOREYS, STOREYS_NAME
+from .model.parts import building_of
 from .scene import Scene
 from .studies import fragility_planar
 from .solver import DEFAULT_RTOL, solve, warm_up
@@ -304,6 +305,25 @@ TARGET_SPEED_PENDULUM_RATIO = 2.0
 """Aim: a friction pendulum whose friction rises with speed at most this many times the constant one's cost."""
 
 
+def _limits(p, rows: dict, summ: dict, paper: str) -> None:
+    """Print what sets each building's cost against the paper model's: its steps, and each step's cost.
+
+    A class's cost ratio is its steps per scene over the paper's times its cost per step over the
+    paper's; the steps follow the shortest period the explicit integrator must resolve (the
+    isolator's or the superstructure's highest mode), each step's cost the size of the system.
+    """
+    steps0 = np.array(rows[paper]["steps"], dtype=float)
+    p(f"what limits each: steps per scene and cost per step against the paper model's "
+      f"(shortest period followed, units of T_p)")
+    for name, r in rows.items():
+        if name == paper:
+            continue
+        steps = float(np.median(np.array(r["steps"], dtype=float) / steps0))
+        per_step = summ[name]["ratio"] / steps
+        summ[name].update(steps_ratio=steps, step_cost_ratio=per_step, shortest_period=r["period"])
+        p(f"  {name:46s} steps x{steps:5.2f}  cost per step x{per_step:5.2f}  shortest period {r['period']:.3g}")
+
+
 def run_buildings(repeats: int = 7) -> dict:
     """Time every building of :data:`BUILDINGS` on the same Pi points, interleaved; errors against rtol 1e-12."""
     scenes = {name: [Scene(**pt, **kw) for pt in BUILDING_POINTS] for name, kw in BUILDINGS.items()}
@@ -312,14 +332,15 @@ def run_buildings(repeats: int = 7) -> dict:
     out = {}
     for name, scs in scenes.items():
         conv = [solve(sc, rtol=1e-12).pi1 for sc in scs]
-        out[name] = {"conv": conv, "times": [[] for _ in scs], "pi1": [0.0] * len(scs), "models": [""] * len(scs)}
+        out[name] = {"conv": conv, "times": [[] for _ in scs], "pi1": [0.0] * len(scs), "models": [""] * len(scs),
+                     "steps": [0] * len(scs), "period": building_of(scs[0]).shortest_period}
     for _ in range(repeats):
         for k in range(len(BUILDING_POINTS)):
             for name, scs in scenes.items():
                 t0 = time.perf_counter()
                 sol = solve(scs[k])
                 out[name]["times"][k].append(time.perf_counter() - t0)
-                out[name]["pi1"][k], out[name]["models"][k] = sol.pi1, sol.model
+                out[name]["pi1"][k], out[name]["models"][k], out[name]["steps"][k] = sol.pi1, sol.model, sol.n_steps
     return {"rows": out, "points": BUILDING_POINTS, "repeats": repeats}
 
 
@@ -351,6 +372,7 @@ def report_buildings(res: dict, file=sys.stdout) -> dict:
     summ[SPEED_PENDULUM]["pendulum_ratio"] = speed
     p(f"aim: the speed-dependent friction pendulum at most {TARGET_SPEED_PENDULUM_RATIO:g}x the constant one's cost "
       f"per scene -> {'MET' if speed <= TARGET_SPEED_PENDULUM_RATIO else 'NOT MET'} (median ratio {speed:.2f})")
+    _limits(p, rows, summ, paper)
     five = summ[STOREYS_NAME.format(5)]["ratio"]
     p(f"aim: five storeys at most {TARGET_STOREYS_RATIO:g}x -> "
       f"{'MET' if five <= TARGET_STOREYS_RATIO else 'NOT MET'} (median ratio {five:.2f})")
