@@ -139,7 +139,7 @@ def test_scene_refuses_bearing_groups_out_of_range(name, value):
     dict(pi9=0.3, pi22=0.5, pi23=20.0),
     dict(pi9=0.2, pi22=0.5, pi23=200.0),
     dict(pi9=0.1, pi22=0.4, pi23=50.0, pi3=3.0, pi4=0.05),
-    dict(pi9=0.2, pi22=0.3, pi23=80.0, pi11=0.4, pi12=0.3, pi13=0.02, floor="roof"),
+    dict(pi9=0.2, pi22=0.5, pi23=5.0, pi11=0.4, pi12=0.3, pi13=0.05, floor="roof"),
     dict(pi9=0.2, pi22=0.5, pi23=60.0, pi17=0.4, pulse_z="ricker"),
 ])
 def test_speed_dependent_bearing_agrees_with_the_reference_peer(kw):
