@@ -471,3 +471,58 @@ def test_default_bearing_settings_pass_and_keep_the_design_keys_only():
     assert set(sub["isolation"]) == {"bearings", "design"}
     assert set(sub["isolation"]["design"]) == set(isolation_study.BEARING_DESIGN_KEYS)
 
+
+# ----------------------------------------------------------------------------------------------
+# the isolation report's notebook, run and rendered as the report rule does
+# ----------------------------------------------------------------------------------------------
+
+@pytest.mark.slow
+def test_report_notebook_renders_the_bearing_section(solved, tmp_path):
+    import json
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from isoslide.datasets import write_netcdf
+    from isoslide.reports import storeys_plot
+    from isoslide.studies import registry, storeys
+
+    root = Path(__file__).resolve().parents[1]
+    cfg, data = solved
+    st = storeys.storeys_settings(cfg)
+    st["storeys"].update(storeys=[1, 2], pi12=[0.5], pi2=[0.2])
+    data = {**data, "storeys": storeys.storeys_dataset(st)}
+    paths = {name: write_netcdf(ds, tmp_path / f"{name}.nc") for name, ds in data.items()}
+    figures = tmp_path / "figures"
+    figures.mkdir()
+    isolation_plot.draw_all(paths, [figures / f"{name}.png" for name in isolation_plot.FIGURES], {"dpi": 40})
+    storeys_plot.draw(paths["storeys"], [figures / "storeys.png"], {"dpi": 40})
+    # the notebook's parameters, as the report rule hands them (the registry's data files, renamed here)
+    entry = registry.reports(cfg)["isolation"]
+    parameters = {name: str(paths[Path(f).stem]) for name, f in entry["data"].items()} | {"figure_dir": str(figures)}
+    assert parameters["bearings_path"].endswith("isolation_bearings.nc")
+    out = tmp_path / "isolation.ipynb"
+    args = [a for name, value in parameters.items() for a in ("-p", name, value)]
+    env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": str(root / "src")}
+    proc = subprocess.run([sys.executable, "-m", "papermill", str(root / "workflow" / "notebooks" / "isolation.ipynb"),
+                           str(out), "-k", "python3", *args, "--no-progress-bar"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=600, env=env)
+    assert proc.returncode == 0, proc.stderr[-4000:]
+    nb = json.loads(out.read_text())
+    errors = [o for c in nb["cells"] for o in c.get("outputs", []) if o.get("output_type") == "error"]
+    assert not errors
+    proc = subprocess.run([sys.executable, "-m", "nbconvert", "--to", "html", "--no-input", "--embed-images",
+                           "--template-file", str(root / "workflow" / "notebooks" / "offline.html.j2"),
+                           "--output-dir", str(tmp_path), "--output", "isolation", str(out)],
+                          capture_output=True, text=True, timeout=600, env=env)
+    assert proc.returncode == 0, proc.stderr[-4000:]
+    html = (tmp_path / "isolation.html").read_text()
+    assert "Traceback" not in html
+    assert "What the bearing does to the contents, from service-level shaking to beyond the design" in html
+    for title, text in isolation_study.bearing_findings(data["isolation_bearings"]):
+        assert title.replace("'", "&#39;") in html or title in html
+        assert text.split(";")[0].split("(")[0] in html.replace("&#39;", "'"), title
+    assert "sliding-bearing-speed" in html and "bearing-stuck+fixed-base+no-slide" in html
+    # every figure of the report is embedded, the bearing study's among them
+    assert html.count("data:image/png;base64,") >= len(isolation_plot.FIGURES) + 1
