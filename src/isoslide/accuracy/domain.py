@@ -32,6 +32,10 @@ DOMAIN = {
     "pi16": (-1.0, 1.0, "the transverse pulse one main period ahead to one behind"),
     "pi17": (0.0, 2.0, "0 (no vertical motion) to 2 (a vertical Ricker pulse of twice g: the normal force "
                        "falls to 11 % of its static value)"),
+    "pi22": (0.1, 1.0, "0.1 (a sliding bearing's breakaway friction a tenth of its fast one) to 1 (constant "
+                       "friction)"),
+    "pi23": (0.0, 1000.0, "0 (the breakaway friction at every speed) to 1000 (the fast friction reached within "
+                          "a thousandth of the pulse's velocity)"),
 }
 """The domain over which isoslide is tested (``tests/test_extremes.py``) and mapped
 (:func:`domain_map`): (low, high, meaning).  The valid range of each group in
@@ -44,10 +48,12 @@ model: ``pi11`` is read only with a flexible superstructure)."""
 
 MAP_COMPANIONS = {"pi10": {"pi9": 0.1}, "pi11": {"pi12": 0.2, "pi13": 0.02},
                   "pi12": {"pi13": 0.02}, "pi13": {"pi12": 0.2}, "pi17": {"pulse_z": "ricker"},
-                  **{g: {"pulse_y": "antisymmetric_ricker", "pi14": 0.7} for g in ("pi14", "pi15", "pi16")}}
+                  **{g: {"pulse_y": "antisymmetric_ricker", "pi14": 0.7} for g in ("pi14", "pi15", "pi16")},
+                  "pi22": {"pi9": 0.1, "pi23": 30.0}, "pi23": {"pi9": 0.1, "pi22": 0.5}}
 """Groups (and the vertical pulse) set beside a swept one so that it acts: a bearing for ``pi10``,
 a flexible superstructure for ``pi11`` and ``pi13``, a vertical Ricker pulse for ``pi17``, a transverse
-antisymmetric Ricker pulse (the contents slide in the plane) for ``pi14`` to ``pi16``."""
+antisymmetric Ricker pulse (the contents slide in the plane) for ``pi14`` to ``pi16``, a sliding
+bearing whose friction rises with speed for ``pi22`` and ``pi23``."""
 
 
 def map_values(group: str, npts: int = 9) -> np.ndarray:
