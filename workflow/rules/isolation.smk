@@ -86,7 +86,7 @@ rule isolation_figure:
     threads: 1
     resources:
         mem_mb=600,  # measured: max_rss 296 MB
-        runtime=3,  # minutes; measured: 12.9 s (default config, 2 cores under load)
+        runtime=6,  # minutes; measured: 31.2 s drawing, 11.0 s of it the bearing study's figure (default config, 2 cores, load 3)
     conda:
         "../envs/isoslide.yaml"
     script:

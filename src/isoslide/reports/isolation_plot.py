@@ -185,7 +185,7 @@ def intensity(datasets):
     bearing's displacement over D, and the speed-dependent pendulum's u_max and PFA over the constant one's.
     """
     import matplotlib.pyplot as plt
-    from matplotlib.ticker import NullFormatter
+    from matplotlib.ticker import NullLocator
 
     ds = _open(datasets["isolation_bearings"])
     G = 9.80665
@@ -241,7 +241,7 @@ def intensity(datasets):
         for ax in (*top[:mus.size], *bottom[:3]):
             ax.set_xscale("log")
             ax.set_xticks(ticks, [f"{v:g}" for v in ticks])
-            ax.xaxis.set_minor_formatter(NullFormatter())
+            ax.xaxis.set_minor_locator(NullLocator())     # the grid's a_p are the ticks
             ax.set_xlabel(r"$a_p$ [m/s$^2$]")
     axs[0][0].legend(fontsize=5.5, loc="upper left")
     fs = ds.sel(isolator="friction_pendulum_speed")

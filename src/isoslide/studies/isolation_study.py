@@ -1011,7 +1011,7 @@ def bearing_findings(ds: xr.Dataset) -> list:
             f"{float(ds['mu_slow'].sel(isolator='friction_pendulum_speed')):.4f}), the lead-rubber bearing yields "
             f"at {_ap(lrb[2])}; the speed-dependent pendulum's floor acceleration is {ratio[k_lo]:.2f}× "
             f"(a_p = {a_p[k_lo]:g} m/s²) to {ratio[k_hi]:.2f}× (a_p = {a_p[k_hi]:g} m/s²) the constant one's")
-    out.append(("At service level the bearings differ most: which one holds, which one breaks away",
+    out.append(("Which bearing holds, which one breaks away, and what the floor feels",
                 ". ".join(lines) + "."))
 
     D = float(ds.attrs["D"])
