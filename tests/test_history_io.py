@@ -92,6 +92,23 @@ def test_fixed_base_floor_moves_with_the_ground():
     assert not np.any(c["floor_disp"])
 
 
+def test_floor_on_a_sliding_bearing_that_holds_moves_with_the_ground():
+    """A friction pendulum stronger than the pulse never slides: the solver runs the fixed base
+    (``bearing-stuck``), and the floor's absolute acceleration is the ground's, not zero."""
+    from isoslide.studies.intensity import floor_peaks
+
+    scene = Scene.from_physical(a_p=0.25, T_p=1.0, M_b=1e6, xi_b=0.0, m_ec=10.0, mu_s=0.3, mu_k=0.3,
+                                **isoslide.friction_pendulum(R=3.0, mu=0.05, M_b=1e6))
+    sol = isoslide.solve(scene, history=True, max_step=0.01)
+    assert sol.facets.reduction == "bearing-stuck" and sol.facets.isolator == "fixed-base"
+    c = history_table(sol, scene).columns
+    np.testing.assert_array_equal(c["floor_accel"], c["ground_accel"])
+    assert not np.any(c["floor_disp"])
+    pfa, pfv = floor_peaks(sol, scene)
+    assert pfa == np.max(np.abs(c["ground_accel"])) == pytest.approx(0.25, rel=1e-12)   # a row at the peak
+    assert pfv > 0.0
+
+
 def test_unknown_extension_and_missing_history_are_refused(tmp_path):
     scene = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1)
     with pytest.raises(ValueError, match=r"path = .*h\.txt.* allowed: \.csv, \.h5, \.hdf5"):

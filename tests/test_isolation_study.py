@@ -22,6 +22,9 @@ def tiny_config(**isolation):
         "lead_rubber": {"pi3": [2.0], "pi9": [0.1], "pi2": {"num": 5}},
         "flexible": {"pi3": [1.0], "pi12": [0.0, 0.5], "pi2": {"num": 5}},
         "design": {"pulses": ["ricker"], "T_p": [1.0], "records": [], "mu_k": {"start": 0.02, "stop": 0.3, "num": 3}},
+        # a_p = 0.05 m/s^2: both pendulums hold (below mu_slow g = 0.21 m/s^2); 0.3: only the speed-dependent one
+        # breaks away (below mu g = 0.41 m/s^2); 6: both slide
+        "bearings": {"a_p": [0.05, 0.3, 6.0], "mu_k": [0.05, 0.1]},
     }
     for k, v in isolation.items():
         overlay[k] = {**overlay.get(k, {}), **v}
@@ -36,6 +39,7 @@ def solved():
     data["isolation_rigid"] = isolation_study.rigid_dataset(
         {"base": data["iso_flex_base"], "roof": data["iso_flex_roof"]}, settings)
     data["isolation_design"] = isolation_study.design_dataset(settings)
+    data["isolation_bearings"] = isolation_study.bearings_dataset(settings)
     return cfg, data
 
 
@@ -227,3 +231,298 @@ def test_every_isolation_figure_is_drawn_with_its_caption(solved, tmp_path):
         assert out.stat().st_size > 1000 and read_caption(out) == captions[out.stem]
     with pytest.raises(ValueError, match="not isolation figures"):
         isolation_plot.draw_all(data, [tmp_path / "fig5.png"], {"dpi": 40})
+
+
+# ----------------------------------------------------------------------------------------------
+# the bearings over the pulse's intensity: lead-rubber, constant and speed-dependent pendulums
+# ----------------------------------------------------------------------------------------------
+
+def _designed(cfg):
+    des = cfg["isolation"]["design"]
+    return design.design(isolation_study.NOMINAL_MASS, des["T_eff"], des["beta_eff"], des["D"], des["D_y"])
+
+
+def _scene(cfg, building, iso, a_p, mu_k):
+    """The scene of the bearing study at one point, written out here from its parts."""
+    sec = cfg["isolation"]["bearings"]
+    M = isolation_study.NOMINAL_MASS
+    frame = {"floor": "base"} if building == "rigid" else {
+        "floor": "roof", "m_st": sec["pi11"] * M, "T_s": sec["pi12"] * sec["T_p"], "xi_s": sec["pi13"]}
+    return isoslide.Scene.from_physical(a_p=a_p, T_p=sec["T_p"], pulse=sec["pulse"], m_ec=cfg["defaults"]["pi8"] * M,
+                                        mu_s=mu_k, mu_k=mu_k, **frame, **iso)
+
+
+def _speed_pendulum(cfg, **override):
+    sec = {**cfg["isolation"]["bearings"], **override}
+    fp = _designed(cfg)["friction_pendulum"]
+    M = isolation_study.NOMINAL_MASS
+    return {"M_b": M, "xi_b": 0.0, **isoslide.friction_pendulum(fp.radius(G), fp.mu(G), M, mu_slow=sec["mu_slow_ratio"]
+                                                                 * fp.mu(G), rate=sec["rate"])}
+
+
+def test_bearing_study_labels_and_designs(solved):
+    cfg, data = solved
+    ds = data["isolation_bearings"]
+    sec, des = cfg["isolation"]["bearings"], cfg["isolation"]["design"]
+    assert ds["u_max"].dims == ("building", "isolator", "a_p", "mu_k")
+    assert dict(ds.sizes) == {"building": 2, "isolator": 3, "a_p": 3, "mu_k": 2}
+    assert list(ds["isolator"].values) == list(isolation_study.BEARING_ISOLATORS)
+    assert list(ds["building"].values) == ["rigid", "flexible"] and list(ds["floor"].values) == ["base", "roof"]
+    assert ds["a_p"].values.tolist() == sec["a_p"] and ds["mu_k"].values.tolist() == sec["mu_k"]
+    assert ds["a_p"].attrs["units"] == "m s-2" and ds["u_max"].attrs["units"] == "m" and ds["pfa"].attrs["units"] == "m s-2"
+    for name in ("u_max", "pi1", "pi2", "settled", "pfa", "bearing_disp", "bearing_slid", "model_isolator", "T_eff"):
+        assert ds[name].attrs.get("long_name") and "units" in ds[name].attrs, name
+    assert ds.attrs["Conventions"].startswith("CF") and "isoslide_config" in ds.attrs and ds.attrs["source"]
+    # the design's isolators: the same T_eff and beta_eff at D (the speed-dependent pendulum's with mu_fast)
+    np.testing.assert_allclose(ds["T_eff"].values, des["T_eff"], rtol=1e-12)
+    np.testing.assert_allclose(ds["beta_eff"].values, des["beta_eff"], rtol=1e-12)
+    systems = _designed(cfg)
+    fp = systems["friction_pendulum"]
+    assert float(ds["Q_over_W"].sel(isolator="friction_pendulum")) == pytest.approx(fp.mu(G), rel=1e-12)
+    assert float(ds["D_y"].sel(isolator="lead_rubber")) == des["D_y"]
+    speed = ds.sel(isolator="friction_pendulum_speed")
+    assert float(speed["Q_over_W"]) == pytest.approx(fp.mu(G), rel=1e-12)
+    assert float(speed["mu_slow"]) == pytest.approx(sec["mu_slow_ratio"] * fp.mu(G), rel=1e-12)
+    assert float(speed["rate"]) == sec["rate"] and float(speed["R"]) == pytest.approx(fp.radius(G), rel=1e-12)
+    # u_max is Pi1 a_p T_p^2, Pi2 = mu_k g / a_p
+    np.testing.assert_array_equal(ds["u_max"].values, ds["pi1"].values * (ds["a_p"].values * sec["T_p"] ** 2)[:, None])
+    np.testing.assert_allclose(ds["pi2"].values, ds["mu_k"].values[None, :] * G / ds["a_p"].values[:, None], rtol=1e-15)
+    # the model label: every isolator part of the solver shows up where it should
+    facets = isoslide.datasets.decode_facets(ds)
+    iso_parts = {str(i): {f.isolator for f in facets[:, k].ravel()} for k, i in enumerate(ds["isolator"].values)}
+    assert iso_parts["lead_rubber"] <= {"bilinear", "linear"}
+    assert "sliding-bearing" in iso_parts["friction_pendulum"]
+    assert "sliding-bearing-speed" in iso_parts["friction_pendulum_speed"]
+    labels = isoslide.datasets.model_labels(ds, "u_max")
+    assert labels.sel(building="rigid", isolator="friction_pendulum", a_p=0.05).values.tolist() == [
+        "bearing-stuck+fixed-base+no-slide"] * 2
+
+
+def test_constant_pendulum_is_a_direct_solve_of_the_designed_scene(solved):
+    cfg, data = solved
+    ds = data["isolation_bearings"]
+    rtol = cfg["solver"]["rtol"]
+    fp = _designed(cfg)["friction_pendulum"].scene_parameters()
+    speed = _speed_pendulum(cfg)
+    for building in ("rigid", "flexible"):
+        for a_p in (0.3, 6.0):
+            for mu_k in ds["mu_k"].values:
+                for name, iso in (("friction_pendulum", fp), ("friction_pendulum_speed", speed)):
+                    sol = isoslide.solve(_scene(cfg, building, iso, a_p, float(mu_k)), rtol=rtol)
+                    got = float(ds["u_max"].sel(building=building, isolator=name, a_p=a_p, mu_k=mu_k))
+                    assert got == pytest.approx(sol.u_max, rel=1e-9, abs=1e-15), (building, name, a_p, mu_k)
+    assert float(ds["u_max"].sel(building="rigid", isolator="friction_pendulum", a_p=6.0, mu_k=0.05)) > 0.0
+
+
+def test_speed_dependent_pendulum_differs_where_the_bearing_slides(solved):
+    _, data = solved
+    ds = data["isolation_bearings"]
+    rigid = ds.sel(building="rigid")
+    const, speed = rigid.sel(isolator="friction_pendulum"), rigid.sel(isolator="friction_pendulum_speed")
+    # a_p = 0.05 m/s^2 is below mu_slow g: both hold, the floor moves with the ground, nothing differs
+    assert int(const["bearing_slid"].sel(a_p=0.05)) == 0 == int(speed["bearing_slid"].sel(a_p=0.05))
+    assert float(const["pfa"].sel(a_p=0.05)) == float(speed["pfa"].sel(a_p=0.05)) == pytest.approx(0.05, rel=1e-9)
+    np.testing.assert_array_equal(const["u_max"].sel(a_p=0.05).values, speed["u_max"].sel(a_p=0.05).values)
+    # a_p = 0.3 m/s^2: above mu_slow g, below mu g: only the speed-dependent pendulum breaks away, and its floor
+    # no longer moves with the ground
+    assert int(speed["bearing_slid"].sel(a_p=0.3)) == 1 and int(const["bearing_slid"].sel(a_p=0.3)) == 0
+    assert float(const["bearing_disp"].sel(a_p=0.3)) == 0.0 < float(speed["bearing_disp"].sel(a_p=0.3))
+    assert float(speed["pfa"].sel(a_p=0.3)) < float(const["pfa"].sel(a_p=0.3)) == pytest.approx(0.3, rel=1e-9)
+    # a_p = 6 m/s^2: both slide; the floors and the contents' sliding differ
+    assert int(const["bearing_slid"].sel(a_p=6.0)) == 1 == int(speed["bearing_slid"].sel(a_p=6.0))
+    assert float(speed["pfa"].sel(a_p=6.0)) != pytest.approx(float(const["pfa"].sel(a_p=6.0)), rel=1e-3)
+    uc, us = const["u_max"].sel(a_p=6.0).values, speed["u_max"].sel(a_p=6.0).values
+    assert uc[0] > 0.0 and us[0] != pytest.approx(uc[0], rel=1e-3)
+    # the lead-rubber bearing is elastic at a_p = 0.05, yields at 6 with a displacement of the order of D
+    lrb = rigid.sel(isolator="lead_rubber")
+    assert int(lrb["bearing_slid"].sel(a_p=0.05)) == 0 and int(lrb["bearing_slid"].sel(a_p=6.0)) == 1
+    assert 0.5 * ds.attrs["D"] < float(lrb["bearing_disp"].sel(a_p=6.0)) < 2.0 * ds.attrs["D"]
+
+
+def test_rate_zero_is_the_constant_pendulum_of_mu_slow():
+    cfg = tiny_config(bearings={"a_p": [0.5, 6.0], "mu_k": [0.05], "rate": 0.0, "buildings": ["rigid"]})
+    ds = isolation_study.bearing_study(isolation_study.isolation_settings(cfg))
+    fp = _designed(cfg)["friction_pendulum"]
+    M = isolation_study.NOMINAL_MASS
+    slow = {"M_b": M, "xi_b": 0.0, **isoslide.friction_pendulum(fp.radius(G), 0.5 * fp.mu(G), M)}
+    assert "Q_slow" not in slow
+    speed = ds.sel(building="rigid", isolator="friction_pendulum_speed")
+    assert float(speed["Q_over_W"]) == pytest.approx(0.5 * fp.mu(G), rel=1e-12) == float(speed["mu_slow"])
+    for a_p in (0.5, 6.0):
+        sol = isoslide.solve(_scene(cfg, "rigid", slow, a_p, 0.05), rtol=cfg["solver"]["rtol"])
+        assert float(speed["u_max"].sel(a_p=a_p, mu_k=0.05)) == pytest.approx(sol.u_max, rel=1e-9, abs=1e-15)
+        assert sol.facets.isolator == "sliding-bearing"
+    facets = isoslide.datasets.decode_facets(ds.sel(isolator="friction_pendulum_speed"))
+    assert {f.isolator for f in facets.ravel()} == {"sliding-bearing"}
+    assert float(speed["u_max"].sel(a_p=6.0, mu_k=0.05)) > 0.0
+
+
+def test_bearing_study_asks_the_batch_solver_for_every_scene_in_order():
+    """Any batch solver stands in (isoslide.studies.solving): one call, the scenes in the order of the dims."""
+    from types import SimpleNamespace
+
+    from isoslide.models import Facets
+
+    cfg = tiny_config(bearings={"a_p": [0.05, 6.0], "mu_k": [0.05, 0.1], "buildings": ["rigid"]})
+    calls = []
+
+    def stub(scenes, rtol=None):
+        calls.append(scenes)
+        n = len(scenes)
+        return SimpleNamespace(pi1=np.arange(n, dtype=float), settled=np.ones(n, bool),
+                               facets=np.array([Facets()] * n, dtype=object))
+
+    ds = isolation_study.bearing_study(isolation_study.isolation_settings(cfg), stub)
+    assert len(calls) == 1 and len(calls[0]) == 3 * 2 * 2
+    np.testing.assert_array_equal(ds["pi1"].values.ravel(), np.arange(12.0))
+    assert [s.pi9 > 0 for s in calls[0]] == [True] * 12                     # every isolator is hysteretic
+    assert calls[0][0].pi10 > 0.0 and calls[0][4].pi10 == 0.0 == calls[0][8].pi10
+    assert calls[0][4].pi22 == 1.0 and calls[0][8].pi22 == pytest.approx(0.5)
+    assert [s.pi2 for s in calls[0][:4]] == pytest.approx([0.05 * G / 0.05, 0.1 * G / 0.05, 0.05 * G / 6.0,
+                                                           0.1 * G / 6.0])
+
+
+def _hand_made(u_const, u_speed):
+    """A bearing dataset of one building and one mu_k with the two pendulums' u_max given."""
+    a_p = np.array([0.25, 0.5, 1.0, 2.0, 4.0, 8.0])
+    u = np.array([np.zeros_like(a_p), u_const, u_speed], dtype=float)[None, :, :, None]
+    return xr.Dataset({"u_max": (("building", "isolator", "a_p", "mu_k"), u)},
+                      coords={"building": ["rigid"], "isolator": list(isolation_study.BEARING_ISOLATORS),
+                              "a_p": a_p, "mu_k": [0.1]})
+
+
+def test_speed_effect_splits_the_intensities_into_runs_by_hand():
+    ds = _hand_made([0.0, 0.0, 1.0, 2.0, 4.0, 8.0], [0.0, 0.5, 1.5, 1.0, 4.02, 8.0])
+    rows = isolation_study.speed_effect(ds, tolerance=0.01)
+    assert [(r[2], r[3], r[4], r[5]) for r in rows] == [
+        ("none", 0.25, 0.25, 1), ("more", 0.5, 1.0, 2), ("less", 2.0, 2.0, 1), ("same", 4.0, 8.0, 2)]
+    more = rows[1]
+    assert more[6] == 1.5 and more[7] == np.inf                     # only the speed-dependent one slides at 0.5
+    assert (more[8], more[9], more[10]) == (0.5, 0.0, 0.5)          # the largest difference: at a_p = 0.5
+    assert rows[2][6] == rows[2][7] == 0.5
+    assert rows[3][6] == pytest.approx(1.0) and rows[3][7] == pytest.approx(1.005)
+
+
+def test_bearing_findings_quote_the_dataset(solved):
+    _, data = solved
+    ds = data["isolation_bearings"]
+    found = isolation_study.bearing_findings(ds)
+    assert len(found) == 4 and all(title and text for title, text in found)
+    text = " ".join(t for _, t in found)
+    rows = isolation_study.speed_effect(ds)
+    for r in rows:
+        if r[2] in ("more", "less") and np.isfinite(r[7]) and r[7] > 0:
+            assert f"{r[2]} at a_p = {r[3]:g}" in text and f"{r[10] * 100:.2f} against {r[9] * 100:.2f} cm" in text
+    n = {v: sum(r[5] for r in rows if r[2] == v) for v in ("less", "more")}
+    assert any(f"{v} at {k}" in found[0][1] for v, k in n.items() if k)
+    onsets = {(r[0], r[1]): r for r in isolation_study.bearing_onsets(ds)}
+    fs = onsets[("rigid", "friction_pendulum_speed")]
+    assert fs[2] == 0.3 and onsets[("rigid", "friction_pendulum")][2] == 6.0   # first a_p at which each slides
+    assert f"{fs[3] / G:.4f} g on the speed-dependent one" in found[1][1]
+    assert f"{onsets[('rigid', 'lead_rubber')][5]:.3f} m" in found[2][1]
+    assert "Flexible superstructure, contents on the roof" in found[0][1]
+
+
+# ----------------------------------------------------------------------------------------------
+# the bearing study's configuration
+# ----------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("bad, message", [
+    ({"mu_slow_ratio": 1.5}, r"isolation\.bearings\.mu_slow_ratio: 1\.5 is greater than the maximum of 1"),
+    ({"mu_slow_ratio": 0.0}, r"isolation\.bearings\.mu_slow_ratio: 0\.0 is less than or equal to the minimum of 0"),
+    ({"rate": -1.0}, r"isolation\.bearings\.rate: -1\.0 is less than the minimum of 0"),
+    ({"T_p": 0.0}, r"isolation\.bearings\.T_p: 0\.0 is less than or equal to the minimum of 0"),
+    ({"a_p": [0.5, -1.0]}, r"isolation\.bearings\.a_p\.1: -1\.0 is less than or equal to the minimum of 0"),
+    ({"mu_k": []}, r"isolation\.bearings\.mu_k: \[\] should be non-empty"),
+    ({"buildings": ["attic"]}, r"isolation\.bearings\.buildings\.0: 'attic' is not one of \['rigid', 'flexible'\]"),
+    ({"shape": "ricker"}, r"isolation\.bearings: Additional properties are not allowed \('shape' was unexpected\)"),
+])
+def test_bad_bearing_settings_are_refused_by_the_schema_naming_the_key(bad, message):
+    with pytest.raises(ConfigError, match=message):
+        tiny_config(bearings=bad)
+
+
+@pytest.mark.parametrize("bad, message", [
+    ({"a_p": [2.0, 1.0]}, r"isolation\.bearings\.a_p = \[2\.0, 1\.0\] is not strictly increasing; allowed: increasing"),
+    ({"mu_k": [0.1, 0.1]}, r"isolation\.bearings\.mu_k = \[0\.1, 0\.1\] is not strictly increasing"),
+    ({"a_p": [1.0, float("inf")]}, r"isolation\.bearings\.a_p = \[1\.0, inf\] holds inf; allowed: numbers in \(0, 1000\]"),
+    ({"mu_slow_ratio": 0.0}, r"isolation\.bearings\.mu_slow_ratio = 0\.0 is out of range; allowed range: 0 < value <= 1"),
+    ({"rate": -2}, r"isolation\.bearings\.rate = -2 is out of range; allowed range: 0 <= value <= 100000"),
+    ({"pi11": 1.0}, r"isolation\.bearings\.pi11 = 1\.0 is out of range; allowed range: 0 < value < 1"),
+    ({"pulse": "sine"}, r"isolation\.bearings\.pulse = 'sine' is invalid"),
+    ({"buildings": ["rigid", "rigid"]}, r"isolation\.bearings\.buildings = \['rigid', 'rigid'\] is invalid; allowed: "
+                                        r"a non-empty list of distinct values among \['rigid', 'flexible'\]"),
+])
+def test_bad_bearing_settings_are_refused_by_the_study_naming_the_key(bad, message):
+    section = {**isoslide.config.load()["isolation"]["bearings"], **bad}
+    with pytest.raises(ConfigError, match=message):
+        isolation_study.check_bearings(section)
+    settings = isolation_study.isolation_settings(isoslide.config.load())
+    settings["isolation"]["bearings"] = section
+    with pytest.raises(ConfigError, match=message):
+        isolation_study.bearing_study(settings, solve_many=lambda scenes, rtol=None: pytest.fail("solved"))
+
+
+def test_default_bearing_settings_pass_and_keep_the_design_keys_only():
+    cfg = isoslide.config.load()
+    sec = isolation_study.check_bearings(cfg["isolation"]["bearings"])
+    assert sec["a_p"][0] < 1.0 < 6.0 <= sec["a_p"][-1] and sec["mu_slow_ratio"] == 0.5 and sec["rate"] == 30.0
+    sub = isolation_study.bearing_settings(isolation_study.isolation_settings(cfg))
+    assert set(sub["isolation"]) == {"bearings", "design"}
+    assert set(sub["isolation"]["design"]) == set(isolation_study.BEARING_DESIGN_KEYS)
+
+
+# ----------------------------------------------------------------------------------------------
+# the isolation report's notebook, run and rendered as the report rule does
+# ----------------------------------------------------------------------------------------------
+
+@pytest.mark.slow
+def test_report_notebook_renders_the_bearing_section(solved, tmp_path):
+    import json
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from isoslide.datasets import write_netcdf
+    from isoslide.reports import storeys_plot
+    from isoslide.studies import registry, storeys
+
+    root = Path(__file__).resolve().parents[1]
+    cfg, data = solved
+    st = storeys.storeys_settings(cfg)
+    st["storeys"].update(storeys=[1, 2], pi12=[0.5], pi2=[0.2])
+    data = {**data, "storeys": storeys.storeys_dataset(st)}
+    paths = {name: write_netcdf(ds, tmp_path / f"{name}.nc") for name, ds in data.items()}
+    figures = tmp_path / "figures"
+    figures.mkdir()
+    isolation_plot.draw_all(paths, [figures / f"{name}.png" for name in isolation_plot.FIGURES], {"dpi": 40})
+    storeys_plot.draw(paths["storeys"], [figures / "storeys.png"], {"dpi": 40})
+    # the notebook's parameters, as the report rule hands them (the registry's data files, renamed here)
+    entry = registry.reports(cfg)["isolation"]
+    parameters = {name: str(paths[Path(f).stem]) for name, f in entry["data"].items()} | {"figure_dir": str(figures)}
+    assert parameters["bearings_path"].endswith("isolation_bearings.nc")
+    out = tmp_path / "isolation.ipynb"
+    args = [a for name, value in parameters.items() for a in ("-p", name, value)]
+    env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": str(root / "src")}
+    proc = subprocess.run([sys.executable, "-m", "papermill", str(root / "workflow" / "notebooks" / "isolation.ipynb"),
+                           str(out), "-k", "python3", *args, "--no-progress-bar"], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=600, env=env)
+    assert proc.returncode == 0, proc.stderr[-4000:]
+    nb = json.loads(out.read_text())
+    errors = [o for c in nb["cells"] for o in c.get("outputs", []) if o.get("output_type") == "error"]
+    assert not errors
+    proc = subprocess.run([sys.executable, "-m", "nbconvert", "--to", "html", "--no-input", "--embed-images",
+                           "--template-file", str(root / "workflow" / "notebooks" / "offline.html.j2"),
+                           "--output-dir", str(tmp_path), "--output", "isolation", str(out)],
+                          capture_output=True, text=True, timeout=600, env=env)
+    assert proc.returncode == 0, proc.stderr[-4000:]
+    html = (tmp_path / "isolation.html").read_text()
+    assert "Traceback" not in html
+    assert "What the bearing does to the contents, from service-level shaking to beyond the design" in html
+    for title, text in isolation_study.bearing_findings(data["isolation_bearings"]):
+        assert title.replace("'", "&#39;") in html or title in html
+        assert text.split(";")[0].split("(")[0] in html.replace("&#39;", "'"), title
+    assert "sliding-bearing-speed" in html and "bearing-stuck+fixed-base+no-slide" in html
+    # every figure of the report is embedded, the bearing study's among them
+    assert html.count("data:image/png;base64,") >= len(isolation_plot.FIGURES) + 1

@@ -37,7 +37,7 @@ ROOT = Path(__file__).resolve().parents[1]
 TEST_CONFIG = ["--configfile", "config/test.yaml"]
 STUDIES = sorted(yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["studies"])
 ISOLATION_STUDIES = ["iso_fp", "iso_lrb", "iso_flex_base", "iso_flex_roof"]
-ISOLATION_RULES = {"isolation_rigid", "isolation_design", "isolation_figure"}
+ISOLATION_RULES = {"isolation_rigid", "isolation_design", "isolation_bearings", "isolation_figure"}
 REPORTS = ["accuracy", "figures", "fragility", "isolation", "planar", "records", "similarity"]
 LAUNCHERS = ("snakemake", "papermill", "jupyter", "jupyter-nbconvert")
 
@@ -457,6 +457,7 @@ def test_dry_run_plans_the_whole_dag(wf):
     ({"fragility": {"limit_states": [0.3, 0.2]}}, "fragility.limit_states"),
     ({"isolation": {"flexible": {"pi12": [0.1, 0.5]}}}, "isolation.flexible.pi12"),
     ({"isolation": {"friction_pendulum": {"pi9": [0.1, -0.1]}}}, "['friction_pendulum']['pi9']"),
+    ({"isolation": {"bearings": {"a_p": [2.0, 1.0]}}}, "isolation.bearings.a_p = [2.0, 1.0] is not strictly increasing"),
     ({"storeys": {"storeys": [2, 1]}}, "storeys.storeys = [2, 1] is not strictly increasing"),
 ])
 def test_invalid_config_fails_before_any_job_naming_the_key(tmp_path, overlay, key):
@@ -679,13 +680,20 @@ def test_isolation_outputs(full_run):
     assert design.sizes["excitation"] == len(cfg["design"]["pulses"]) * len(cfg["design"]["T_p"]) + len(
         cfg["design"]["records"])
     assert design.sizes["mu_k"] == cfg["design"]["mu_k"]["num"] and "isoslide_config" in design.attrs
-    for fig in ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design"):
+    bearings = datasets.open_dataset(wf / "results" / "datasets" / "isolation_bearings.nc")
+    assert bearings["u_max"].dims == ("building", "isolator", "a_p", "mu_k")
+    assert bearings["a_p"].values.tolist() == cfg["bearings"]["a_p"] and "isoslide_config" in bearings.attrs
+    log = (wf / "logs" / "isolation_bearings" / "isolation_bearings.log").read_text()
+    assert provenance.source_text().split(" (git")[0] in log and log.rstrip().endswith("done")
+    for fig in ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design",
+                "isolation_intensity"):
         for ext in ("png", "pdf"):
             assert (wf / "reports" / "figures" / f"{fig}.{ext}").stat().st_size > 1000, (fig, ext)
     html = (wf / "reports" / "isolation.html").read_text()
     assert "Buildings as engineers isolate them" in html and "Traceback" not in html
     assert "Where the paper&#39;s rigid-superstructure reduction holds" in html or \
         "Where the paper's rigid-superstructure reduction holds" in html
+    assert "What the bearing does to the contents, from service-level shaking to beyond the design" in html
     assert 'href="isolation.html"' in (wf / "reports" / "index.html").read_text()
 
 
@@ -695,8 +703,19 @@ def test_changing_the_isolation_design_reruns_only_its_jobs(full_run):
     (wf / "config" / "iso.yaml").write_text(yaml.safe_dump({"isolation": {"design": {"beta_eff": 0.15}}}))
     _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/iso.yaml", timeout=300)
     jobs = planned_jobs(out)
-    assert {r for r, _ in jobs} == {"isolation_design", "isolation_figure", "report", "index_page", "all"}
+    # the bearing study's isolators are the design's
+    assert {r for r, _ in jobs} == {"isolation_design", "isolation_bearings", "isolation_figure", "report",
+                                    "index_page", "all"}
     assert {w for r, w in jobs if r == "report"} == {"report=isolation"}
+    # the design's excitations are not the bearing study's
+    (wf / "config" / "iso.yaml").write_text(yaml.safe_dump({"isolation": {"design": {"a_p_g": 0.4}}}))
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/iso.yaml", timeout=300)
+    assert {r for r, _ in planned_jobs(out)} == {"isolation_design", "isolation_figure", "report", "index_page", "all"}
+    # the bearing study's own settings: only its job, the figures and the report
+    (wf / "config" / "iso.yaml").write_text(yaml.safe_dump({"isolation": {"bearings": {"rate": 10.0}}}))
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/iso.yaml", timeout=300)
+    assert {r for r, _ in planned_jobs(out)} == {"isolation_bearings", "isolation_figure", "report", "index_page",
+                                                 "all"}
     # the band of the rigid reduction: only its map, the figures and the report
     (wf / "config" / "iso.yaml").write_text(yaml.safe_dump({"isolation": {"flexible": {"tolerance": 0.2}}}))
     _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/iso.yaml", timeout=300)

@@ -24,6 +24,7 @@ try:
     # the isolation studies (friction pendulum, lead-rubber, flexible superstructure on base and roof):
     # ordinary studies of the `isolation:` section, solved and merged by the same rules
     ISOLATION_SPECS = isolation_study.study_specs(config)
+    isolation_study.check_bearings(config["isolation"]["bearings"])
 except sweep.ConfigError as err:
     raise WorkflowError(f"Invalid configuration: {err}")
 STUDY_SPECS = SPECS | ISOLATION_SPECS  # every study the rules of sweep.smk solve
@@ -85,8 +86,10 @@ ISOLATION_SETTINGS = sweep.jsonable(isolation_study.isolation_settings(config))
 # each rule gets only the sections it reads, so editing one part reruns only its jobs
 ISOLATION_RIGID_SETTINGS = {"isolation": {"flexible": ISOLATION_SETTINGS["isolation"]["flexible"]}}
 ISOLATION_DESIGN_SETTINGS = ISOLATION_SETTINGS | {"isolation": {"design": ISOLATION_SETTINGS["isolation"]["design"]}}
+# the bearing study: its subsection and the design keys of its isolators (not the design's excitations)
+ISOLATION_BEARINGS_SETTINGS = isolation_study.bearing_settings(ISOLATION_SETTINGS)
 ISOLATION_STUDIES = list(ISOLATION_SPECS)
-ISOLATION_DATASETS = ISOLATION_STUDIES + ["isolation_rigid", "isolation_design"]
+ISOLATION_DATASETS = isolation_study.dataset_names()
 ISOLATION_RECORD_FILES = [r for r in ISOLATION_SETTINGS["isolation"]["design"]["records"]
                           if os.path.splitext(r)[1].lower() in (".at2", ".csv") and os.path.isfile(r)]
 ISOLATION_FIGURE_INPUT = {name: f"results/datasets/{name}.nc" for name in ISOLATION_DATASETS}

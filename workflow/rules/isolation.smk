@@ -2,7 +2,8 @@
 # master curves of real bearings and of a flexible superstructure (studies iso_fp, iso_lrb,
 # iso_flex_base, iso_flex_roof) are ordinary studies: solved and merged by the rules of sweep.smk.
 # Here: where the rigid-superstructure reduction holds, the comparison of isolation systems of equal
-# effective period and damping, their figures; reports/isolation.html is the `report` rule's.
+# effective period and damping, those bearings over the pulse's intensity (a friction pendulum with
+# friction rising with speed among them), their figures; reports/isolation.html is the `report` rule's.
 
 
 rule isolation_rigid:
@@ -50,6 +51,26 @@ rule isolation_design:
         "../scripts/isolation_design.py"
 
 
+rule isolation_bearings:
+    output:
+        "results/datasets/isolation_bearings.nc",
+    params:
+        code=CODE["isolation"],
+        settings=ISOLATION_BEARINGS_SETTINGS,
+    log:
+        "logs/isolation_bearings/isolation_bearings.log",
+    benchmark:
+        "results/benchmarks/isolation_bearings/isolation_bearings.tsv"
+    threads: 1
+    resources:
+        mem_mb=700,  # measured: max_rss 301 MB
+        runtime=2,  # minutes; measured: 9.0 s (default config, 2 cores under load; solving 1.5 s of it)
+    conda:
+        "../envs/isoslide.yaml"
+    script:
+        "../scripts/isolation_bearings.py"
+
+
 rule isolation_figure:
     input:
         **ISOLATION_FIGURE_INPUT,
@@ -65,7 +86,7 @@ rule isolation_figure:
     threads: 1
     resources:
         mem_mb=600,  # measured: max_rss 296 MB
-        runtime=3,  # minutes; measured: 12.9 s (default config, 2 cores under load)
+        runtime=6,  # minutes; measured: 31.2 s drawing, 11.0 s of it the bearing study's figure (default config, 2 cores, load 3)
     conda:
         "../envs/isoslide.yaml"
     script:

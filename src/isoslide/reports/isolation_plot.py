@@ -5,7 +5,10 @@
 * ``isolation_flexible`` -- master curves over Pi12 = T_s/T_p, contents on the base and on the roof;
 * ``isolation_rigid`` -- the map of the rigid-superstructure reduction's error over Pi12 and Pi2;
 * ``isolation_design`` -- peak sliding over the contents' friction under linear, bilinear and
-  friction-pendulum isolation of equal effective period and damping.
+  friction-pendulum isolation of equal effective period and damping;
+* ``isolation_intensity`` -- the contents' peak sliding, the floor's peak acceleration and the
+  bearing's displacement over the pulse's amplitude, under a lead-rubber bearing and friction
+  pendulums of constant and speed-dependent friction (``isolation_bearings``).
 
 :func:`draw_all` renders them with the paper figures' style and deterministic writer
 (:data:`isoslide.reports.figures.STYLE`).
@@ -23,7 +26,7 @@ from .figures import LABELS, WIDTH, _colors, _fixed_text, stems_drawer, master_c
 
 log = logging.getLogger(__name__)
 
-FIGURES = ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design")
+FIGURES = ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design", "isolation_intensity")
 """Figure names (file stems) drawn by :func:`draw_all`."""
 
 
@@ -168,6 +171,105 @@ def design(datasets):
     return fig, caption
 
 
+BEARING_STYLES = {"lead_rubber": {"color": 0, "ls": "-", "marker": "s", "label": "lead-rubber"},
+                  "friction_pendulum": {"color": 1, "ls": "-", "marker": "o", "label": r"pendulum, constant $\mu$"},
+                  "friction_pendulum_speed": {"color": 1, "ls": "--", "marker": "x",
+                                              "label": r"pendulum, $\mu$ rising with speed"}}
+"""Line of each isolator of the bearing study: the two pendulums share a colour, the speed-dependent one dashed."""
+
+
+def intensity(datasets):
+    """The bearing study over the pulse's intensity, two rows of panels per building.
+
+    First row: u_max over a_p, one panel per mu_k; second row: the floor's peak acceleration, the
+    bearing's displacement over D, and the speed-dependent pendulum's u_max and PFA over the constant one's.
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullLocator
+
+    ds = _open(datasets["isolation_bearings"])
+    G = 9.80665
+    mus, buildings = ds["mu_k"].values, ds["building"].values
+    ncol = max(mus.size, 3)
+    fig, axs = plt.subplots(2 * buildings.size, ncol, figsize=(WIDTH, 3.3 * buildings.size + 0.5), squeeze=False,
+                            layout="constrained")
+    colors = _colors(3)[:2]
+    a_p, D = ds["a_p"].values, float(ds.attrs["D"])
+    ticks = _log_ticks(a_p)
+
+    def line(ax, iso, y, **kw):
+        st = BEARING_STYLES.get(str(iso), {"color": 0, "ls": ":", "marker": ".", "label": str(iso)})
+        ax.plot(a_p, y, color=colors[st["color"]], ls=st["ls"], marker=st["marker"], ms=3.0, lw=1.0,
+                label=st["label"], **kw)
+
+    for r, b in enumerate(buildings):
+        sub = ds.sel(building=b)
+        where = "slab (rigid)" if str(b) == "rigid" else "roof (flexible)"
+        top, bottom = axs[2 * r], axs[2 * r + 1]
+        for j, m in enumerate(mus):
+            ax = top[j]
+            for iso in ds["isolator"].values:
+                line(ax, iso, sub["u_max"].sel(isolator=iso, mu_k=m).values * 100.0)
+            ax.set_title(rf"{where}: $\mu_k = {float(m):g}$", fontsize=7)
+            ax.set_ylabel(r"$u_{max}$ [cm]" if j == 0 else "")
+            ax.set_ylim(bottom=0.0)
+        for ax in top[mus.size:]:
+            ax.set_visible(False)
+        for iso in ds["isolator"].values:
+            line(bottom[0], iso, sub["pfa"].sel(isolator=iso).values / G)
+            line(bottom[1], iso, sub["bearing_disp"].sel(isolator=iso).values / D)
+        bottom[0].set_ylabel("peak floor accel. [g]")
+        bottom[0].set_title(f"{where}: floor", fontsize=7)
+        bottom[0].set_ylim(bottom=0.0)
+        bottom[1].axhline(1.0, color="0.6", lw=0.8, ls=":")
+        bottom[1].set_ylabel(r"bearing displacement / $D$")
+        bottom[1].set_title(f"{where}: bearing", fontsize=7)
+        const, speed = sub.sel(isolator="friction_pendulum"), sub.sel(isolator="friction_pendulum_speed")
+        ax = bottom[2]
+        mcolors = _colors(mus.size + 1)
+        for j, m in enumerate(mus):
+            uc, us = const["u_max"].sel(mu_k=m).values, speed["u_max"].sel(mu_k=m).values
+            ratio = np.where(uc > 0, us / np.where(uc > 0, uc, 1.0), np.nan)
+            ax.plot(a_p, ratio, color=mcolors[j], marker="o", ms=3.0, lw=1.0, label=rf"$u_{{max}}$, $\mu_k = {float(m):g}$")
+        ax.plot(a_p, speed["pfa"].values / const["pfa"].values, color="k", ls="--", lw=1.0, label="peak floor accel.")
+        ax.axhline(1.0, color="0.6", lw=0.8, ls=":")
+        ax.set_ylabel("speed-dependent / constant")
+        ax.set_title(f"{where}: pendulums", fontsize=7)
+        ax.legend(fontsize=5.5, loc="lower right")
+        for ax in bottom[3:]:
+            ax.set_visible(False)
+        for ax in (*top[:mus.size], *bottom[:3]):
+            ax.set_xscale("log")
+            ax.set_xticks(ticks, [f"{v:g}" for v in ticks])
+            ax.xaxis.set_minor_locator(NullLocator())     # the grid's a_p are the ticks
+            ax.set_xlabel(r"$a_p$ [m/s$^2$]")
+    axs[0][0].legend(fontsize=5.5, loc="upper left")
+    fs = ds.sel(isolator="friction_pendulum_speed")
+    caption = (f"What the bearing does to the contents, from service-level shaking to beyond the design. Peak sliding "
+               f"u_max of Coulomb contents (mu_k = {_list(ds['mu_k'])}), peak floor acceleration and peak bearing "
+               f"displacement against the amplitude a_p = {_list(ds['a_p'])} m/s^2 of a {ds.attrs['pulse']} pulse of "
+               f"T_p = {ds.attrs['T_p']:g} s, under a lead-rubber bearing (D_y = {ds.attrs['D_y_bilinear']:g} m) and a "
+               f"friction pendulum designed to the same T_eff = {ds.attrs['T_eff_target']:g} s and beta_eff = "
+               f"{ds.attrs['beta_eff_target']:g} at D = {D:g} m (mu = {float(ds['Q_over_W'].sel(isolator='friction_pendulum')):.4f}, "
+               f"R = {float(ds['R'].sel(isolator='friction_pendulum')):.2f} m), and that pendulum with friction rising "
+               f"with speed (dashed: mu_slow = {float(fs['mu_slow']):.4f}, a = {float(fs['rate']):g} s/m); contents on "
+               f"the slab of a rigid superstructure"
+               + (f" and on the roof of a flexible one (Pi11 = {ds.attrs['pi11_flexible']:g}, Pi12 = T_s/T_p = "
+                  f"{ds.attrs['pi12_flexible']:g}, xi_s = {ds.attrs['pi13_flexible']:g})" if "flexible" in buildings else "")
+               + ". Last panel of each building: the speed-dependent pendulum's u_max and peak floor acceleration over "
+               "the constant one's.")
+    return fig, caption
+
+
+def _log_ticks(values, spacing: float = 0.25) -> list:
+    """Values to label on a log axis: the first, then each at least ``spacing`` decades past the last labelled."""
+    out = []
+    for v in np.asarray(values, dtype=float):
+        if not out or np.log10(v / out[-1]) >= spacing - 1e-9:
+            out.append(float(v))
+    return out
+
+
 PULSE_TITLES = {"ricker": "Ricker", "antisymmetric_ricker": "antisymmetric Ricker"}
 
 
@@ -181,7 +283,7 @@ def _excitation_title(ds, e) -> str:
 
 
 DRAWERS = {"isolation_bearings": bearings, "isolation_flexible": flexible, "isolation_rigid": rigid,
-           "isolation_design": design}
+           "isolation_design": design, "isolation_intensity": intensity}
 
 
 def _list(da) -> str:
@@ -190,4 +292,4 @@ def _list(da) -> str:
 
 draw_all = stems_drawer("draw_all", FIGURES, "isolation figures", lambda name, data: (DRAWERS[name], (data,)),
                         "``iso_fp``, ``iso_lrb``, ``iso_flex_base``, ``iso_flex_roof``, ``isolation_rigid``, "
-                        "``isolation_design``.", log)
+                        "``isolation_design``, ``isolation_bearings``.", log)

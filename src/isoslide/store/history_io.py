@@ -27,7 +27,8 @@ The floor acceleration follows from the equations of motion of
 :mod:`isoslide.engine.kernel` with the model that ran (``Solution.facets``): stuck,
 ``-(2 Pi4 w x' + w^2 x) / (1 + Pi8)``; sliding, ``-(2 Pi4 w x' + w^2 x) +
 Pi8 s phi(|u'|)`` (``Pi8 = 0`` for ``one-way`` coupling); the ground's for a
-fixed base.
+fixed base, and for a rigid building on a sliding bearing that held throughout (the solver's
+``bearing-stuck`` reduction, facet ``isolator == "fixed-base"``).
 
 A general building (:mod:`isoslide.engine.building`) has its contents' floor (the slab,
 or the superstructure's roof) in ``floor_*``, its floor acceleration from
@@ -196,7 +197,7 @@ def _friction(v, scene: Scene, facets: Facets) -> np.ndarray:
 
 def _floor_accel(h: History, scene: Scene, facets: Facets, ground: np.ndarray) -> np.ndarray:
     """Absolute floor acceleration, units of a_p (see the module docstring)."""
-    if scene.fixed_base:
+    if scene.fixed_base or facets.isolator == "fixed-base":      # Pi3 = 0, or a bearing that held throughout
         return ground.copy()
     w = 2.0 * math.pi / scene.pi3
     F = 2.0 * scene.pi4 * w * h.xd + w * w * h.x

@@ -185,7 +185,9 @@ def floor_peaks(solution, scene) -> tuple[float, float]:
         PFV of ``v_g + x_b'`` with the floor acceleration as its rate, PFA of ``a_g + x_b''``
         with :func:`floor_jerk` as its rate (cubic Hermite between rows: an error of fourth
         order in the row spacing).  On a fixed base the floor is the ground: PFA = PGA and PFV = PGV of the
-        scaled record, exactly.
+        scaled record, exactly; so it is on a sliding bearing that held throughout (the solver's
+        ``bearing-stuck`` reduction, ``solution.facets.isolator == "fixed-base"``), PFA then the
+        largest ``|a_g|`` at the rows.
     """
     tab = history_table(solution, scene)
     c = tab.columns
@@ -195,7 +197,7 @@ def floor_peaks(solution, scene) -> tuple[float, float]:
     a_floor = c["floor_accel"]
     v_floor = v_ground + c["floor_vel"]
     pfv = peak_of_integral(t, v_floor, a_floor)
-    if scene.fixed_base:
+    if scene.fixed_base or solution.facets.isolator == "fixed-base":
         return peak_abs(a_floor), pfv
     return peak_of_integral(t, a_floor, floor_jerk(c, scene)), pfv
 

@@ -15,6 +15,12 @@ Three studies beyond the paper's Fig. 1-b model (configuration section ``isolati
   friction-pendulum isolator designed to the same effective period and damping at the design
   displacement (:mod:`isoslide.studies.design`), under the same pulses and real records, over the
   contents' friction coefficient: :func:`design_comparison` (``results/datasets/isolation_design.nc``).
+* **what the bearing does to the contents, from service-level shaking to beyond the design** -- the
+  lead-rubber bearing and the friction pendulum of that design, and the same pendulum with friction
+  rising with speed (Constantinou, Mokha and Reinhorn 1990), under one pulse scaled over its
+  amplitude ``a_p``, with Coulomb contents of a few ``mu_k`` on the slab of a rigid superstructure
+  and on the roof of a flexible one: :func:`bearing_study` (``results/datasets/isolation_bearings.nc``),
+  its findings :func:`bearing_findings`.
 """
 
 from __future__ import annotations
@@ -28,7 +34,7 @@ import xarray as xr
 from . import design as _design
 from .. import solver
 from ..config import ConfigError
-from ..datasets import global_attrs, open_dataset, pi_attrs
+from ..datasets import encode_facets, global_attrs, open_dataset, pi_attrs
 from .intensity import floor_peaks
 from .record_study import resolve_record
 from .solving import batch_solver
@@ -36,9 +42,11 @@ from ..records import G
 from ..scene import FLOORS, Scene
 from .sweep import normalise_study
 
-__all__ = ["FAMILIES", "NOMINAL_MASS", "bearing_summary", "findings", "sliding_end", "design_comparison", "design_dataset", "design_excitations",
-           "isolation_settings", "rigid_dataset", "rigid_error", "rigid_summary", "study_entries", "study_names",
-           "study_specs"]
+__all__ = ["BEARING_ISOLATORS", "BUILDINGS", "FAMILIES", "NOMINAL_MASS", "bearing_findings", "bearing_isolators",
+           "bearing_onsets", "bearing_settings", "bearing_study", "bearing_summary", "bearings_dataset", "check_bearings",
+           "dataset_names", "findings", "sliding_end", "design_comparison", "design_dataset", "design_excitations",
+           "isolation_settings", "rigid_dataset", "rigid_error", "rigid_summary", "speed_effect", "study_entries",
+           "study_names", "study_specs"]
 
 FAMILIES = {"iso_fp": "friction_pendulum", "iso_lrb": "lead_rubber",
             "iso_flex_base": "flexible", "iso_flex_roof": "flexible"}
@@ -59,6 +67,15 @@ def isolation_settings(config: dict) -> dict:
 def study_names() -> list:
     """Names of the isolation studies (their dataset stems), in order."""
     return list(FAMILIES)
+
+
+def dataset_names() -> list:
+    """Every dataset of the isolation studies, in order.
+
+    The studies' (:func:`study_names`), the rigid reduction's, the design comparison's and the
+    bearing study's.
+    """
+    return study_names() + ["isolation_rigid", "isolation_design", "isolation_bearings"]
 
 
 def study_entries(section: dict) -> dict:
@@ -529,4 +546,499 @@ def findings(fp: xr.Dataset, lrb: xr.Dataset, rigid: xr.Dataset, design: xr.Data
         f"{design.attrs['beta_eff_target']:g} only at D = {design.attrs['D']:g} m; the bearings reached "
         f"{float(disp.min()):.2f} to {float(disp.max()):.2f} m (median {float(disp.median()):.2f} m). "
         f"Best system by the largest bearing displacement of the excitation, " + "; ".join(split) + "."))
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# what the bearing does to the contents, from service-level shaking to beyond the design
+# ----------------------------------------------------------------------------------------------
+
+BEARING_ISOLATORS = ("lead_rubber", "friction_pendulum", "friction_pendulum_speed")
+"""Isolators of the bearing study (:func:`bearing_study`), in the order of its ``isolator`` dimension."""
+
+BEARING_LABELS = {"lead_rubber": "lead-rubber bearing", "friction_pendulum": "friction pendulum (constant μ)",
+                  "friction_pendulum_speed": "friction pendulum (μ rising with speed)"}
+"""Names of the bearing study's isolators in text."""
+
+BUILDINGS = {"rigid": "base", "flexible": "roof"}
+"""Buildings of the bearing study -> the floor carrying the contents (the slab of a rigid
+superstructure, the roof of a flexible one)."""
+
+BEARING_DESIGN_KEYS = ("T_eff", "beta_eff", "D", "D_y")
+"""Keys of the ``isolation.design`` section the bearing study designs its isolators with."""
+
+PROBE_STEP = 0.01
+"""Largest step, in units of ``T_p``, of the histories giving the floor's and the bearing's peaks
+(the peak floor acceleration over their rows is within about 0.2 % of the continuous one)."""
+
+PROBE_HORIZON = 10.0
+"""How long those histories follow a response that does not settle, after the pulse, in isolation
+periods (the solver's ``horizon``): the peaks come during the pulse and the cycle after it, while a
+pendulum creeping towards its rest at ``x = mu_slow R`` under a flexible superstructure is followed
+for the solver's default horizon before it counts as unsettled."""
+
+SPEED_TOLERANCE = 0.01
+"""Relative difference of ``u_max`` below which the two pendulums' contents slide "the same"."""
+
+
+def _bearing_number(key: str, value, lo: float, hi: float, lo_in: bool = True, hi_in: bool = True) -> float:
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    ok = ok and (value >= lo if lo_in else value > lo) and (value <= hi if hi_in else value < hi)
+    if not ok:
+        left, right = ("<=" if lo_in else "<"), ("<=" if hi_in else "<")
+        raise ConfigError(f"isolation.bearings.{key} = {value!r} is out of range; allowed range: "
+                          f"{lo:g} {left} value {right} {hi:g}")
+    return float(value)
+
+
+def _bearing_list(key: str, values, hi: float) -> list:
+    if not isinstance(values, (list, tuple)) or not values:
+        raise ConfigError(f"isolation.bearings.{key} = {values!r} is invalid; allowed: a non-empty list of "
+                          f"numbers in (0, {hi:g}]")
+    out = []
+    for v in values:
+        if not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and 0 < v <= hi):
+            raise ConfigError(f"isolation.bearings.{key} = {values!r} holds {v!r}; allowed: numbers in (0, {hi:g}]")
+        out.append(float(v))
+    if len(set(out)) != len(out) or out != sorted(out):
+        raise ConfigError(f"isolation.bearings.{key} = {values!r} is not strictly increasing; allowed: increasing "
+                          f"values, each once")
+    return out
+
+
+def check_bearings(section: dict) -> dict:
+    """The checked ``isolation.bearings`` section (lists as lists of floats, numbers as floats).
+
+    Raises
+    ------
+    isoslide.config.ConfigError
+        Naming the key (``isolation.bearings.<key>``), its value and what is allowed.
+    """
+    from ..pulses import get_pulse
+
+    pulse = section["pulse"]
+    try:
+        get_pulse(pulse)
+    except (TypeError, ValueError) as err:
+        raise ConfigError(f"isolation.bearings.pulse = {pulse!r} is invalid: {err}") from None
+    buildings = section["buildings"]
+    if (not isinstance(buildings, (list, tuple)) or not buildings or len(set(buildings)) != len(buildings)
+            or any(b not in BUILDINGS for b in buildings)):
+        raise ConfigError(f"isolation.bearings.buildings = {buildings!r} is invalid; allowed: a non-empty list of "
+                          f"distinct values among {list(BUILDINGS)}")
+    return {
+        "pulse": pulse,
+        "T_p": _bearing_number("T_p", section["T_p"], 0.0, 100.0, lo_in=False),
+        "a_p": _bearing_list("a_p", section["a_p"], 1000.0),
+        "mu_k": _bearing_list("mu_k", section["mu_k"], 10.0),
+        "mu_slow_ratio": _bearing_number("mu_slow_ratio", section["mu_slow_ratio"], 0.0, 1.0, lo_in=False),
+        "rate": _bearing_number("rate", section["rate"], 0.0, 1e5),
+        "buildings": [str(b) for b in buildings],
+        "pi11": _bearing_number("pi11", section["pi11"], 0.0, 1.0, lo_in=False, hi_in=False),
+        "pi12": _bearing_number("pi12", section["pi12"], 0.0, 1e4, lo_in=False),
+        "pi13": _bearing_number("pi13", section["pi13"], 0.0, 1e3),
+    }
+
+
+def bearing_settings(settings: dict) -> dict:
+    """What the bearing study reads of :func:`isolation_settings` (copies).
+
+    ``isolation.bearings``, the design keys of ``isolation.design`` (:data:`BEARING_DESIGN_KEYS`),
+    ``defaults`` and ``solver``.
+    """
+    iso = settings["isolation"]
+    return {"isolation": {"bearings": copy.deepcopy(iso["bearings"]),
+                          "design": {k: iso["design"][k] for k in BEARING_DESIGN_KEYS}},
+            "defaults": copy.deepcopy(settings["defaults"]), "solver": copy.deepcopy(settings["solver"])}
+
+
+def bearing_isolators(settings: dict) -> dict:
+    """The isolators of the bearing study: ``{name: keyword arguments of Scene.from_physical}``.
+
+    The lead-rubber (bilinear) bearing and the friction pendulum of :func:`isoslide.studies.design.design`
+    (the isolators of :func:`design_comparison`: the same ``T_eff`` and ``beta_eff`` at ``D``), and
+    that pendulum with friction rising with speed (:func:`isoslide.friction_pendulum` with its radius,
+    ``mu_fast`` its ``mu``, ``mu_slow = mu_slow_ratio mu_fast`` and ``rate``), in the order of
+    :data:`BEARING_ISOLATORS`.
+    """
+    from ..scene import friction_pendulum
+
+    sec = check_bearings(settings["isolation"]["bearings"])
+    des = settings["isolation"]["design"]
+    M = NOMINAL_MASS
+    systems = _design.design(M, float(des["T_eff"]), float(des["beta_eff"]), float(des["D"]), float(des["D_y"]))
+    fp = systems["friction_pendulum"]
+    mu = fp.mu(G)
+    speed = {"M_b": M, "xi_b": fp.xi_b,
+             **friction_pendulum(fp.radius(G), mu, M, g=G, mu_slow=sec["mu_slow_ratio"] * mu, rate=sec["rate"])}
+    return {"lead_rubber": systems["bilinear"].scene_parameters(), "friction_pendulum": fp.scene_parameters(),
+            "friction_pendulum_speed": speed}
+
+
+def _building_parameters(building: str, sec: dict) -> dict:
+    """``floor``, ``m_st``, ``T_s``, ``xi_s`` of one building of the bearing study."""
+    if building == "rigid":
+        return {"floor": BUILDINGS[building]}
+    return {"floor": BUILDINGS[building], "m_st": sec["pi11"] * NOMINAL_MASS, "T_s": sec["pi12"] * sec["T_p"],
+            "xi_s": sec["pi13"]}
+
+
+def _coulomb(pi8: float, mu_k: float) -> dict:
+    """Coulomb contents of friction ``mu_k`` and mass ``pi8 NOMINAL_MASS``."""
+    return {"m_ec": pi8 * NOMINAL_MASS, "mu_s": mu_k, "mu_k": mu_k}
+
+
+def _probe(scene: Scene, rtol) -> tuple:
+    """``(peak floor acceleration [m/s^2], peak bearing displacement [m], bearing slid)`` of one scene.
+
+    From its history with steps of at most :data:`PROBE_STEP` ``T_p``, followed at most
+    :data:`PROBE_HORIZON` isolation periods after the pulse: the largest ``|floor_accel|``
+    over the rows (:func:`isoslide.store.history_io.history_table`), the largest ``|x|`` (the slab
+    relative to the ground) and whether the isolator ever slid or yielded (a bearing that held
+    throughout ran as a fixed base: facet ``isolator == "fixed-base"``).
+    """
+    from ..store.history_io import history_table
+    from .intensity import peak_abs
+
+    sol = solver.solve(scene, rtol=rtol, history=True, max_step=PROBE_STEP, horizon=PROBE_HORIZON)
+    h = sol.history
+    pfa = peak_abs(history_table(sol, scene).columns["floor_accel"])
+    disp = float(np.max(np.abs(h.x))) * scene.scale.length
+    slid = (sol.facets.isolator != "fixed-base" and h.iso_phase is not None
+            and bool(np.any(np.asarray(h.iso_phase) != 0)))
+    return pfa, disp, slid
+
+
+def bearing_study(settings: dict, solve_many=None) -> xr.Dataset:
+    """Peak sliding of the contents and the floor's peak acceleration over the pulse's intensity.
+
+    The isolators of :func:`bearing_isolators` (a lead-rubber bearing and a friction pendulum of the
+    same ``T_eff``, ``beta_eff`` at ``D``, and that pendulum with friction rising with speed) under
+    the buildings of ``isolation.bearings.buildings`` (:data:`BUILDINGS`), one pulse of period ``T_p``
+    scaled to each ``a_p``, Coulomb contents (``mu_s = mu_k``, mass ratio Pi8 from ``defaults``) of
+    each ``mu_k``.
+
+    Parameters
+    ----------
+    settings : dict
+        :func:`isolation_settings` of a complete configuration (or its :func:`bearing_settings`).
+    solve_many : callable, optional
+        The batch solver (:mod:`isoslide.studies.solving`); of its answers the study reads ``pi1``,
+        ``settled`` and ``facets``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``building, isolator, a_p, mu_k``: ``u_max`` [m] (``Pi1 a_p T_p^2``, as
+        :attr:`isoslide.Solution.u_max`), ``pi1``, ``settled`` and the model facets
+        (``model_*``, :func:`isoslide.datasets.encode_facets`; labels by
+        :func:`isoslide.datasets.model_labels`); ``pi2`` over ``a_p, mu_k``; per ``building,
+        isolator, a_p``, from one history with the contents at the largest ``mu_k`` (Pi8 is small:
+        the bearing and the floor barely feel them): ``pfa`` (peak absolute acceleration of the
+        contents' floor [m/s^2]), ``bearing_disp`` (peak isolator displacement [m]) and
+        ``bearing_slid`` (the bearing slid, or the lead-rubber bearing yielded); per ``isolator``:
+        ``T_b``, ``Q_over_W`` (``mu_fast`` of a pendulum), ``mu_slow``, ``rate``, ``D_y``, ``R``,
+        ``T_eff`` and ``beta_eff`` at ``D`` (the code linearisation; the speed-dependent pendulum's
+        with ``mu_fast``).
+    """
+    solve_many = batch_solver(solve_many)
+    sec = check_bearings(settings["isolation"]["bearings"])
+    des = settings["isolation"]["design"]
+    rtol = settings["solver"]["rtol"]
+    pi8 = float(settings["defaults"]["pi8"])
+    isolators = bearing_isolators(settings)
+    buildings, a_p, mu = sec["buildings"], np.array(sec["a_p"]), np.array(sec["mu_k"])
+    T_p, pulse = sec["T_p"], sec["pulse"]
+    shape = (len(buildings), len(isolators), a_p.size, mu.size)
+    scenes, probes = [], []
+    for b in buildings:
+        frame = _building_parameters(b, sec)
+        for iso in isolators.values():
+            for a in a_p:
+                base = dict(a_p=float(a), T_p=T_p, pulse=pulse, **frame, **iso)
+                scenes += [Scene.from_physical(**base, **_coulomb(pi8, float(m))) for m in mu]
+                probes.append(Scene.from_physical(**base, **_coulomb(pi8, float(mu[-1]))))
+    batch = solve_many(scenes, rtol=rtol)
+    pi1 = np.asarray(batch.pi1, dtype=float).reshape(shape)
+    length = np.array([s.scale.length for s in scenes]).reshape(shape)
+    settled = np.asarray(batch.settled, dtype=bool).reshape(shape)
+    peaks = np.array([_probe(s, rtol) for s in probes], dtype=float).reshape(*shape[:3], 3)
+
+    one = {"units": "1"}
+    ds = xr.Dataset(coords={
+        "building": ("building", np.array(buildings, dtype=object),
+                     {"long_name": "building: rigid superstructure (contents on the slab) or flexible one "
+                                   "(contents on the roof)"}),
+        "isolator": ("isolator", np.array(list(isolators), dtype=object), {"long_name": "isolator"}),
+        "a_p": ("a_p", a_p, {"long_name": "pulse amplitude a_p", "units": "m s-2"}),
+        "mu_k": ("mu_k", mu, {"long_name": "friction coefficient of the Coulomb contents (mu_s = mu_k)", **one}),
+    })
+    ds.coords["floor"] = ("building", np.array([BUILDINGS[b] for b in buildings], dtype=object),
+                          {"long_name": "floor carrying the contents"})
+    d4 = ("building", "isolator", "a_p", "mu_k")
+    ds["u_max"] = (d4, pi1 * length, {"long_name": "peak sliding displacement of the contents", "units": "m"})
+    ds["pi1"] = (d4, pi1, pi_attrs("pi1"))
+    ds["pi2"] = (("a_p", "mu_k"), mu[None, :] * G / a_p[:, None], pi_attrs("pi2"))
+    ds["settled"] = (d4, settled.astype(np.int8), {"long_name": "response settled", **one,
+                                                    "flag_values": np.array([0, 1], np.int8),
+                                                    "flag_meanings": "not_settled settled"})
+    for name, (dims, codes, attrs) in encode_facets(batch.facets, d4, shape).items():
+        ds[name] = (dims, codes, attrs)
+    d3 = ("building", "isolator", "a_p")
+    probe = (f"contents at the largest mu_k; history steps <= {PROBE_STEP:g} T_p, at most {PROBE_HORIZON:g} "
+             "isolation periods after the pulse")
+    ds["pfa"] = (d3, peaks[..., 0], {"long_name": "peak absolute acceleration of the contents' floor",
+                                     "units": "m s-2", "comment": probe})
+    ds["bearing_disp"] = (d3, peaks[..., 1], {"long_name": "peak isolator displacement", "units": "m",
+                                              "comment": probe})
+    ds["bearing_slid"] = (d3, peaks[..., 2].astype(np.int8),
+                          {"long_name": "the bearing slid (a lead-rubber bearing: yielded)", **one,
+                           "flag_values": np.array([0, 1], np.int8), "flag_meanings": "held slid",
+                           "comment": probe})
+    D = float(des["D"])
+    rows = {"T_b": [], "Q_over_W": [], "mu_slow": [], "rate": [], "D_y": [], "R": [], "T_eff": [], "beta_eff": []}
+    for iso in isolators.values():
+        W = iso["M_b"] * G
+        k_d = iso["M_b"] * (2.0 * math.pi / iso["T_b"]) ** 2
+        K, beta = _design.effective_bilinear(k_d, iso["Q_d"], D, iso["D_y"])
+        for k, v in (("T_b", iso["T_b"]), ("Q_over_W", iso["Q_d"] / W), ("mu_slow", iso.get("Q_slow", iso["Q_d"]) / W),
+                     ("rate", iso.get("rate", 0.0)), ("D_y", iso["D_y"]), ("R", W / k_d),
+                     ("T_eff", _design.effective_period(iso["M_b"], K)), ("beta_eff", beta)):
+            rows[k].append(float(v))
+    meta = {"T_b": ("period of the (post-yield) stiffness 2 pi sqrt(M_b/k_d)", "s"),
+            "Q_over_W": ("characteristic strength over weight Q/W (a pendulum's mu_fast)", "1"),
+            "mu_slow": ("friction at breakaway (zero speed) over weight; Q/W where friction is constant", "1"),
+            "rate": ("rate a of mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|); 0: constant", "s m-1"),
+            "D_y": ("yield displacement", "m"),
+            "R": ("radius of the pendulum of the same k_d, M_b g/k_d", "m"),
+            "T_eff": ("effective period at D (code linearisation, mu_fast)", "s"),
+            "beta_eff": ("effective damping at D (code linearisation, mu_fast)", "1")}
+    for k, v in rows.items():
+        ds[k] = ("isolator", np.asarray(v), {"long_name": meta[k][0], "units": meta[k][1]})
+    ds.attrs.update({"D": D, "T_eff_target": float(des["T_eff"]), "beta_eff_target": float(des["beta_eff"]),
+                     "D_y_bilinear": float(des["D_y"]), "T_p": T_p, "pulse": pulse, "M_b": NOMINAL_MASS,
+                     "pi8": pi8, "mu_slow_ratio": sec["mu_slow_ratio"], "rate": sec["rate"],
+                     "pi11_flexible": sec["pi11"], "pi12_flexible": sec["pi12"], "pi13_flexible": sec["pi13"],
+                     "probe_step": PROBE_STEP, "probe_horizon": PROBE_HORIZON, "rtol": "default" if rtol is None else float(rtol)})
+    return ds
+
+
+def bearings_dataset(settings: dict) -> xr.Dataset:
+    """:func:`bearing_study` with CF global attributes (rule isolation_bearings)."""
+    ds = bearing_study(settings)
+    extra = dict(ds.attrs)
+    sub = bearing_settings(settings)
+    ds.attrs = global_attrs(
+        title="isoslide: contents on isolated floors from service-level shaking to beyond the design, under a "
+              "lead-rubber bearing and friction pendulums of constant and speed-dependent friction",
+        history=(f"isoslide.studies.isolation_study.bearing_study: {ds.sizes['building']} buildings x "
+                 f"{ds.sizes['isolator']} isolators x {ds.sizes['a_p']} a_p x {ds.sizes['mu_k']} mu_k, isolators by "
+                 "isoslide.studies.design (ASCE 7 / AASHTO linearisation); no timestamps are stored"),
+        config={"bearings": sub["isolation"]["bearings"], "design": sub["isolation"]["design"],
+                "defaults": sub["defaults"], "solver": sub["solver"]}, **extra)
+    return ds
+
+
+# ----------------------------------------------------------------------------------------------
+# the bearing study's findings, with their numbers
+# ----------------------------------------------------------------------------------------------
+
+BUILDING_TEXT = {"rigid": "rigid superstructure, contents on the slab",
+                 "flexible": "flexible superstructure, contents on the roof"}
+"""The bearing study's buildings in text."""
+
+
+def _speed_verdict(u_const: float, u_speed: float, tolerance: float) -> str:
+    """``none`` (neither slides), ``more``, ``less`` or ``same`` (within ``tolerance``) for the speed-dependent pendulum."""
+    if u_const <= 0.0 and u_speed <= 0.0:
+        return "none"
+    if u_const <= 0.0:
+        return "more"
+    if u_speed <= 0.0:
+        return "less"
+    r = u_speed / u_const
+    return "more" if r > 1.0 + tolerance else "less" if r < 1.0 - tolerance else "same"
+
+
+def speed_effect(ds: xr.Dataset, tolerance: float = SPEED_TOLERANCE) -> list:
+    """Where the speed-dependent pendulum's contents slide more or less than the constant one's.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :func:`bearing_study` (``isolation_bearings.nc``).
+    tolerance : float
+        Relative difference of ``u_max`` counted as "the same".
+
+    Returns
+    -------
+    list of tuple
+        Per building and ``mu_k``, each run of consecutive ``a_p`` with one verdict:
+        ``(building, mu_k, verdict, first a_p, last a_p, points, smallest ratio, largest ratio, a_p of
+        the largest difference, its u_max constant [m], its u_max speed-dependent [m])``; the verdict
+        is ``none`` (neither slides), ``more``, ``less`` or ``same``, the ratio
+        ``u_max speed / u_max constant`` (``inf`` where only the speed-dependent one slides).
+    """
+    rows = []
+    a_p = ds["a_p"].values
+    for b in ds["building"].values:
+        for m in ds["mu_k"].values:
+            sel = ds["u_max"].sel(building=b, mu_k=m)
+            uc = sel.sel(isolator="friction_pendulum").values
+            us = sel.sel(isolator="friction_pendulum_speed").values
+            verdicts = [_speed_verdict(float(c), float(v), tolerance) for c, v in zip(uc, us, strict=True)]
+            start = 0
+            for k in range(1, len(verdicts) + 1):
+                if k < len(verdicts) and verdicts[k] == verdicts[start]:
+                    continue
+                idx = np.arange(start, k)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    ratio = np.where(uc[idx] > 0, us[idx] / np.where(uc[idx] > 0, uc[idx], 1.0),
+                                     np.where(us[idx] > 0, np.inf, np.nan))
+                j = idx[int(np.argmax(np.abs(us[idx] - uc[idx])))]
+                finite = ratio[~np.isnan(ratio)]
+                rows.append((str(b), float(m), verdicts[start], float(a_p[start]), float(a_p[k - 1]), int(idx.size),
+                             float(finite.min()) if finite.size else math.nan,
+                             float(finite.max()) if finite.size else math.nan,
+                             float(a_p[j]), float(uc[j]), float(us[j])))
+                start = k
+    return rows
+
+
+def bearing_onsets(ds: xr.Dataset) -> list:
+    """Where each bearing and its contents start to move, and where the bearing reaches ``D``.
+
+    Returns
+    -------
+    list of tuple
+        Per building and isolator: ``(building, isolator, first a_p at which the bearing slid or
+        yielded, peak floor acceleration at the smallest a_p [m/s^2], first a_p at which the
+        bearing reaches D, its displacement at the largest a_p [m], first a_p at which the contents
+        slide per mu_k (tuple))``; NaN where it never happens on the grid.
+    """
+    D = float(ds.attrs["D"])
+    a_p = ds["a_p"].values
+
+    def first(mask):
+        k = np.flatnonzero(np.asarray(mask))
+        return float(a_p[k[0]]) if k.size else math.nan
+
+    rows = []
+    for b in ds["building"].values:
+        for iso in ds["isolator"].values:
+            sub = ds.sel(building=b, isolator=iso)
+            disp = sub["bearing_disp"].values
+            rows.append((str(b), str(iso), first(sub["bearing_slid"].values > 0), float(sub["pfa"].values[0]),
+                         first(disp >= D), float(disp[-1]),
+                         tuple(first(sub["u_max"].sel(mu_k=m).values > 0) for m in ds["mu_k"].values)))
+    return rows
+
+
+def _ap(x: float) -> str:
+    return "never on the grid" if not np.isfinite(x) else f"{x:g} m/s²"
+
+
+def _span(lo: float, hi: float) -> str:
+    return f"a_p = {lo:g} m/s²" if lo == hi else f"a_p = {lo:g} to {hi:g} m/s²"
+
+
+def bearing_findings(ds: xr.Dataset) -> list:
+    """The bearing study's findings, each ``(title, text with its numbers)``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :func:`bearing_study` (``isolation_bearings.nc``).
+    """
+    out = []
+    names = BEARING_LABELS
+    tol = SPEED_TOLERANCE
+    runs = speed_effect(ds, tol)
+    lines = []
+    for b in ds["building"].values:
+        per_mu = []
+        for m in ds["mu_k"].values:
+            parts = []
+            for row in runs:
+                if row[0] != str(b) or row[1] != float(m) or row[2] == "none":
+                    continue
+                _, _, verdict, lo, hi, _n, rmin, rmax, at, uc, us = row
+                if verdict == "same":
+                    parts.append(f"the same within {tol:.0%} at {_span(lo, hi)}")
+                    continue
+                ratio = (f"ratio {rmin:.2f}" if rmin == rmax else f"ratio {rmin:.2f} to {rmax:.2f}")
+                if not np.isfinite(rmax):
+                    ratio = "only the speed-dependent one's slide"
+                elif rmax == 0.0:
+                    ratio = "only the constant one's slide"
+                parts.append(f"{verdict} at {_span(lo, hi)} ({ratio}; {us * 100:.2f} against {uc * 100:.2f} cm "
+                             f"at a_p = {at:g} m/s²)")
+            if parts:
+                per_mu.append(f"μ_k = {float(m):g}: " + ", ".join(parts))
+            else:
+                per_mu.append(f"μ_k = {float(m):g}: neither slides")
+        lines.append(f"{BUILDING_TEXT.get(str(b), str(b)).capitalize()} — " + "; ".join(per_mu))
+    counted = []
+    for verdict in ("less", "more", "same"):
+        sel = [r for r in runs if r[2] == verdict]
+        n = sum(r[5] for r in sel)
+        if n:
+            where = f" ({_span(min(r[3] for r in sel), max(r[4] for r in sel))})" if verdict != "same" else ""
+            counted.append(f"{verdict if verdict != 'same' else f'the same within {tol:.0%}'} at {n}{where}")
+    total = sum(r[5] for r in runs if r[2] != "none")
+    summary = (f"Of the {total} (building, a_p, μ_k) points where either pendulum's contents slide, the speed-dependent "
+               f"pendulum's slide " + ", ".join(counted) + ".") if total else "Neither pendulum's contents slide."
+    out.append(("Friction rising with speed: where the pendulum's contents slide more, and where less",
+                f"Peak sliding u_max of the contents under the pendulum whose friction rises with speed (μ_slow = "
+                f"{ds.attrs['mu_slow_ratio']:g} μ_fast, a = {ds.attrs['rate']:g} s/m) against the same pendulum "
+                f"of constant friction μ = μ_fast = {float(ds['Q_over_W'].sel(isolator='friction_pendulum')):.4f}. "
+                + ". ".join(lines) + ". " + summary))
+
+    onsets = bearing_onsets(ds)
+    lines = []
+    for b in ds["building"].values:
+        rows = {r[1]: r for r in onsets if r[0] == str(b)}
+        fp, fs, lrb = rows["friction_pendulum"], rows["friction_pendulum_speed"], rows["lead_rubber"]
+        pfa = ds["pfa"].sel(building=b)
+        ratio = (pfa.sel(isolator="friction_pendulum_speed") / pfa.sel(isolator="friction_pendulum")).values
+        k_lo, k_hi = int(np.argmin(ratio)), int(np.argmax(ratio))
+        a_p = ds["a_p"].values
+        lines.append(
+            f"{BUILDING_TEXT.get(str(b), str(b)).capitalize()}: at the smallest a_p = {a_p[0]:g} m/s² the floor "
+            f"peaks at {fp[3] / G:.4f} g on the constant pendulum, {fs[3] / G:.4f} g on the speed-dependent one and "
+            f"{lrb[3] / G:.4f} g on the lead-rubber bearing; the constant pendulum first slides at {_ap(fp[2])}, the "
+            f"speed-dependent one at {_ap(fs[2])} (breakaway at μ_slow = "
+            f"{float(ds['mu_slow'].sel(isolator='friction_pendulum_speed')):.4f}), the lead-rubber bearing yields "
+            f"at {_ap(lrb[2])}; the speed-dependent pendulum's floor acceleration is {ratio[k_lo]:.2f}× "
+            f"(a_p = {a_p[k_lo]:g} m/s²) to {ratio[k_hi]:.2f}× (a_p = {a_p[k_hi]:g} m/s²) the constant one's")
+    out.append(("Which bearing holds, which one breaks away, and what the floor feels",
+                ". ".join(lines) + "."))
+
+    D = float(ds.attrs["D"])
+    lines = []
+    for b in ds["building"].values:
+        parts = []
+        for r in (r for r in onsets if r[0] == str(b)):
+            reach = f"reaches D at a_p = {r[4]:g} m/s²" if np.isfinite(r[4]) else "stays below D"
+            slide = ", ".join(f"{_ap(a)} (μ_k = {float(m):g})" for a, m in zip(r[6], ds["mu_k"].values, strict=True))
+            parts.append(f"{names[r[1]]} {reach}, {r[5]:.3f} m = {r[5] / D:.2f} D at the largest a_p; its contents "
+                         f"start sliding at {slide}")
+        lines.append(f"{BUILDING_TEXT.get(str(b), str(b)).capitalize()}: " + "; ".join(parts))
+    out.append((f"From service level to beyond the design displacement D = {D:g} m", ". ".join(lines) + "."))
+
+    u = ds["u_max"]
+    counts = []
+    for b in ds["building"].values:
+        sub = u.sel(building=b)
+        slides = (sub > 0).any("isolator").values
+        least = (sub == sub.min("isolator")).values          # ties count for each
+        n = int(slides.sum())
+        tally = ", ".join(f"{names[str(iso)]} {int(np.sum(least[i] & slides))}"
+                          for i, iso in enumerate(ds["isolator"].values))
+        top = sub.isel(a_p=-1, mu_k=0)
+        counts.append(f"{BUILDING_TEXT.get(str(b), str(b))}: of the {n} (a_p, μ_k) points where any contents slide, the "
+                      f"smallest u_max (ties counted for each) is under the {tally}; at the largest a_p and μ_k = {float(ds['mu_k'][0]):g} "
+                      + ", ".join(f"{names[str(i)]} {float(top.sel(isolator=i)) * 100:.1f} cm"
+                                  for i in ds["isolator"].values))
+    out.append(("Which bearing lets the contents slide least", "; ".join(counts).capitalize() + "."))
     return out

@@ -178,13 +178,14 @@ def _fragility_needs(config: Mapping) -> list[str]:
 
 
 def _isolation_datasets(config: Mapping) -> list[str]:
-    return isolation_study.study_names() + ["isolation_rigid", "isolation_design"]
+    return isolation_study.dataset_names()
 
 
 PAPER_FIGURES = tuple(f"fig{n}" for n in range(1, 9))
 """The paper's figures."""
 
-ISOLATION_FIGURES = ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design")
+ISOLATION_FIGURES = ("isolation_bearings", "isolation_flexible", "isolation_rigid", "isolation_design",
+                     "isolation_intensity")
 """The isolation studies' figures (:data:`isoslide.reports.isolation_plot.FIGURES`)."""
 
 PLANAR_FIGURES = ("planar", "planar_ratio", "planar_vertical", "planar_pi5")
@@ -284,7 +285,8 @@ STUDIES: tuple[Study, ...] = (
                               "flex_base_path": dataset_path("iso_flex_base"),
                               "flex_roof_path": dataset_path("iso_flex_roof"),
                               "rigid_path": dataset_path("isolation_rigid"),
-                              "design_path": dataset_path("isolation_design")},
+                              "design_path": dataset_path("isolation_design"),
+                              "bearings_path": dataset_path("isolation_bearings")},
                         parameters={"figure_dir": FIGURE_DIR},
                         needs=tuple(figure_path(f) for f in ISOLATION_FIGURES), code="isolation_report"),),
         code={
@@ -294,7 +296,7 @@ STUDIES: tuple[Study, ...] = (
         },
         rule_files=("isolation.smk",),
         groups={"merge_isolation_study": "merge", "isolation_rigid": "merge", "isolation_design": "merge",
-                "isolation_figure": "figures"},
+                "isolation_bearings": "merge", "isolation_figure": "figures"},
     ),
     Study(
         name="storeys",
