@@ -632,7 +632,8 @@ def along_line(scene: Scene) -> tuple:
     peak acceleration ``lam a_p`` (:attr:`isoslide.Scene.line_amplitude`).  The building and the
     contents are isotropic, so the contents slide along that line as the 1-D model does under the
     main pulse scaled by ``lam``: with ``lam a_p`` as the pulse amplitude, the groups holding
-    ``a_p`` become ``Pi2 / lam``, ``Pi6 lam``, ``Pi9 / lam``, ``Pi10 / lam`` and ``Pi1 = lam Pi1'``.
+    ``a_p`` become ``Pi2 / lam``, ``Pi6 lam``, ``Pi9 / lam``, ``Pi10 / lam``, ``Pi23 lam`` and
+    ``Pi1 = lam Pi1'``.
 
     Returns
     -------
@@ -646,7 +647,8 @@ def along_line(scene: Scene) -> tuple:
                          "equal to pulse with pi15 = 1 and pi16 = 0")
     lam = scene.line_amplitude
     line = dataclasses.replace(scene, pulse_y=None, pi14=1.0, pi15=1.0, pi16=0.0, angle=0.0, pi2=scene.pi2 / lam,
-                               pi6=scene.pi6 * lam, pi9=scene.pi9 / lam, pi10=scene.pi10 / lam, scale=None)
+                               pi6=scene.pi6 * lam, pi9=scene.pi9 / lam, pi10=scene.pi10 / lam,
+                               pi23=scene.pi23 * lam, scale=None)
     return line, lam, theta
 
 

@@ -34,6 +34,17 @@ Contact (isotropic Stribeck friction, the friction level ``phi(|w|)`` of
   the floor is along the same line);
 - stop when the speed ``|w|`` returns to zero.
 
+A sliding bearing (friction pendulum) is a second interface of the same kind between the slab and
+the ground, with circular friction: held (``x' = 0``) while the force ``f`` that holds the slab is
+within its breakaway level, ``|f| <= q_s nz``; sliding with the friction force ``q(|x'|) nz
+x'/|x'|`` on the slab; breaking away along ``f/|f|`` when ``|f|`` reaches ``q_s nz``.  The level
+``q(w) = q - (q - q_s) exp(-a w)`` rises with the slab's planar speed ``w = |x'|`` from ``q_s``
+at rest to ``q`` (Constantinou, Mokha and Reinhorn 1990;
+:func:`~isoslide.engine.building_kernel.bearing_level`, ``q = P_Q``, ``q_s = P_QS``, ``a =
+P_QA``); with ``a = 0`` it is the constant ``q = q_s``.  On its slaved line (mode ``+-2``, below)
+the bearing slides at the signed speed ``sg sigma`` with the level ``q(sg sigma)``, the law
+continued smoothly past a stop, so the force is continuous when a slide joins or leaves the line.
+
 Locating the stop.  A sliding block stops only while the force driving it is below friction;
 then its direction turns towards the driving force as ``(tau* - tau)^{a/c}`` and its speed falls
 as ``c (tau* - tau)`` to first order (``c`` the net deceleration), so ``|w|`` reaches zero without
@@ -52,7 +63,9 @@ with its interior peaks found as roots of its rate.
 
 Settlement: after the pulses, with the block stuck, the free building is linear and the same in
 both axes; the modal bound of :func:`isoslide.engine.building_kernel._modal_within` per axis,
-combined as ``sqrt(b_x^2 + b_y^2) <= thr``, proves the block never slides again.
+combined as ``sqrt(b_x^2 + b_y^2) <= thr``, proves the block never slides again.  A sliding bearing
+whose friction rises with speed may creep towards its stick band for ever after the pulses; the
+energy bound of :func:`_creep_settled` then proves that the block stays stuck.
 """
 
 from __future__ import annotations
@@ -66,8 +79,8 @@ from .. import jit_cache
 from ..pulses import accel_at, jerk_at
 from . import free_phase
 from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
-                              P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_ROOF, P_THR, _stiffness,
-                              _storey_force, friction, normal)
+                              P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_QA, P_QS, P_ROOF, P_THR,
+                              _stiffness, _storey_force, bearing_level, friction, normal)
 from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, C, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
                      _step_factor, _step_target, bracket_open, bracket_step, copy_state, doubling_error,
                      end_state, hermite_root, scaled_error, stage_state)
@@ -87,7 +100,7 @@ the end time, the largest speed, the final ``u``, the largest slab displacement 
 EV_DEMAND, EV_RATE, EV_PEAK, EV_STOP, EV_BDEMAND, EV_BRATE, EV_BSTOP, EV_YIELD, EV_YRATE, EV_UNLOAD = range(10)
 """Event kinds: a stuck block's demand ``|A_F| - thr nz``, its rate, ``u . w`` (the rate of
 ``|u|^2 / 2``), the signed speed ``sg sigma`` of a slow slide (mode ``+-2``); a held sliding
-bearing's demand ``|f_need| - q nz``, its rate, and its slow slide's signed speed; an elastic
+bearing's demand ``|f_need| - q_s nz``, its rate, and its slow slide's signed speed; an elastic
 bilinear bearing's ``|fh| - q``, its rate, and a yielding one's loading rate ``fh . x'/|fh|``."""
 
 STOP_FRACTION = 0.9
@@ -309,9 +322,12 @@ def _bearing_need(md, y, gx, gy, P, nz, tmp):
 def _bearing_force(md, tau, y, P, ex, nz, tmp):
     """A sliding bearing's friction force on the slab ``(rb_x, rb_y)`` and its slaved direction.
 
-    Returns ``(rbx, rby, dx, dy)``: ``q nz`` along the slab's velocity (mode 1) or along
-    ``sg d_b`` (mode ``+-2``, ``d_b`` the held need's direction); zero while held.  A bilinear
-    bearing's is its elastic-plastic force ``fh`` (a state) in either mode, with its direction.
+    Returns ``(rbx, rby, dx, dy)``: ``q(|x'|) nz`` along the slab's velocity (mode 1) or ``q(sg
+    sigma) nz`` along ``sg d_b`` (mode ``+-2``, ``d_b`` the held need's direction, ``sigma = x' .
+    d_b`` the slaved speed); zero while held.  ``q(w)`` is the friction level at the speed ``w``
+    (:func:`~isoslide.engine.building_kernel.bearing_level`: the constant ``q`` unless the friction
+    rises with speed, then ``q_s`` at rest, continued smoothly past a stop).  A bilinear bearing's is
+    its elastic-plastic force ``fh`` (a state) in either mode, with its direction.
     """
     im = md[M_IM]
     if _hysteretic(P):
@@ -321,14 +337,15 @@ def _bearing_force(md, tau, y, P, ex, nz, tmp):
     if im == 0.0 or not _sliding_bearing(P):
         return 0.0, 0.0, md[M_I0], md[M_I1]
     nb = _axis_len(P)
-    qn = P[P_Q] * nz
     if im == 1.0:
         dx, dy = _unit(y[1], y[nb + 1], md[M_I0], md[M_I1])
+        qn = bearing_level(math.sqrt(y[1] * y[1] + y[nb + 1] * y[nb + 1]), P)[0] * nz
         return qn * dx, qn * dy, dx, dy
     gx, gy = ground(tau, ex)
     fx, fy = _bearing_need(md, y, gx, gy, P, nz, tmp)
     dx, dy = _unit(fx, fy, md[M_I0], md[M_I1])
     sg = 0.5 * im
+    qn = bearing_level(sg * (y[1] * dx + y[nb + 1] * dy), P)[0] * nz
     return qn * sg * dx, qn * sg * dy, dx, dy
 
 
@@ -418,7 +435,8 @@ def deriv(md, tau, y, P, ex, out, tmp):
     (``A`` the floor's acceleration were the block stuck), friction ``-sg nz phi(|sigma|) d`` on
     the block (``sg = md[0] / 2``), ``sigma' = -A_F . d - sg nz phi`` and ``w' = sigma' d + sigma d'``.
     A sliding bearing's mode ``md[3]`` likewise for the slab's velocity ``x'``: 0 held, 1 sliding
-    with friction ``q nz x'/|x'|``, ``+-2`` on its slaved line along the held need ``f/|f|``.
+    with friction ``q(|x'|) nz x'/|x'|``, ``+-2`` on its slaved line along the held need ``f/|f|``
+    (friction ``sg q(sg sigma) nz f/|f|``, ``sigma = x' . f/|f|``).
     ``md[1:3]``, ``md[4:6]`` are the directions used where one is undefined (a zero speed or
     demand).  ``tmp`` is scratch space of at least ``n`` entries.
     """
@@ -528,8 +546,9 @@ def _demand(kind, md, tau, y, P, ex, tmp):
     gx, gy = ground(tau, ex)
     nz, _ = normal(tau, P)
     if kind == EV_BDEMAND:
+        # the need against the breakaway level (the friction at rest)
         fx, fy = _bearing_need(md, y, gx, gy, P, nz, tmp)
-        return math.sqrt(fx * fx + fy * fy) - P[P_Q] * nz
+        return math.sqrt(fx * fx + fy * fy) - P[P_QS] * nz
     held = _held(md[M_IM], P)
     rbx, rby, _, _ = _bearing_force(md, tau, y, P, ex, nz, tmp)
     ax, ay = _stuck_accels(y, gx, gy, P, tmp, held, rbx, rby, nz)
@@ -578,7 +597,8 @@ def _event(kind, md, tau, y, P, ex, work):
     base = EV_DEMAND if (kind == EV_DEMAND or kind == EV_RATE) else EV_BDEMAND
     if _sliding_bearing(P):
         # central differences along the motion (the bearing's friction and stiffness make the
-        # demands nonlinear in the state)
+        # demands nonlinear in the state; they take in the rate of a friction level that varies
+        # with the slab's speed, q'(|x'|) |x'|', and of the limit's nz)
         eps = FD_STEP * max(1.0, abs(tau))
         ys = work[4 * ny:5 * ny]
         for i in range(ny):
@@ -750,8 +770,9 @@ def _settled(md, y, P, Wm, Cm, Wh, Ch):
                 moving = True
     sliding = _sliding_bearing(P)
     static = math.sqrt((P[P_KD] * y[0]) ** 2 + (P[P_KD] * y[nb]) ** 2) if sliding else 0.0
+    strength = P[P_QS] if sliding else P[P_Q]     # a sliding bearing's breakaway, a bilinear one's yield
     if not moving:
-        return not sliding or static <= P[P_Q]
+        return not sliding or static <= strength
     W = Wh if held else Wm
     Cd = Ch if held else Cm
     bx = _modal_bound(W, Cd, 0, y, 0, nb)
@@ -762,9 +783,42 @@ def _settled(md, y, P, Wm, Cm, Wh, Ch):
         # the force holding a sliding bearing, or an elastic bilinear bearing's force, within its strength
         bx = _modal_bound(W, Cd, 1, y, 0, nb)
         by = _modal_bound(W, Cd, 1, y, nb, nb)
-        if bx < 0.0 or by < 0.0 or static + math.sqrt(bx * bx + by * by) > P[P_Q]:
+        if bx < 0.0 or by < 0.0 or static + math.sqrt(bx * bx + by * by) > strength:
             return False
     return True
+
+
+@njit(cache=True)
+def _creep_settled(md, y, P, xmax):
+    """True when a sliding bearing whose friction rises with speed provably leaves the block stuck for ever.
+
+    After the pulses (``p = 0``, ``nz = 1``), under a rigid superstructure, with the block stuck on
+    the slab and the bearing sliding (mode 1 or ``+-2``): the slab of mass ``M = mb + m`` obeys
+    ``M x'' = -kd x - cb x' - q(|x'|) n`` (``n = x'/|x'|``) while it slides, and stays put while
+    held (the only force on it, ``-kd x``, is then constant).  Its energy ``E = M |x'|^2/2 + kd
+    |x|^2/2`` has ``E' = -cb |x'|^2 - q(|x'|) |x'| <= 0`` while it slides and ``E' = 0`` while it is
+    held, and ``x``, ``x'`` are continuous at its stops and breakaways, so ``E`` never grows,
+    whatever the direction of the slide and however often the slab stops and starts again.  (The
+    1-D kernel's sharper bound, :func:`isoslide.engine.building_kernel._creep_settled`, measures the
+    energy from the edge of the stick band on the side the slab slides towards; that needs a fixed
+    direction, which a slide in the plane does not keep.)  Hence for all later times ``|x| <= sqrt(2
+    E / kd)`` and ``|x'| <= w = sqrt(2 E / M)``, and, as ``q`` does not fall with speed, the block's
+    demand is ``|A_F| = |kd x + cb x' + q(|x'|) n| / M <= (sqrt(2 E (kd + cb^2 / M)) + q(w)) / M``
+    while the slab slides (Cauchy-Schwarz on the first two terms) and ``A_F = 0`` while it is held.
+    The run settles when that bound is within the block's limit ``thr`` and ``sqrt(2 E / kd)``
+    within the largest slab displacement ``xmax`` already reached: the block never slips again, so
+    ``u``, the peak of ``|u|`` and ``xmax`` are final.  Constant friction is left to :func:`_settled`
+    (its slide stops in finite time).
+    """
+    if md[M_BM] != 0.0 or md[M_IM] == 0.0 or P[P_QA] == 0.0 or not _sliding_bearing(P) or P[P_FLEX] != 0.0:
+        return False
+    nb = _axis_len(P)
+    kd = P[P_KD]
+    M = P[P_MB] + P[P_M]
+    energy = 0.5 * M * (y[1] * y[1] + y[nb + 1] * y[nb + 1]) + 0.5 * kd * (y[0] * y[0] + y[nb] * y[nb])
+    w = math.sqrt(2.0 * energy / M)
+    demand = (math.sqrt(2.0 * energy * (kd + P[P_CB] * P[P_CB] / M)) + bearing_level(w, P)[0]) / M
+    return demand <= P[P_THR] and math.sqrt(2.0 * energy / kd) <= xmax
 
 
 @njit(cache=True)
@@ -930,7 +984,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     nh = _record(hist, 0, hist_cap, tau, y, md)
     a_x = np.empty(max(Wm.shape[0], Wh.shape[0]), dtype=np.complex128)
     a_y = np.empty(a_x.shape[0], dtype=np.complex128)
-    limits = np.array([P[P_THR], P[P_Q]])
+    limits = np.array([P[P_THR], P[P_QS] if bearing else P[P_Q]])
     offsets = np.zeros((2, 2))
     zone = 0.0
     if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < P[P_THR]:
@@ -950,7 +1004,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                 if md[M_IM] != im0:
                     iso_events += 1
                     moved, just_i = True, True
-        if tau >= tau_end and _settled(md, y, P, Wm, Cm, Wh, Ch):
+        if tau >= tau_end and (_settled(md, y, P, Wm, Cm, Wh, Ch) or _creep_settled(md, y, P, xmax)):
             settled = True
             if settle:
                 break
@@ -1054,7 +1108,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                     held_here = md[M_IM] == 0.0 and (bearing if kind == EV_BDEMAND else hyst)
                 if not held_here:
                     continue
-                limit = P[P_THR] if kind == EV_DEMAND else P[P_Q]
+                limit = P[P_THR] if kind == EV_DEMAND else (P[P_QS] if kind == EV_BDEMAND else P[P_Q])
                 found, hs, herr = _breakaway(kind, limit, md, tau, y, y1, h, t_end_step, P, ex, atol, rtol, check,
                                              K, ye, work, cnt)
                 if found and hs < hbest:

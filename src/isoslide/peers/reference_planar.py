@@ -60,12 +60,17 @@ relative to their floor, friction level ``phi(s) = thr sech(Pi6 s) + Pi2 (1 - se
   moves with the ground);
 * ``Pi1 = max |u|``, ``peak_angle = atan2(u_y, u_x)`` there, ``tau_peak`` its time.
 
-Sliding bearing (friction pendulum), ``q = Pi9``, under the slab of mass ``mb`` (``1 - Pi11``
-under a flexible superstructure, else 1; ``Ms_0`` is ``mb + m`` with the contents stuck on the
-slab, else ``mb``), the slab's displacement ``x = d_0`` and velocity ``x'`` relative to the ground.
-Its force on the slab is ``-(kd nz x + cb x' + fb)``: the pendulum's restoring force ``W x/R``
-scales with the normal force, so the slab's ``kd x`` in ``K d`` becomes ``kd nz x``, and ``fb`` is
-its friction:
+Sliding bearing (friction pendulum) under the slab of mass ``mb`` (``1 - Pi11`` under a flexible
+superstructure, else 1; ``Ms_0`` is ``mb + m`` with the contents stuck on the slab, else ``mb``),
+the slab's displacement ``x = d_0`` and velocity ``x'`` relative to the ground.  Its friction level
+rises with the slab's speed ``s = |x'|`` (Constantinou, Mokha and Reinhorn 1990)::
+
+    q(s) = q + (q_fast - q) (1 - exp(-Pi23 s)),   q = Pi9 Pi22,   q_fast = Pi9
+
+from the breakaway level ``q`` at rest to ``q_fast`` (:meth:`PlanarBuilding.level`; ``Pi22 = 1``
+or ``Pi23 = 0`` is the constant ``q = Pi9 Pi22`` at every speed).  Its force on the slab is ``-(kd
+nz x + cb x' + fb)``: the pendulum's restoring force ``W x/R`` scales with the normal force, so the
+slab's ``kd x`` in ``K d`` becomes ``kd nz x``, and ``fb`` is its friction:
 
 * held (``x' = 0``, ``x'' = 0``: the slab moves with the ground, ``d_0`` stays): the force the
   bearing must supply, ``f_need = -Ms_0 g - kd nz x + S + R_0``, is within ``|f_need| <= q nz``;
@@ -74,12 +79,13 @@ its friction:
   floor above; stuck on the slab their ``-m g`` is the ``m`` of ``Ms_0``).  The floors above move
   on their rows of the equation of motion with ``d_0`` fixed, and the contents on the slab move
   with the ground (``A_S = g``);
-* sliding: ``fb = q nz n_b``, ``n_b = x'/|x'|``; the slab's row is the linear isolator's with
+* sliding: ``fb = q(|x'|) nz n_b``, ``n_b = x'/|x'|``; the slab's row is the linear isolator's with
   ``-fb`` added, ``Ms_0 (g + x'') = -kd nz x - cb x' - fb + S + R_0`` (stuck on the slab the
   contents see ``A_S = (-kd nz x - cb x' - fb + S)/(mb + m)``);
 * breakaway where ``|f_need|`` reaches ``q nz``: the slab slides from rest along
-  ``f_need/|f_need|`` (force-continuous: the friction ``-f_need`` held becomes ``q nz`` along the
-  same line, and the contents keep their mode); a slab whose ``|x'|`` returns to zero stops, and the
+  ``f_need/|f_need|`` (force-continuous: the friction ``-f_need`` held becomes ``q(0) nz = q nz``
+  along the same line, and the contents keep their mode); a slab whose ``|x'|`` returns to zero
+  stops, and the
   modes of the interfaces at rest are chosen (below).
 
 Bilinear bearing (lead-rubber), ``q = Pi9``, ``D_y = Pi10``: the linear isolator (post-yield
@@ -178,11 +184,16 @@ The sliding bearing's slips run the same three kinds of segment, by the slab's s
 ``r_b = |x'|``: slaved below ``SLOW_SPEED`` (the speed ``r_b`` a state, held in ``x'_x``, and
 ``x' = r_b n_b``) along ``n_b = f_S/|f_S|``, ``f_S`` the need ``f_need`` evaluated with ``x' = 0``
 (the slab's damping ``-C_00 r_b n_b`` lies along ``n_b`` and does not turn it; the other rows get
-``-C_j0 r_b n_b``), so ``r_b' = (|f_S| - C_00 r_b - q nz)/Ms_0``; the exact equations with Radau
+``-C_j0 r_b n_b``), so ``r_b' = (|f_S| - C_00 r_b - q(r_b) nz)/Ms_0``; the exact equations with Radau
 below ``STIFF_SPEED q`` (until ``2 STIFF_SPEED q``) and DOP853 above, with the reference direction
 ``e_b`` and the events *turn*, *slow*, *gear* and *stop* of ``x'``.  A segment runs with Radau when
 either sliding interface is in its stiff band.  A slaved slip of both interfaces at once (both
-from rest, the contents on the slab) takes the joint directions above at every evaluation.
+from rest, the contents on the slab) takes the joint directions above at every evaluation (with
+``q(r_b) nz`` and the damping ``C_00 r_b`` in place of ``q nz``).  Every sliding segment evaluates
+the level at the signed speed along its friction direction, ``x' . n_b`` (``n_b = sgn(x' . e_b)
+x'/|x'|``) or ``r_b``, which is ``|x'|`` up to a stop and negative past it inside a step: ``q(s)``
+continues smoothly there, as the friction direction does, so the stop is a transversal root of a
+smooth function.
 
 Inside a slip ``|u|`` peaks where ``(|u|**2)'/2 = u . w`` goes from positive to negative (a
 non-terminal event); ``|u|`` is also taken at every stop and at the end of every segment, so the
@@ -205,7 +216,8 @@ projections ``D d`` of the two axes' coordinates obey it), so the energy of the 
 Cauchy-Schwarz), with ``Q`` taken now.  Settlement is the first moment this bound is at most
 ``thr`` (checked at every segment start and as a terminal event of the free segments); it only
 decides where the run stops, never ``Pi1``.  With a sliding bearing the response is free when the
-contents are stuck and the bearing held (a sliding slab never settles): then the slab stays at
+contents are stuck and the bearing held (a sliding slab never settles, and one whose friction rises
+with speed may creep towards its stick band until the horizon): then the slab stays at
 ``x`` and only the floors above it move, ``xs = d_j - x``, with the non-increasing ``Q`` of
 ``(xs, xs')`` over ``Ks`` and the floors' masses; ``|f_need| <= kd |x| + sqrt(lambda_max(Q)
 c_b^T P^-1 c_b)`` with ``c_b`` the storeys' forces on the slab (``S``) and ``P = diag(Ks, Ms)``
@@ -273,8 +285,13 @@ class PlanarBuilding:
         Kinetic level (units ``a_p``), Stribeck sharpness (units ``1/(a_p T_p)``) and viscous
         group (units ``1/T_p``) of the friction law.
     q : float
-        Strength ``Pi9`` of a sliding bearing under the slab (units ``M_b a_p``, times ``nz``);
-        0 without one (a linear isolator or a fixed base).
+        Breakaway level ``Pi9 Pi22`` of a sliding bearing under the slab (units ``M_b a_p``, times
+        ``nz``): its stick limit and its friction at rest; 0 without one (a linear isolator or a
+        fixed base).
+    q_fast, rate : float
+        The bearing's friction at high speed ``Pi9`` (units ``M_b a_p``, times ``nz``) and the rate
+        ``Pi23`` (units ``1/(a_p T_p)``) of its rise with the slab's speed (:meth:`level`);
+        ``q_fast = q`` and ``rate = 0`` for constant friction.
     qy, ke : float
         A bilinear bearing's yield strength ``Pi9`` (units ``M_b a_p``) and the elastic stiffness
         of its hysteretic force ``Pi9/Pi10`` (units ``M_b / T_p**2``); 0 without one.
@@ -296,6 +313,20 @@ class PlanarBuilding:
     kd: float = 0.0
     qy: float = 0.0
     ke: float = 0.0
+    q_fast: float = 0.0
+    rate: float = 0.0
+
+    def level(self, s: float) -> float:
+        """The sliding bearing's friction level at the slab's speed ``s`` (units ``M_b a_p``, times ``nz``).
+
+        ``q + (q_fast - q) (1 - exp(-rate s))``: ``q`` at rest, rising to ``q_fast``; ``q`` at every
+        speed for constant friction.  ``s`` is the speed along the friction direction, negative past
+        a stop inside a step, where the same expression continues the law smoothly (its exponent
+        capped at 60 against overflow).
+        """
+        if self.rate == 0.0:
+            return self.q
+        return self.q - (self.q_fast - self.q) * math.expm1(min(-self.rate * s, 60.0))
 
     @property
     def hysteretic(self) -> bool:
@@ -373,7 +404,11 @@ def planar_building(scene: Scene) -> PlanarBuilding:
     if scene.pi9 > 0.0 and scene.pi10 > 0.0:
         common.update(qy=float(scene.pi9), ke=float(scene.pi9 / scene.pi10))
     elif scene.pi9 > 0.0:
-        common.update(q=float(scene.pi9), kd=kd)
+        if scene.pi23 > 0.0 and scene.pi22 < 1.0:      # friction rising with speed from Pi9 Pi22 to Pi9
+            common.update(q=float(scene.pi9 * scene.pi22), q_fast=float(scene.pi9), rate=float(scene.pi23), kd=kd)
+        else:                                           # constant: Pi9 Pi22 at every speed
+            q = float(scene.pi9 * scene.pi22)
+            common.update(q=q, q_fast=q, kd=kd)
     if not flexible:
         return PlanarBuilding(masses=np.ones(1), K=np.array([[kd]]), C=np.array([[cb]]), k=0, **common)
     T = np.hstack([-np.ones((ms.size, 1)), np.eye(ms.size)])
@@ -847,18 +882,19 @@ class _Planar:
                     F[0] -= (z - 1.0) * B.kd * D[0]
                 if bm == _SLIDING:
                     nb = _along(V[0], dirs[1])
-                    F[0] -= B.q * z * nb
+                    F[0] -= B.level(float(V[0] @ nb)) * z * nb
                 elif bm == _SLAVED:
                     rb = yy[2 * nd]
+                    qb = B.level(rb) * z
                     need = F[0] - Ms[0] * gv
                     if k == 0 and cm == _SLAVED:
-                        nb, nc = _joint_directions(F[0], need, self.C0[0] * rb + B.q * z, m * fr, dirs)
+                        nb, nc = _joint_directions(F[0], need, self.C0[0] * rb + qb, m * fr, dirs)
                     else:
                         if k == 0 and cm == _SLIDING:
                             need = need + m * fr * nc
                         nb = _unit(need, dirs[1])
                     F -= np.outer(self.C0, rb * nb)
-                    F[0] -= B.q * z * nb
+                    F[0] -= qb * nb
                     V[0] = rb * nb
         if cm == _SLAVED and nc is None:
             AS = gv if k < 0 or (held and k == 0) else F[k] / self.stuck[k]
