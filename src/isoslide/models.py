@@ -232,14 +232,15 @@ VERTICAL_LABELS = tuple(f"{n}+vertical" for n in _exact_labels() + _building_lab
                         if "static-kinetic" not in n)
 """Labels of the general building under vertical ground motion (every reduction is off there)."""
 MODEL_LABELS = MODEL_LABELS + VERTICAL_LABELS
-PLANAR_ISOLATORS = ("linear", "fixed-base", "sliding-bearing")
+PLANAR_ISOLATORS = ("linear", "fixed-base", "sliding-bearing", "sliding-bearing-speed")
 """Isolators of a building in the plane (a bilinear bearing's circular yield surface is not modelled)."""
 PLANAR_LABELS = tuple(f"{n}+planar{v}" for v in ("", "+vertical")
                       for n in _exact_labels() + _building_labels(("base", "roof", "intermediate"))
                       if "static-kinetic" not in n and n.split("+")[0] in PLANAR_ISOLATORS + ("no-slide", "coulomb",
                                                                                             "stribeck"))
 """Labels of planar sliding (two horizontal ground components not along one line), with and without
-vertical motion: a fixed base, a linear isolator or a sliding bearing (:data:`PLANAR_ISOLATORS`)."""
+vertical motion: a fixed base, a linear isolator or a sliding bearing, its friction constant or rising
+with speed (:data:`PLANAR_ISOLATORS`)."""
 MODEL_LABELS = MODEL_LABELS + PLANAR_LABELS
 """Every label :func:`isoslide.solve` can produce."""
 

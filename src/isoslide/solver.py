@@ -470,7 +470,6 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
             raise ValueError(f"method = {method!r} is invalid; allowed: 'exact', "
                              + ", ".join(repr(m) for m in SCENE_SOLVERS))
         if not scene.in_line:
-            _check_planar_bearing(scene, planar=scene.planar)
             if method != "reference":
                 raise ValueError(f"method = {method!r} does not model two horizontal ground components or an angle "
                                  f"(pulse_y = {getattr(scene.pulse_y, 'name', None)!r}, angle = {scene.angle!r}); "
@@ -490,7 +489,6 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
         raise ValueError(f"max_step = {max_step!r} is out of range; allowed range: 0 < max_step <= inf")
     rtol = _check_rtol(rtol)
     if not scene.in_line:
-        _check_planar_bearing(scene, planar=scene.planar or model == "full")
         return _solve_horizontal(scene, rtol, history, horizon, model, max_step, settle, piecewise_path)
     if not scene.paper_model:
         return _solve_building(scene, rtol, history, horizon, model, max_step, settle, piecewise_path)
@@ -533,18 +531,6 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     law = "static-kinetic" if model == "static-kinetic" else ("coulomb" if coulomb else "stribeck")
     facets = scene_facets(scene, friction=law, oneway=oneway)
     return _solution(scene, out, facets, _history(out.hist) if history else None)
-
-
-def _check_planar_bearing(scene: Scene, planar: bool) -> None:
-    """ValueError for a scene solved in the plane on a sliding bearing whose friction depends on speed.
-
-    The planar engines give a sliding bearing one constant circular friction level; the speed
-    dependence (``Pi22 < 1`` with ``Pi23 > 0``) is modelled along one line only.
-    """
-    if planar and building_of(scene).isolator.speed_dependent:
-        raise ValueError(f"pi22 = {scene.pi22!r} with pi23 = {scene.pi23!r} (a sliding bearing whose friction "
-                         "depends on speed) is modelled along one line only; allowed in the plane: pi22 = 1 or "
-                         "pi23 = 0 (constant bearing friction), or a ground motion along one line")
 
 
 def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
