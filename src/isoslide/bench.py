@@ -313,8 +313,8 @@ def _limits(p, rows: dict, summ: dict, paper: str) -> None:
     isolator's or the superstructure's highest mode), each step's cost the size of the system.
     """
     steps0 = np.array(rows[paper]["steps"], dtype=float)
-    p(f"what limits each: steps per scene and cost per step against the paper model's "
-      f"(shortest period followed, units of T_p)")
+    p("what limits each: steps per scene and cost per step against the paper model's "
+      "(shortest period followed, units of T_p)")
     for name, r in rows.items():
         if name == paper:
             continue
