@@ -35,11 +35,13 @@ from . import design as _design
 from .. import solver
 from ..config import ConfigError
 from ..datasets import encode_facets, global_attrs, open_dataset, pi_attrs
-from .intensity import floor_peaks
+from .intensity import floor_peaks, peak_abs
 from .record_study import resolve_record
 from .solving import batch_solver
 from ..records import G
-from ..scene import FLOORS, Scene
+from ..pulses import get_pulse
+from ..scene import FLOORS, Scene, friction_pendulum
+from ..store.history_io import history_table
 from .sweep import normalise_study
 
 __all__ = ["BEARING_ISOLATORS", "BUILDINGS", "FAMILIES", "NOMINAL_MASS", "bearing_findings", "bearing_isolators",
@@ -614,8 +616,6 @@ def check_bearings(section: dict) -> dict:
     isoslide.config.ConfigError
         Naming the key (``isolation.bearings.<key>``), its value and what is allowed.
     """
-    from ..pulses import get_pulse
-
     pulse = section["pulse"]
     try:
         get_pulse(pulse)
@@ -661,8 +661,6 @@ def bearing_isolators(settings: dict) -> dict:
     ``mu_fast`` its ``mu``, ``mu_slow = mu_slow_ratio mu_fast`` and ``rate``), in the order of
     :data:`BEARING_ISOLATORS`.
     """
-    from ..scene import friction_pendulum
-
     sec = check_bearings(settings["isolation"]["bearings"])
     des = settings["isolation"]["design"]
     M = NOMINAL_MASS
@@ -697,9 +695,6 @@ def _probe(scene: Scene, rtol) -> tuple:
     relative to the ground) and whether the isolator ever slid or yielded (a bearing that held
     throughout ran as a fixed base: facet ``isolator == "fixed-base"``).
     """
-    from ..store.history_io import history_table
-    from .intensity import peak_abs
-
     sol = solver.solve(scene, rtol=rtol, history=True, max_step=PROBE_STEP, horizon=PROBE_HORIZON)
     h = sol.history
     pfa = peak_abs(history_table(sol, scene).columns["floor_accel"])
