@@ -311,6 +311,37 @@ SUBSTEPS, SUBSTEP_LEVELS = 10, 2
 linearly), at most ``SUBSTEP_LEVELS`` times over."""
 
 
+def _hold_static_load(ops, what: str) -> None:
+    """Apply the loads of the current patterns in one static step and hold them constant from time 0.
+
+    Newton on the full system (tolerance :data:`TOL`); on failure the model is wiped and a
+    RuntimeError names ``what`` (the loads applied).
+    """
+    ops.constraints("Plain")
+    ops.numberer("Plain")
+    ops.system("FullGeneral")
+    ops.test("NormDispIncr", TOL, ITERATIONS)
+    ops.algorithm("Newton")
+    ops.integrator("LoadControl", 1.0)
+    ops.analysis("Static")
+    if ops.analyze(1) != 0:
+        ops.wipe()
+        raise RuntimeError(f"OpenSees: the static analysis of {what} failed")
+    ops.loadConst("-time", 0.0)
+    ops.wipeAnalysis()
+
+
+def _newmark_analysis(ops) -> None:
+    """The transient analysis of the peers: average-acceleration Newmark, Newton on the full system."""
+    ops.constraints("Plain")
+    ops.numberer("Plain")
+    ops.system("FullGeneral")
+    ops.test("NormDispIncr", TOL, ITERATIONS)
+    ops.algorithm("Newton")
+    ops.integrator("Newmark", 0.5, 0.25)
+    ops.analysis("Transient")
+
+
 def _step(ops, dtau: float, level: int = 0) -> bool:
     """One Newmark step of ``dtau``, with the retries of :data:`RETRIES` and :data:`SUBSTEPS`."""
     if ops.analyze(1, dtau) == 0:
@@ -411,13 +442,7 @@ def solve_opensees(scene: Scene, stiffness: float = 1e6, tau_max: float | None =
     ops.logFile(os.devnull, "-noEcho")     # the retries of _step are expected; a failure raises
     ops.timeSeries("Path", 1, "-dt", dtau, "-values", *acc.tolist())
     ops.pattern("UniformExcitation", 1, 1, "-accel", 1)
-    ops.constraints("Plain")
-    ops.numberer("Plain")
-    ops.system("FullGeneral")
-    ops.test("NormDispIncr", TOL, ITERATIONS)
-    ops.algorithm("Newton")
-    ops.integrator("Newmark", 0.5, 0.25)
-    ops.analysis("Transient")
+    _newmark_analysis(ops)
     iso = M.q > 0.0
     umax, tau_peak, u = 0.0, float(pulse.tau_start), 0.0
     rows = [] if history else None

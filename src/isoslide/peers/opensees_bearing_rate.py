@@ -78,8 +78,8 @@ import numpy as np
 
 from ..scene import Scene
 from ..store.history import History, phase_of
-from .opensees import (BLOCK, GROUND, ITERATIONS, SLAB, TOL, _at_limit, _opensees, _positive, _step,
-                       opensees_available, opensees_model)
+from .opensees import (BLOCK, GROUND, SLAB, _at_limit, _hold_static_load, _newmark_analysis, _opensees, _positive,
+                       _step, opensees_available, opensees_model)
 from .result import PeerResult
 
 __all__ = ["BearingRateModel", "BearingRateResult", "ConvergenceRow", "DEFAULT_PAIRS", "EXAMPLE", "HORIZON",
@@ -222,18 +222,7 @@ def _build(ops, M: BearingRateModel) -> None:
     ops.timeSeries("Constant", 1)
     ops.pattern("Plain", 1, 1)
     ops.load(SLAB, 0.0, -M.weight, 0.0)
-    ops.constraints("Plain")
-    ops.numberer("Plain")
-    ops.system("FullGeneral")
-    ops.test("NormDispIncr", TOL, ITERATIONS)
-    ops.algorithm("Newton")
-    ops.integrator("LoadControl", 1.0)
-    ops.analysis("Static")
-    if ops.analyze(1) != 0:
-        ops.wipe()
-        raise RuntimeError("OpenSees: the static analysis of the bearing's weight failed")
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
+    _hold_static_load(ops, "the bearing's weight")
 
 
 @dataclass(frozen=True)
@@ -301,13 +290,7 @@ def solve_opensees_bearing_rate(scene: Scene, uy: float, dtau: float, tau_max: f
     ops.logFile(os.devnull, "-noEcho")     # the retries of _step are expected; a failure raises
     ops.timeSeries("Path", 2, "-dt", dtau, "-values", *np.asarray(pulse.accel(tt), dtype=float).tolist())
     ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
-    ops.constraints("Plain")
-    ops.numberer("Plain")
-    ops.system("FullGeneral")
-    ops.test("NormDispIncr", TOL, ITERATIONS)
-    ops.algorithm("Newton")
-    ops.integrator("Newmark", 0.5, 0.25)
-    ops.analysis("Transient")
+    _newmark_analysis(ops)
     umax = xmax = u = 0.0
     tau_peak = float(pulse.tau_start)
     rows = [(tau_peak, 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0)] if history else None

@@ -71,7 +71,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..scene import Scene
-from .opensees import _opensees, _step
+from .opensees import _hold_static_load, _opensees, _step
 from .result import PeerResult
 
 __all__ = ["INTEGRATORS", "PlanarModel", "ground_window", "planar_model", "solve_opensees_planar"]
@@ -240,18 +240,7 @@ def _build(ops, M: PlanarModel) -> int:
     ops.timeSeries("Constant", 1)
     ops.pattern("Plain", 1, 1)
     ops.load(CONTENTS, 0.0, 0.0, -M.m * M.gravity, 0.0, 0.0, 0.0)
-    ops.constraints("Plain")
-    ops.numberer("Plain")
-    ops.system("FullGeneral")
-    ops.test("NormDispIncr", 1e-14, 50)
-    ops.algorithm("Newton")
-    ops.integrator("LoadControl", 1.0)
-    ops.analysis("Static")
-    if ops.analyze(1) != 0:
-        ops.wipe()
-        raise RuntimeError("OpenSees: the static gravity analysis of the planar model failed")
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
+    _hold_static_load(ops, "the planar model's gravity")
     return floor
 
 
