@@ -27,7 +27,7 @@ _EXPORTS = {
     "Batch": "solver", "Solution": "solver", "StepBudgetError": "solver", "solve": "solver",
     "solve_many": "solver",
     "G_STANDARD": "scene", "PhysicalScale": "scene", "Scene": "scene", "paper_groups": "scene",
-    "friction_pendulum": "scene",
+    "friction_pendulum": "scene", "triple_friction_pendulum": "scene",
     "Pulse": "pulses", "get_pulse": "pulses",
 }
 _SUBMODULES = ("records", "peers", "groups", "config", "models")

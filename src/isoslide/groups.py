@@ -29,6 +29,13 @@ Pi16   t_y / T_p            transverse pulse time shift                 -1e4 <= 
 Pi17   a_pz / g             vertical ground acceleration over gravity   0 <= Pi17 <= 1e3
 Pi22   mu_slow / mu_fast    bearing breakaway-to-fast friction ratio    0 < Pi22 <= 1
 Pi23   a a_p T_p            bearing friction rate group                 0 <= Pi23 <= 1e12
+Pi24   L1 / (L2 + L3)       triple pendulum's inner radius ratio        0 <= Pi24 <= 1e3
+Pi25   L2 / (L2 + L3)       triple pendulum's lower outer radius share  0 < Pi25 < 1
+Pi26   mu1 / mu2            triple pendulum's inner friction ratio      0 < Pi26 <= 1
+Pi27   mu3 / mu2            triple pendulum's upper friction ratio      1 <= Pi27 <= 1e3
+Pi28   d1 / (a_p T_p^2)     triple pendulum's inner limit               0 <= Pi28 <= 1e6
+Pi29   d2 / (a_p T_p^2)     triple pendulum's lower outer limit         0 <= Pi29 <= 1e6
+Pi30   d3 / (a_p T_p^2)     triple pendulum's upper outer limit         0 <= Pi30 <= 1e6
 =====  ===================  ==========================================  ================
 
 ``M_b = m_b + m_st`` is the whole isolated mass (base slab and superstructure,
@@ -40,8 +47,14 @@ read only with a flexible superstructure (``Pi12 > 0``), where ``0 < Pi11 < 1``
 ``a_gz = Pi17 g p_z(t/T_p)`` of a scene's ``pulse_z``; it acts through the normal forces.  Pi22 and
 Pi23 give a sliding bearing (``Pi9 > 0``, ``Pi10 = 0``) the speed-dependent friction of PTFE-type
 surfaces (Constantinou, Mokha and Reinhorn 1990), ``mu(v) = mu_fast - (mu_fast - mu_slow)
-exp(-a |v|)`` with ``Pi9 = mu_fast g / a_p`` (read only with a sliding bearing).  The numbers
-Pi18 to Pi21 are kept for the rocking block's groups.
+exp(-a |v|)`` with ``Pi9 = mu_fast g / a_p`` (read only with a sliding bearing).  Pi24 to Pi30
+make a sliding bearing a triple friction pendulum (``Pi24 > 0``; OpenSees's
+``TripleFrictionPendulum``: ``L1`` the effective radius of each inner surface, ``L2`` and ``L3`` the
+lower and upper outer surfaces', ``mu1 <= mu2 <= mu3`` and ``d1, d2, d3`` their friction and
+displacement limits); with them ``Pi3 = 2 pi sqrt((L2 + L3)/g) / T_p`` is the period of its outer
+surfaces sliding together (regime III) and ``Pi9 = mu2 g / a_p`` (the bearing's weight ``M_b g``), so
+that equal frictions give the single pendulum of radius ``L2 + L3``.  The numbers Pi18 to Pi21 are
+kept for the rocking block's groups.
 
 Scene validation, dataset attributes, figure labels, the similarity check's
 definitions, study dimension names and the command-line help are all derived
@@ -211,6 +224,32 @@ INPUTS = (
           comment="rate a (s/m) of the sliding bearing's friction law mu(v) = mu_fast - (mu_fast - mu_slow) "
                   "exp(-a |v|) times the pulse's velocity scale a_p T_p; 0 = mu_slow at every speed (constant "
                   "friction Pi9 Pi22); read only with a sliding bearing (Pi9 > 0, Pi10 = 0)"),
+    Group("pi24", "L1 / (L2 + L3)", "triple pendulum's inner radius ratio", r"\Pi_{24}", r"L_1/(L_2 + L_3)",
+          "Π₂₄", hi=1e3, default=0.0,
+          comment="effective radius of each inner surface of a triple friction pendulum over the sum of the outer "
+                  "ones' (Pi3 = 2 pi sqrt((L2 + L3)/g)/T_p); 0 = a single friction pendulum; read only with a "
+                  "sliding bearing (Pi9 > 0, Pi10 = 0)"),
+    Group("pi25", "L2 / (L2 + L3)", "triple pendulum's lower outer radius share", r"\Pi_{25}", r"L_2/(L_2 + L_3)",
+          "Π₂₅", lo_in=False, hi=1.0, hi_in=False, default=0.5,
+          comment="share of the lower outer surface (surface 1) in L2 + L3; read only with Pi24 > 0"),
+    Group("pi26", "mu1 / mu2", "triple pendulum's inner friction ratio", r"\Pi_{26}", r"\mu_1/\mu_2", "Π₂₆",
+          lo_in=False, hi=1.0, default=1.0,
+          comment="friction coefficient of the inner surfaces over the lower outer surface's (Pi9 = mu2 g/a_p); "
+                  "read only with Pi24 > 0"),
+    Group("pi27", "mu3 / mu2", "triple pendulum's upper friction ratio", r"\Pi_{27}", r"\mu_3/\mu_2", "Π₂₇",
+          lo=1.0, hi=1e3, default=1.0,
+          comment="friction coefficient of the upper outer surface (surface 4) over the lower one's; read only "
+                  "with Pi24 > 0"),
+    Group("pi28", "d1 / (a_p T_p^2)", "triple pendulum's inner limit", r"\Pi_{28}", r"d_1/(a_p T_p^2)", "Π₂₈",
+          hi=1e6, default=0.0,
+          comment="displacement limit of each inner surface (OpenSees's d1) over the pulse length scale; > 0 "
+                  "with Pi24 > 0"),
+    Group("pi29", "d2 / (a_p T_p^2)", "triple pendulum's lower outer limit", r"\Pi_{29}", r"d_2/(a_p T_p^2)",
+          "Π₂₉", hi=1e6, default=0.0,
+          comment="displacement limit of the lower outer surface (OpenSees's d2); > 0 with Pi24 > 0"),
+    Group("pi30", "d3 / (a_p T_p^2)", "triple pendulum's upper outer limit", r"\Pi_{30}", r"d_3/(a_p T_p^2)",
+          "Π₃₀", hi=1e6, default=0.0,
+          comment="displacement limit of the upper outer surface (OpenSees's d3); > 0 with Pi24 > 0"),
 )
 """The input groups, in the order of :class:`isoslide.Scene`'s arguments."""
 
@@ -229,6 +268,10 @@ BUILDING_NAMES = INPUT_NAMES[7:12]
 EXCITATION_NAMES = ("pi14", "pi15", "pi16", "pi17")
 """The groups of the excitation beyond the main horizontal pulse (``("pi14", ..., "pi17")``): at their
 defaults in the paper's model (without a ``pulse_y`` and a ``pulse_z`` they have no effect)."""
+
+TFP_NAMES = ("pi24", "pi25", "pi26", "pi27", "pi28", "pi29", "pi30")
+"""The triple friction pendulum's groups (``Pi24`` .. ``Pi30``): at their defaults (a single friction
+pendulum) in the paper's model and read only with a sliding bearing."""
 
 BEARING_FRICTION_NAMES = ("pi22", "pi23")
 """The sliding bearing's speed-dependent friction (``Pi22``, ``Pi23``): at their defaults (constant

@@ -31,9 +31,10 @@ scene, as parts joined by ``+``:
 
 The general building (:mod:`isoslide.engine.building`) adds, in front of the friction part:
 
-``bilinear``, ``sliding-bearing``, ``sliding-bearing-speed``, ``linear``
+``bilinear``, ``sliding-bearing``, ``sliding-bearing-speed``, ``triple-friction-pendulum``, ``linear``
     The isolator integrated (``fixed-base`` for ``Pi3 = 0``); ``sliding-bearing-speed`` is a
-    sliding bearing whose friction rises with its speed (``Pi22 < 1``, ``Pi23 > 0``).
+    sliding bearing whose friction rises with its speed (``Pi22 < 1``, ``Pi23 > 0``),
+    ``triple-friction-pendulum`` one with an articulated slider (``Pi24 > 0``).
 ``flexible``
     The superstructure is flexible (``Pi12 > 0``) and integrated; ``roof``: the contents
     sit on its top floor, ``intermediate``: on a floor between the slab and the roof.
@@ -64,7 +65,8 @@ PEER_LABELS = ("regularized", "reference")
 """Labels of the peer solvers ``solve(..., method=...)`` can run."""
 
 FACETS = {
-    "isolator": ("linear", "fixed-base", "bilinear", "sliding-bearing", "sliding-bearing-speed"),
+    "isolator": ("linear", "fixed-base", "bilinear", "sliding-bearing", "sliding-bearing-speed",
+                 "triple-friction-pendulum"),
     "superstructure": ("rigid", "flexible"),
     "floor": ("base", "roof", "intermediate"),
     "friction": FRICTION_MODELS,
@@ -154,7 +156,8 @@ def _piecewise_labels() -> tuple:
 PIECEWISE_LABELS = _piecewise_labels()
 """Labels of the exact piecewise propagation (appended after the integrator's and the peers')."""
 
-ISOLATOR_PARTS = ("linear", "bilinear", "sliding-bearing", "fixed-base", "sliding-bearing-speed")
+ISOLATOR_PARTS = ("linear", "bilinear", "sliding-bearing", "fixed-base", "sliding-bearing-speed",
+                  "triple-friction-pendulum")
 """Isolator parts of a general building's label (the last for ``Pi3 = 0``)."""
 
 BEARING_REDUCTIONS = ("bearing-stuck", "bearing-elastic")
@@ -167,7 +170,8 @@ def building_label(isolator: str, flexible: bool, floor, noslide: bool, friction
 
     Parameters
     ----------
-    isolator : {"linear", "bilinear", "sliding-bearing", "fixed-base", "sliding-bearing-speed"}
+    isolator : {"linear", "bilinear", "sliding-bearing", "fixed-base", "sliding-bearing-speed", \
+"triple-friction-pendulum"}
         The isolator integrated.
     flexible : bool
         A flexible superstructure was integrated.
@@ -289,7 +293,7 @@ class Facets:
         piecewise = self.propagation == "piecewise"
         if self.reduction in BEARING_REDUCTIONS:
             return f"{self.reduction}+{label(fixed, not slid, self.friction, oneway, piecewise)}"
-        if self.isolator in ("bilinear", "sliding-bearing", "sliding-bearing-speed") or \
+        if self.isolator in ISOLATOR_PARTS[1:3] + ISOLATOR_PARTS[4:] or \
                 self.superstructure == "flexible":
             return building_label(self.isolator, self.superstructure == "flexible", self.floor, not slid,
                                   self.friction, oneway)

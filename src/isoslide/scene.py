@@ -31,9 +31,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .pulses import Pulse, get_pulse
-from .groups import INPUT_NAMES, INPUTS
+from .groups import INPUT_NAMES, INPUTS, TFP_NAMES
 from .model.shear_building import fundamental_period
 from .groups import defaults as _group_defaults
+from .model.tfp import TripleFrictionPendulum
 from .model.validation import check_range
 
 _DEFAULTS = _group_defaults()
@@ -54,9 +55,10 @@ ANGLE_LIMIT = 8.0 * math.pi
 MAX_STOREYS = 64
 """Most storeys a superstructure may have."""
 
-ISOLATORS = ("linear", "bilinear", "sliding")
+ISOLATORS = ("linear", "bilinear", "sliding", "tfp")
 """Isolator kinds (:attr:`Scene.isolator`): the paper's linear spring-dashpot (``Pi9 = 0``), a
-bilinear bearing (``Pi9 > 0, Pi10 > 0``), a sliding bearing with true stick (``Pi9 > 0, Pi10 = 0``)."""
+bilinear bearing (``Pi9 > 0, Pi10 > 0``), a sliding bearing with true stick (``Pi9 > 0, Pi10 = 0``)
+and a triple friction pendulum (such a sliding bearing with ``Pi24 > 0``)."""
 
 
 @dataclass(frozen=True)
@@ -161,6 +163,12 @@ class Scene:
     pi23 : float, default 0
         ``a a_p T_p``, the rate of that law (``a`` in s/m); 0 is constant friction ``Pi9 Pi22``.
         Read only with a sliding bearing.
+    pi24 .. pi30 : float
+        A triple friction pendulum (``Pi24 > 0``; 0: a single one): ``Pi24 = L1/(L2 + L3)``,
+        ``Pi25 = L2/(L2 + L3)``, ``Pi26 = mu1/mu2``, ``Pi27 = mu3/mu2`` and the limits
+        ``Pi28, Pi29, Pi30 = d1, d2, d3 / (a_p T_p^2)`` (> 0), in OpenSees's notation
+        (:func:`triple_friction_pendulum`), with ``Pi3 = 2 pi sqrt((L2 + L3)/g)/T_p`` and ``Pi9 = mu2
+        g/a_p``.  Its surfaces' friction is constant (``Pi22 = 1`` or ``Pi23 = 0``).
     angle : float, default 0
         Angle (radians, counter-clockwise) from the building's x axis to the excitation's x axis:
         the horizontal ground acceleration in the building's axes is the excitation's rotated by
@@ -198,6 +206,13 @@ class Scene:
     pulse_z: Pulse | str | None = None
     pi22: float = _DEFAULTS["pi22"]
     pi23: float = _DEFAULTS["pi23"]
+    pi24: float = _DEFAULTS["pi24"]
+    pi25: float = _DEFAULTS["pi25"]
+    pi26: float = _DEFAULTS["pi26"]
+    pi27: float = _DEFAULTS["pi27"]
+    pi28: float = _DEFAULTS["pi28"]
+    pi29: float = _DEFAULTS["pi29"]
+    pi30: float = _DEFAULTS["pi30"]
     angle: float = 0.0
     scale: PhysicalScale | None = field(default=None, compare=False)
 
@@ -228,13 +243,15 @@ class Scene:
                              "(pulse_z) when pi17 > 0")
         if self.vertical:
             _check_contact(self.pi17, self.pulse_z)
+        if self.pi24 > 0.0:
+            _check_tfp(self)
 
     @classmethod
     def from_physical(cls, a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0,
                       g=G_STANDARD, pulse="ricker", Q_d=0.0, D_y=0.0, m_st=0.0, T_s=0.0, xi_s=0.0,
                       floor="base", storeys=1, floor_masses=None, storey_stiffnesses=None, a_pz=0.0,
                       pulse_z=None, pulse_y=None, a_py=None, T_py=None, t_y=0.0, angle=0.0, Q_slow=None,
-                      rate=0.0) -> "Scene":
+                      rate=0.0, tfp=None) -> "Scene":
         """Build a scene from physical parameters in SI units.
 
         Parameters
@@ -305,6 +322,10 @@ class Scene:
         rate : float
             Rate ``a`` of the bearing's law ``mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|)``,
             s/m (>= 0; 0: ``Q_slow`` at every speed).
+        tfp : tuple, optional
+            A triple friction pendulum (:func:`triple_friction_pendulum`): ``(L1/(L2 + L3), L2/(L2 +
+            L3), mu1/mu2, mu3/mu2, d1, d2, d3)`` (limits in m), with ``T_b = 2 pi sqrt((L2 + L3)/g)``
+            and ``Q_d = mu2 M_b g``; ``None``: a single friction pendulum.
         """
         v = {"a_p": a_p, "T_p": T_p, "M_b": M_b, "T_b": T_b, "xi_b": xi_b, "m_ec": m_ec, "mu_s": mu_s,
              "mu_k": mu_k, "beta": beta, "gamma": gamma, "g": g, "Q_d": Q_d, "D_y": D_y, "T_s": T_s,
@@ -340,6 +361,13 @@ class Scene:
                              f"D_y = {D_y!r}); allowed: Q_slow with Q_d > 0 and D_y = 0")
         else:
             Q_slow = check_range("Q_slow", Q_slow, 0.0, Q_d, False, True)
+        shape = {}
+        if tfp is not None:
+            if len(tfp) != 7:
+                raise ValueError(f"tfp = {tfp!r} has {len(tfp)} values; allowed: (L1/(L2 + L3), L2/(L2 + L3), "
+                                 "mu1/mu2, mu3/mu2, d1, d2, d3), as triple_friction_pendulum returns")
+            length = a_p * T_p**2
+            shape = dict(zip(TFP_NAMES, (*tfp[:4], *(d / length for d in tfp[4:])), strict=True))
         return cls(
             pi2=mu_k * g / a_p, pi3=T_b / T_p, pi4=xi_b, pi5=mu_k / mu_s,
             pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b,
@@ -350,7 +378,7 @@ class Scene:
             pulse_y=None if pulse_y is None else _resolve_pulse(pulse_y, a_p=a_p, T_p=T_p),
             pi14=a_py / a_p, pi15=T_py / T_p, pi16=t_y / T_p, angle=angle, pi17=a_pz / g,
             pulse_z=None if pulse_z is None else _resolve_pulse(pulse_z, a_p=a_pz if a_pz > 0.0 else None, T_p=T_p),
-            pi22=Q_slow / Q_d if Q_d > 0.0 else 1.0, pi23=rate * a_p * T_p,
+            pi22=Q_slow / Q_d if Q_d > 0.0 else 1.0, pi23=rate * a_p * T_p, **shape,
             scale=PhysicalScale(a_p, T_p, M_b, g),
         )
 
@@ -373,12 +401,15 @@ class Scene:
     def isolator(self) -> str:
         """Isolator kind, one of :data:`ISOLATORS`.
 
-        ``"linear"`` (``Pi9 = 0``), ``"bilinear"`` (``Pi9 > 0, Pi10 > 0``) or ``"sliding"``
-        (``Pi9 > 0, Pi10 = 0``); with a fixed base (``Pi3 = 0``) the isolator has no effect.
+        ``"linear"`` (``Pi9 = 0``), ``"bilinear"`` (``Pi9 > 0, Pi10 > 0``), ``"sliding"``
+        (``Pi9 > 0, Pi10 = 0``) or ``"tfp"`` (that with ``Pi24 > 0``); with a fixed base (``Pi3 = 0``)
+        the isolator has no effect.
         """
         if self.pi9 == 0.0:
             return ISOLATORS[0]
-        return ISOLATORS[1] if self.pi10 > 0.0 else ISOLATORS[2]
+        if self.pi10 > 0.0:
+            return ISOLATORS[1]
+        return ISOLATORS[3] if self.pi24 > 0.0 else ISOLATORS[2]
 
     @property
     def flexible(self) -> bool:
@@ -508,6 +539,43 @@ def _check_contact(pi17: float, pulse_z: Pulse) -> None:
                      f"over its static value, 1 + pi17 p_z(tau), reaches 0 at tau = {hi:.6g} (its least value "
                      f"{n[i]:.6g} at tau = {taus[i]:.6g}); allowed: 1 + pi17 p_z(tau) > 0 at every tau, "
                      f"pi17 < {pi17 / (1.0 - n[i]):.6g} for this pulse")
+
+
+def tfp_bearing(scene) -> TripleFrictionPendulum:
+    """The triple friction pendulum of a scene in the model's units, with ``g/a_p = 1``.
+
+    Radii ``(Pi24, Pi25, 1 - Pi25) L`` with ``L = L2 + L3 = (Pi3/(2 pi))^2``, frictions ``(Pi26, 1,
+    Pi27) Pi9`` (``Pi9 Pi22`` with ``Pi23 = 0``), limits ``(Pi28, Pi29, Pi30)``, weight 1: the stiffnesses ``W/L_i`` (units ``M_b/T_p^2``)
+    and strengths ``mu_i W`` (units ``M_b a_p``) of the scene's bearing.  Every admissibility rule
+    of :mod:`isoslide.model.tfp` compares ``d/L`` with frictions, both proportional to ``a_p/g``, so
+    the choice ``g/a_p = 1`` decides nothing.
+    """
+    L = (scene.pi3 / (2.0 * math.pi)) ** 2
+    mu2 = scene.pi9 * (scene.pi22 if scene.pi23 == 0.0 else 1.0)
+    return TripleFrictionPendulum(L=(scene.pi24 * L, scene.pi25 * L, (1.0 - scene.pi25) * L),
+                                  mu=(scene.pi26 * mu2, mu2, scene.pi27 * mu2),
+                                  d=(scene.pi28, scene.pi29, scene.pi30), W=1.0)
+
+
+def _check_tfp(scene) -> None:
+    """``ValueError`` unless a scene with ``Pi24 > 0`` is a triple friction pendulum the model represents."""
+    if scene.pi9 == 0.0 or scene.pi10 != 0.0 or scene.pi3 == 0.0:
+        raise ValueError(f"pi24 = {scene.pi24!r} > 0 needs a sliding bearing (pi3 > 0, pi9 > 0, pi10 = 0); got "
+                         f"pi3 = {scene.pi3!r}, pi9 = {scene.pi9!r}, pi10 = {scene.pi10!r}")
+    if scene.pi22 != 1.0 and scene.pi23 != 0.0:
+        raise ValueError(f"pi22 = {scene.pi22!r}, pi23 = {scene.pi23!r} with a triple friction pendulum "
+                         "(pi24 > 0); allowed: constant friction on its surfaces (pi22 = 1 or pi23 = 0): friction "
+                         "that rises with speed is modelled for the single pendulum only")
+    for name in ("pi28", "pi29", "pi30"):
+        if getattr(scene, name) <= 0.0:
+            raise ValueError(f"{name} = {getattr(scene, name)!r} is out of range with a triple friction pendulum "
+                             "(pi24 > 0); allowed range: 0 < value <= 1e6")
+    try:
+        tfp_bearing(scene)
+    except ValueError as err:
+        raise ValueError(f"pi24 .. pi30 = {tuple(getattr(scene, f'pi{i}') for i in range(24, 31))!r} (with "
+                         f"pi3 = {scene.pi3!r}, pi9 = {scene.pi9!r}) do not make a triple friction pendulum whose "
+                         f"regimes I to V come in order, in units L2 + L3 = (pi3/(2 pi))^2, mu_i g/a_p: {err}") from None
 
 
 def _resolve_pair(pulse, pulse_y) -> tuple:
@@ -656,3 +724,67 @@ def paper_groups(a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0
         "pi2": mu_k * g / a_p, "pi3": T_b / T_p, "pi4": xi_b, "pi5": mu_k / mu_s,
         "pi6": beta * a_p * T_p, "pi7": gamma * a_p * T_p, "pi8": m_ec / M_b,
     }
+
+
+def triple_friction_pendulum(L, mu, d, M_b, g=G_STANDARD, mu_slow=None, rate=0.0) -> dict:
+    """Isolator parameters of a triple friction pendulum (OpenSees's ``TripleFrictionPendulum``).
+
+    Parameters
+    ----------
+    L : tuple of float
+        Effective radii ``(L1, L2, L3)``, m: ``L1`` of each of the two inner surfaces, ``L2`` of the
+        lower outer surface (surface 1), ``L3`` of the upper one (surface 4) (> 0).
+    mu : tuple of float
+        Friction coefficients ``(mu1, mu2, mu3)`` of the same surfaces, ``0 < mu1 <= mu2 <= mu3``.
+    d : tuple of float
+        Displacement limits ``(d1, d2, d3)``, m (> 0): the largest travel on each surface, rigid
+        restrainers beyond.
+    M_b : float
+        Whole isolated mass carried, kg (> 0): the weight ``M_b g`` on the bearing, as for
+        :func:`friction_pendulum`.
+    g : float
+        Gravitational acceleration, m/s^2.
+    mu_slow : float or tuple of float, optional
+        Friction at breakaway of surfaces whose friction rises with speed, one value or three; with
+        ``rate = 0`` the constant friction of every surface (``mu_slow`` replaces ``mu``).
+    rate : float
+        ``a`` of the law ``mu(v) = mu - (mu - mu_slow) exp(-a |v|)``, s/m (>= 0).  Only 0: friction
+        that rises with speed is modelled for the single pendulum, so ``rate > 0`` is a
+        ``ValueError`` here.
+
+    Returns
+    -------
+    dict
+        ``T_b = 2 pi sqrt((L2 + L3)/g)`` (s; the period of the outer surfaces sliding together,
+        regime III), ``Q_d = mu2 M_b g`` (N), ``D_y = 0`` and ``tfp = (L1/(L2 + L3), L2/(L2 + L3),
+        mu1/mu2, mu3/mu2, d1, d2, d3)``: keyword arguments for :meth:`Scene.from_physical`.  With
+        equal frictions the bearing is the single friction pendulum of radius ``L2 + L3`` until
+        surface 1 reaches its restrainer.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, its value and the rule: non-positive radii or limits, friction
+        ordering or geometry outside what the series model reproduces (regimes I to V in order,
+        :class:`isoslide.model.tfp.TripleFrictionPendulum`), ``mu_slow > mu``.
+    """
+    M_b = check_range("M_b", M_b, 0.0, math.inf, False, False)
+    g = check_range("g", g, 0.0, math.inf, False, False)
+    rate = check_range("rate", rate, 0.0, math.inf, True, False)
+    if mu_slow is not None:
+        checked = TripleFrictionPendulum(L, mu, d, mu_slow=mu_slow, rate=1.0)
+        if rate > 0.0:
+            raise ValueError(f"rate = {rate!r} > 0 for a triple friction pendulum; allowed: rate = 0 (constant "
+                             "friction on every surface): friction that rises with speed is modelled for the single "
+                             "friction pendulum only")
+        mu = checked.mu_slow
+    elif rate != 0.0:
+        raise ValueError(f"rate = {rate!r} is given without mu_slow; allowed: rate = 0 when mu_slow is None "
+                         "(constant friction)")
+    b = TripleFrictionPendulum(L, mu, d)
+    if b.mu[0] <= 0.0:
+        raise ValueError(f"mu1 = {b.mu[0]!r} is out of range; allowed range: 0 < mu1 <= mu2 <= mu3")
+    (L1, L2, L3), (mu1, mu2, mu3), (d1, d2, d3) = b.L, b.mu, b.d
+    outer = L2 + L3
+    return {"T_b": 2.0 * math.pi * math.sqrt(outer / g), "Q_d": mu2 * M_b * g, "D_y": 0.0,
+            "tfp": (L1 / outer, L2 / outer, mu1 / mu2, mu3 / mu2, d1, d2, d3)}

@@ -91,6 +91,10 @@ class StepBudgetError(RuntimeError):
     """A solve needed more Runge-Kutta steps than :func:`step_budget` allows."""
 
 
+class CapacityError(RuntimeError):
+    """A triple friction pendulum reached its displacement capacity: the model does not go past it."""
+
+
 @dataclass(frozen=True)
 class Solution:
     """Result of :func:`solve`.
@@ -123,6 +127,10 @@ class Solution:
         axes (radians, in ``(-pi, pi]``); ``0`` or ``pi`` for the 1-D model along x, nan when the
         contents never slid.  ``pi1_residual`` is then the final displacement's component along
         the excitation's line, or its magnitude in the plane.
+    peak_stage : int
+        The highest regime a triple friction pendulum reached (Fenz and Constantinou's I..V as
+        1..5, :data:`isoslide.model.tfp.STAGE_NAMES`); 0 when it never slid, and for every other
+        isolator.
     """
 
     pi1: float
@@ -139,6 +147,7 @@ class Solution:
     history: History | None = field(default=None, repr=False)
     facets: Facets | None = None
     peak_angle: float = math.nan
+    peak_stage: int = 0
 
 
 @dataclass(frozen=True)
@@ -574,8 +583,12 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
         return _checked(Run.of(building_kernel, res), scene, horizon, budget, "Runge-Kutta steps", rtol)
 
     out = _refined(run(integrator_rtol(scene, rtol, horizon)), run, scene, rtol, horizon, demand_integrated=True)
+    if out.ints["capacity"]:
+        raise CapacityError(f"the triple friction pendulum reaches its displacement capacity (an inner surface on "
+                            f"its restrainer) at tau = {out.floats['tend']:.6g} for {scene}; the model of rigid "
+                            "restrainers does not go past it")
     facets = scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0)
-    sol = _solution(scene, out, facets)
+    sol = dataclasses.replace(_solution(scene, out, facets), peak_stage=out.ints["stage_max"])
     if history:
         sol = dataclasses.replace(sol, history=_building_history(out.hist, scene))
     return sol
@@ -593,6 +606,11 @@ def _solve_horizontal(scene: Scene, rtol: float, history: bool, horizon: float, 
         raise ValueError("model = 'static-kinetic' is available for the paper's model only "
                          "(pi9 = 0, pi12 = 0, the main pulse alone along x)")
     if scene.planar or model == "full":
+        if scene.isolator == "tfp":
+            raise ValueError(f"a triple friction pendulum (pi24 = {scene.pi24!r} > 0) under two horizontal ground "
+                             "components that are not along one line is not modelled yet (its surfaces' circular "
+                             "friction and restrainers in the plane); allowed: an excitation along one line, or a "
+                             "single friction pendulum (pi24 = 0)")
         return _solve_planar(scene, rtol, history, horizon, model, max_step, settle)
     line, lam, theta = along_line(scene)
     sol = solve(line, rtol=rtol, history=history, horizon=horizon, model=model, max_step=max_step,
@@ -618,8 +636,8 @@ def along_line(scene: Scene) -> tuple:
     peak acceleration ``lam a_p`` (:attr:`isoslide.Scene.line_amplitude`).  The building and the
     contents are isotropic, so the contents slide along that line as the 1-D model does under the
     main pulse scaled by ``lam``: with ``lam a_p`` as the pulse amplitude, the groups holding
-    ``a_p`` become ``Pi2 / lam``, ``Pi6 lam``, ``Pi9 / lam``, ``Pi10 / lam``, ``Pi23 lam`` and
-    ``Pi1 = lam Pi1'``.
+    ``a_p`` become ``Pi2 / lam``, ``Pi6 lam``, ``Pi9 / lam``, ``Pi10 / lam``, ``Pi23 lam``, a triple
+    pendulum's limits ``Pi28 .. Pi30`` over ``lam``, and ``Pi1 = lam Pi1'``.
 
     Returns
     -------
@@ -634,7 +652,8 @@ def along_line(scene: Scene) -> tuple:
     lam = scene.line_amplitude
     line = dataclasses.replace(scene, pulse_y=None, pi14=1.0, pi15=1.0, pi16=0.0, angle=0.0, pi2=scene.pi2 / lam,
                                pi6=scene.pi6 * lam, pi9=scene.pi9 / lam, pi10=scene.pi10 / lam,
-                               pi23=scene.pi23 * lam, scale=None)
+                               pi23=scene.pi23 * lam, pi28=scene.pi28 / lam, pi29=scene.pi29 / lam,
+                               pi30=scene.pi30 / lam, scale=None)
     return line, lam, theta
 
 
@@ -743,7 +762,8 @@ def _building_history(h: np.ndarray, scene: Scene) -> History:
                    xs=part("xs") if scene.flexible else None,
                    xsd=part("xsd") if scene.flexible else None,
                    fh=h[:, c["fh"]].copy() if scene.pi9 > 0.0 else None,
-                   iso_phase=h[:, c["iso_phase"]].astype(np.int8) if scene.pi9 > 0.0 else None)
+                   iso_phase=h[:, c["iso_phase"]].astype(np.int8) if scene.pi9 > 0.0 else None,
+                   stage=h[:, c["stage"]].astype(np.int8) if scene.isolator == "tfp" else None)
 
 
 def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "integrated",
@@ -761,7 +781,7 @@ def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "
         kind = "sliding-speed"
     k, top = parts.contents.floor, parts.superstructure.storeys
     return Facets(isolator={"fixed": "fixed-base", "sliding": "sliding-bearing",
-                            "sliding-speed": "sliding-bearing-speed"}.get(kind, kind),
+                            "sliding-speed": "sliding-bearing-speed", "tfp": "triple-friction-pendulum"}.get(kind, kind),
                   superstructure="flexible" if parts.superstructure.flexible else "rigid",
                   floor="base" if k == 0 else ("roof" if k == top else "intermediate"),
                   friction=friction, coupling="one-way" if oneway else "two-way", propagation=propagation,

@@ -132,7 +132,7 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
         return "general", None
     if contents.viscous == 0.0:
         demand = (1.0 + contents.mass) * peak_accel(scene)
-        if iso.kind == "sliding" and demand <= iso.breakaway:
+        if iso.kind in ("sliding", "tfp") and demand <= iso.breakaway:
             return "bearing-stuck", replace(scene, pi3=0.0, pi4=0.0, **paper_keys)
         if iso.kind == "bilinear":
             kd, ke = iso.stiffness, iso.elastic_stiffness
@@ -171,11 +171,12 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     flex = sup.flexible
     n = sup.storeys if flex else 1
     zparams = scene.pulse_z.param_array if scene.vertical else np.zeros(0)
-    P = np.zeros(bk.n_parameters(n, zparams.size))
+    n_t = bk.TFP_SIZE if iso.kind == "tfp" else 0
+    P = np.zeros(bk.n_parameters(n, zparams.size, n_t))
     P[bk.P_MB] = 1.0 - sup.mass
     P[bk.P_MST] = sup.mass
     P[bk.P_M] = contents.mass if pi8 is None else pi8
-    P[bk.P_KD] = iso.stiffness
+    P[bk.P_KD] = iso.stiffness if iso.kind != "tfp" else 0.0   # a triple pendulum's force is all hysteretic
     P[bk.P_CB] = iso.viscous
     P[bk.P_N] = n
     if flex:
@@ -188,6 +189,9 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
         P[bk.P_FLOOR] = contents.floor
     P[bk.P_Q] = iso.strength
     P[bk.P_QS] = iso.breakaway
+    if n_t:
+        P[bk.P_TFP] = bk.n_parameters(n)
+        P[bk.n_parameters(n):bk.n_parameters(n, 0, n_t)] = np.concatenate(iso.surfaces())
     P[bk.P_QA] = iso.rate if iso.speed_dependent else 0.0
     P[bk.P_KE] = iso.elastic_stiffness
     P[bk.P_THR] = contents.static
@@ -198,14 +202,16 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     P[bk.P_ROOF] = 1.0 if contents.floor > 0 else 0.0
     P[bk.P_KIND] = float(KINDS[iso.kind])
     P[bk.P_FLEX] = 1.0 if flex else 0.0
+    P[bk.P_ZOFF] = bk.n_parameters(n, 0, n_t)
     if scene.vertical:
         P[bk.P_ZAMP] = scene.pi17
         P[bk.P_ZCODE] = scene.pulse_z.code
-        P[bk.n_parameters(n):] = zparams
+        P[bk.n_parameters(n, 0, n_t):] = zparams
     return P
 
 
-KINDS = {"linear": bk.KIND_LINEAR, "bilinear": bk.KIND_BILINEAR, "sliding": bk.KIND_SLIDING, "fixed": bk.KIND_FIXED}
+KINDS = {"linear": bk.KIND_LINEAR, "bilinear": bk.KIND_BILINEAR, "sliding": bk.KIND_SLIDING, "fixed": bk.KIND_FIXED,
+         "tfp": bk.KIND_TFP}
 """The kernel's code of each isolator kind (:data:`isoslide.model.parts.ISOLATOR_KINDS`)."""
 
 
@@ -281,7 +287,7 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
     code, params = scene.pulse.code, scene.pulse.param_array
     out = []
     for held in (False, True):
-        if held != (kind in (bk.KIND_SLIDING, bk.KIND_FIXED)):
+        if held != (kind in (bk.KIND_SLIDING, bk.KIND_FIXED, bk.KIND_TFP)):
             out.extend(_empty_modal(ny))
             continue
         A, idx = _free_system(P, code, params, held)
@@ -299,7 +305,7 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
         W[:, idx] = Winv
         Vfull = np.zeros((ny, len(idx)), dtype=np.complex128)
         Vfull[idx, :] = V
-        demand_rows = [0] + ([1] if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING) else [])
+        demand_rows = [0] + ([1] if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING, bk.KIND_TFP) else [])
         c = np.zeros((len(demand_rows), len(idx)))
         for k, col in enumerate(idx):
             y = np.zeros(ny)

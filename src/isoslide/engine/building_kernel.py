@@ -82,20 +82,29 @@ Y_X, Y_XD, Y_XS = range(3)
 """Fixed state indices: slab displacement and velocity, the first floor's displacement."""
 
 (P_MB, P_MST, P_M, P_KD, P_CB, P_KS, P_CS, P_Q, P_KE, P_THR, P_PI2, P_PI6, P_PI7, P_COULOMB, P_ROOF,
- P_KIND, P_FLEX, P_N, P_FLOOR, P_ZAMP, P_ZCODE, P_QS, P_QA) = range(23)
-P_ARRAYS = 23
+ P_KIND, P_FLEX, P_N, P_FLOOR, P_ZAMP, P_ZCODE, P_QS, P_QA, P_ZOFF, P_TFP, P_FHI, P_FLO, P_XNEXT) = range(28)
+P_ARRAYS = 28
 """Start of the arrays in the model parameters: floor masses ``(n,)``, then ``Ks`` and ``Cs``
-``(n, n)`` row by row, then the vertical pulse's parameters; ``P_N`` holds ``n``, ``P_FLOOR`` the
-contents' floor (0 the slab), ``P_ZAMP`` the vertical amplitude ``Pi17`` (0: no vertical motion)
-and ``P_ZCODE`` the vertical pulse's shape code (:mod:`isoslide.pulses`).  ``P_Q`` is the
-isolator's strength (a sliding bearing's at high speed), ``P_QS`` its breakaway strength (``P_Q``
-unless a sliding bearing's friction rises with speed) and ``P_QA`` the rate ``Pi23`` of that rise
-(0: constant)."""
+``(n, n)`` row by row, then a triple friction pendulum's surfaces (:data:`TFP_SIZE` values from
+``P_TFP``; ``P_TFP = 0`` for any other isolator), then the vertical pulse's parameters (from
+``P_ZOFF``); ``P_N`` holds ``n``, ``P_FLOOR`` the contents' floor (0 the slab), ``P_ZAMP`` the
+vertical amplitude ``Pi17`` (0: no vertical motion) and ``P_ZCODE`` the vertical pulse's shape code
+(:mod:`isoslide.pulses`).  ``P_Q`` is the isolator's strength (a sliding bearing's at high speed),
+``P_QS`` its breakaway strength (``P_Q`` unless a sliding bearing's friction rises with speed) and
+``P_QA`` the rate ``Pi23`` of that rise (0: constant).  ``P_KE`` is a bilinear bearing's elastic
+stiffness; for a triple friction pendulum :func:`run` keeps, in its own copy of ``P``, the tangent
+stiffness of the surfaces sliding (``P_KE``), the band ``[P_FLO, P_FHI]`` of the force that holds
+the slab still and the displacement ``P_XNEXT`` at which the sliding surfaces change."""
+
+TFP_SIZE = 12
+"""Values of a triple friction pendulum in the model parameters: per surface (1 to 4, bottom to
+top) the stiffness ``k_i = M_b g / L_i`` (units ``M_b / T_p^2``), the friction strength
+``mu_i M_b g`` (units ``M_b a_p``) and the displacement limit ``d_i`` (units ``a_p T_p^2``)."""
 
 
-def n_parameters(n: int, n_z: int = 0) -> int:
-    """Length of the model-parameter array of a building of ``n`` floors (``n_z`` vertical pulse parameters)."""
-    return P_ARRAYS + n + 2 * n * n + n_z
+def n_parameters(n: int, n_z: int = 0, n_t: int = 0) -> int:
+    """Length of the model-parameter array of ``n`` floors, ``n_t`` bearing values, ``n_z`` vertical ones."""
+    return P_ARRAYS + n + 2 * n * n + n_t + n_z
 
 
 def state_size(n: int) -> int:
@@ -105,20 +114,23 @@ def state_size(n: int) -> int:
 
 def history_width(n: int) -> int:
     """Columns of a history row of a building of ``n`` floors."""
-    return state_size(n) + 3
+    return state_size(n) + 4
 
-KIND_LINEAR, KIND_BILINEAR, KIND_SLIDING, KIND_FIXED = range(4)
-"""Isolator kinds (``P[P_KIND]``): linear, bilinear bearing, sliding bearing, fixed base."""
+KIND_LINEAR, KIND_BILINEAR, KIND_SLIDING, KIND_FIXED, KIND_TFP = range(5)
+"""Isolator kinds (``P[P_KIND]``): linear, bilinear bearing, sliding bearing, fixed base, triple
+friction pendulum."""
 
-INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "iso_events", "iso_moved", "rejected")
+INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "iso_events", "iso_moved", "rejected", "stage_max",
+               "capacity")
 """The integer results of :func:`run`, in order (their indices are ``R_*``)."""
-(R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_ISO_EVENTS, R_ISO_MOVED, R_REJECTED) = range(8)
+(R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_ISO_EVENTS, R_ISO_MOVED, R_REJECTED, R_STAGE_MAX,
+ R_CAPACITY) = range(10)
 N_R = len(INT_RESULTS)
 FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "xmax", "vmax", "upeak")
 """The float results of :func:`run`, in order (their indices are ``F_*``)."""
 F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX, F_UPEAK = range(7)
 N_F = len(FLOAT_RESULTS)
-# history columns: [tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im] (see history_columns)
+# history columns: [tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im, stage] (see history_columns)
 H_TAU, H_X, H_XD, H_XS = range(4)
 
 
@@ -127,14 +139,15 @@ def history_columns(n: int) -> dict:
 
     ``xs`` and ``xsd`` are the first columns of the floors' displacements and velocities (``n``
     each); ``fh`` is the isolator's hysteretic force (the holding force of a held slab), ``phase``
-    and ``iso_phase`` the block's and the isolator's modes.
+    and ``iso_phase`` the block's and the isolator's modes, ``stage`` a triple friction pendulum's
+    regime (:func:`tfp_stage`; 0 for any other isolator).
     """
     ny = state_size(n)
     return {"tau": H_TAU, "x": H_X, "xd": H_XD, "xs": H_XS, "xsd": H_XS + n, "u": 3 + 2 * n,
-            "ud": 4 + 2 * n, "fh": ny, "phase": ny + 1, "iso_phase": ny + 2}
+            "ud": 4 + 2 * n, "fh": ny, "phase": ny + 1, "iso_phase": ny + 2, "stage": ny + 3}
 
 # event kinds
-EV_BLOCK, EV_BEAR, EV_YIELD, EV_BSPEED, EV_ISPEED, EV_BPEAK, EV_IPEAK, EV_XD = range(8)
+EV_BLOCK, EV_BEAR, EV_YIELD, EV_BSPEED, EV_ISPEED, EV_BPEAK, EV_IPEAK, EV_XD, EV_TFP = range(9)
 
 
 _stribeck = njit(cache=True)(stribeck)
@@ -169,9 +182,193 @@ def bearing_level(w, P):
 
 @njit(cache=True)
 def _held(im, P):
-    """True while the slab is held to the ground (stuck sliding bearing, or a fixed base)."""
+    """True while the slab is held to the ground (stuck sliding bearing or triple pendulum, or a fixed base)."""
     kind = P[P_KIND]
-    return kind == KIND_FIXED or (kind == KIND_SLIDING and im == 0.0)
+    return kind == KIND_FIXED or ((kind == KIND_SLIDING or kind == KIND_TFP) and im == 0.0)
+
+
+@njit(cache=True)
+def _sticks(P):
+    """True for an isolator that holds the slab with true stick (a sliding bearing or a triple pendulum)."""
+    return P[P_KIND] == KIND_SLIDING or P[P_KIND] == KIND_TFP
+
+
+@njit(cache=True)
+def hold_limit(sig, P):
+    """Largest ``sig fh`` a held slab's bearing gives before it slides in ``sig`` (units ``M_b a_p``, per unit ``nz``).
+
+    A sliding bearing's breakaway strength ``q_s`` both ways; a triple pendulum's band edge
+    ``F_hi`` (``sig = 1``) or ``-F_lo`` (``sig = -1``) at its surfaces' present displacements
+    (:func:`tfp_band`).
+    """
+    if P[P_KIND] == KIND_TFP:
+        return P[P_FHI] if sig > 0.0 else -P[P_FLO]
+    return P[P_QS]
+
+
+@njit(cache=True)
+def _excess(fh, nz, P):
+    """How far the force ``fh`` that holds the slab lies outside the stick band (positive: it slides)."""
+    return max(fh - hold_limit(1.0, P) * nz, -fh - hold_limit(-1.0, P) * nz)
+
+
+@njit(cache=True)
+def _push(fh, nz, P):
+    """Direction in which a held slab slides when ``fh`` lies outside its band: towards the nearer-exceeded edge."""
+    return 1.0 if fh - hold_limit(1.0, P) * nz > -fh - hold_limit(-1.0, P) * nz else -1.0
+
+
+# --- the triple friction pendulum's surfaces ---------------------------------------
+
+
+@njit(cache=True)
+def _tfp_slopes(u, P, out):
+    """``F - q_i`` of the four surfaces at the displacements ``u`` (units ``M_b a_p``, per unit ``nz``).
+
+    The weight times the slope of surface ``i``'s normal where the load passes: ``k_1 u_1``,
+    ``k_1 u_1 + k_2 u_2``, ``k_4 u_4 + k_3 u_3``, ``k_4 u_4`` (surfaces 2 and 3 ride on the plates of
+    1 and 4), with ``k_i = M_b g / L_i``; ``q_i`` is surface ``i``'s friction (and restrainer) reaction.
+    """
+    o = int(P[P_TFP])
+    s0 = P[o] * u[0]
+    s3 = P[o + 3] * u[3]
+    out[0] = s0
+    out[1] = s0 + P[o + 1] * u[1]
+    out[2] = s3 + P[o + 2] * u[2]
+    out[3] = s3
+
+
+@njit(cache=True)
+def _at_stop(i, sig, u, P):
+    """True when surface ``i`` rests on its restrainer on the side ``sig``."""
+    d = P[int(P[P_TFP]) + 8 + i]
+    return sig * u[i] >= d * (1.0 - 1e-12)
+
+
+@njit(cache=True)
+def tfp_band(u, P):
+    """``(F_lo, F_hi)``: the bearing force (per unit ``nz``) within which every surface sticks at ``u``.
+
+    ``F_hi`` is the least ``F - q_i + mu_i W`` over the surfaces free to move forward (not on their
+    restrainer), ``F_lo`` the greatest ``F - q_i - mu_i W`` over those free to move back; ``inf``
+    where none is.
+    """
+    o = int(P[P_TFP])
+    sl = np.empty(4)
+    _tfp_slopes(u, P, sl)
+    lo = -math.inf
+    hi = math.inf
+    for i in range(4):
+        if not _at_stop(i, 1.0, u, P):
+            hi = min(hi, sl[i] + P[o + 4 + i])
+        if not _at_stop(i, -1.0, u, P):
+            lo = max(lo, sl[i] - P[o + 4 + i])
+    return lo, hi
+
+
+@njit(cache=True)
+def tfp_mode(sig, u, F, P, r):
+    """Tangent stiffness of the bearing moving in ``sig`` from ``(u, F)``; ``r`` receives ``du_i/dx``.
+
+    Along each chain (surfaces 1 and 2 on the bottom plate, 4 and 3 on the top one) the outer
+    surface slides when its reaction is at its friction limit ``sig mu_i W`` and it is off its
+    restrainer, else the inner one when it is: the reaction of an inner surface is its outer
+    surface's minus ``k u``, so while the outer one slides (its reaction pinned) the inner one's stays
+    where it is, and an inner surface sliding alone would push a stuck outer one at its limit beyond
+    it.  Each sliding surface takes the share ``K / k_i`` of the motion, ``K = 1 / sum(1/k_i)`` over
+    the sliding ones; ``inf`` when no surface can move (every chain locked).
+    """
+    o = int(P[P_TFP])
+    sl = np.empty(4)
+    _tfp_slopes(u, P, sl)
+    scale = F if F > 0.0 else -F
+    for i in range(4):
+        r[i] = 0.0
+        scale = max(scale, P[o + 4 + i])
+    tol = 1e-9 * scale
+    pick = np.full(2, -1)
+    for c in range(2):
+        outer = 0 if c == 0 else 3
+        inner = 1 if c == 0 else 2
+        for i in (outer, inner):
+            if sig * (F - sl[i]) >= P[o + 4 + i] - tol and not _at_stop(i, sig, u, P):
+                pick[c] = i
+                break
+    comp = 0.0
+    for c in range(2):
+        if pick[c] >= 0:
+            comp += 1.0 / P[o + pick[c]]
+    if comp == 0.0:
+        return math.inf
+    K = 1.0 / comp
+    for c in range(2):
+        if pick[c] >= 0:
+            r[pick[c]] = K / P[o + pick[c]]
+    return K
+
+
+@njit(cache=True)
+def tfp_reach(sig, u, F, K, r, P):
+    """Distance ``|dx|`` the bearing moves in ``sig`` before its set of sliding surfaces changes.
+
+    A sliding surface reaches its restrainer (``sig u_i`` up to ``d_i``), or a stuck one free to
+    move reaches its friction limit (its reaction's rate per unit ``|dx|``: ``K - k_1 r_1`` on
+    surface 1, that minus ``k_2 r_2`` on surface 2, and likewise from surface 4).
+    """
+    o = int(P[P_TFP])
+    sl = np.empty(4)
+    _tfp_slopes(u, P, sl)
+    dq0 = K - P[o] * r[0]
+    dq3 = K - P[o + 3] * r[3]
+    rates = (dq0, dq0 - P[o + 1] * r[1], dq3 - P[o + 2] * r[2], dq3)
+    best = math.inf
+    for i in range(4):
+        if r[i] > 0.0:
+            best = min(best, max(P[o + 8 + i] - sig * u[i], 0.0) / r[i])
+        elif rates[i] > 0.0 and not _at_stop(i, sig, u, P):
+            best = min(best, max(P[o + 4 + i] - sig * (F - sl[i]), 0.0) / rates[i])
+    return best
+
+
+@njit(cache=True)
+def tfp_stage(r, u, P):
+    """Fenz and Constantinou's regime of the sliding surfaces ``r > 0``: 0 none, 1..5 I..V, -1 another set.
+
+    I: the inner pair (2, 3), V when both outer surfaces rest on their restrainers; II: 1 and 3;
+    III: 1 and 4; IV: 2 and 4.
+    """
+    a = -1
+    b = -1
+    for i in range(4):
+        if r[i] > 0.0:
+            if a < 0:
+                a = i
+            else:
+                b = i
+    if a < 0:
+        return 0
+    if a == 1 and b == 2:
+        both = (_at_stop(0, 1.0, u, P) or _at_stop(0, -1.0, u, P)) and (_at_stop(3, 1.0, u, P)
+                                                                          or _at_stop(3, -1.0, u, P))
+        return 5 if both else 1
+    if a == 0 and b == 2:
+        return 2
+    if a == 0 and b == 3:
+        return 3
+    if a == 1 and b == 3:
+        return 4
+    return -1
+
+
+@njit(cache=True)
+def tfp_moved(u0, r, dx, P, u):
+    """The surfaces' displacements ``u = u0 + r dx``, snapped onto a restrainer reached to round-off."""
+    o = int(P[P_TFP])
+    for i in range(4):
+        u[i] = u0[i] + r[i] * dx
+        d = P[o + 8 + i]
+        if abs(u[i]) > d * (1.0 - 1e-10):
+            u[i] = d if u[i] > 0.0 else -d
 
 
 @njit(cache=True)
@@ -185,8 +382,7 @@ def normal(tau, P):
     amp = P[P_ZAMP]
     if amp == 0.0:
         return 1.0, 0.0
-    n = int(P[P_N])
-    zp = P[P_ARRAYS + n + 2 * n * n:]
+    zp = P[int(P[P_ZOFF]):]
     code = int(P[P_ZCODE])
     return 1.0 + amp * accel_at(code, zp, tau), amp * jerk_at(code, zp, tau)
 
@@ -205,10 +401,16 @@ def _stiffness(nz, P):
 
 @njit(cache=True)
 def _hysteretic(im, nz, y, P):
-    """Hysteretic isolator force of a moving slab (bilinear: the state; sliding: ``q(|x'|) nz im``)."""
+    """Hysteretic isolator force of a moving slab.
+
+    Bilinear bearing: the state; sliding bearing: ``q(|x'|) nz im``; triple pendulum: the state
+    ``F`` times ``nz``.
+    """
     kind = P[P_KIND]
     if kind == KIND_BILINEAR:
         return y[y.shape[0] - 1]
+    if kind == KIND_TFP:
+        return y[y.shape[0] - 1] * nz
     if kind == KIND_SLIDING:
         return bearing_level(im * y[Y_XD], P)[0] * nz * im
     return 0.0
@@ -315,7 +517,9 @@ def deriv(bm, im, tau, y, P, code, params, out):
         out[Y_XS + n + j] = A[j] - Ab
     out[ny - 3] = y[ny - 2]
     out[ny - 2] = udd
-    out[ny - 1] = P[P_KE] * y[Y_XD] if (P[P_KIND] == KIND_BILINEAR and im == 0.0) else 0.0
+    kind = P[P_KIND]
+    out[ny - 1] = P[P_KE] * y[Y_XD] if ((kind == KIND_BILINEAR and im == 0.0) or (kind == KIND_TFP and im != 0.0)) \
+        else 0.0
 
 
 @njit(cache=True)
@@ -358,6 +562,7 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     EV_YIELD  ``sig fh - q`` (elastic bilinear)    EV_BSPEED ``bm u'``   EV_ISPEED ``im x'``
     EV_BPEAK, EV_IPEAK: the rates of EV_BLOCK and EV_BEAR (derivative not given: NaN).
     EV_XD     ``sig x'`` (the rate of an elastic bilinear bearing's ``sig fh``, over ``ke``)
+    EV_TFP    ``im (x - P_XNEXT)``: a moving triple pendulum's sliding surfaces change
     """
     n = int(P[P_N])
     ny = y.shape[0]
@@ -366,6 +571,8 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     deriv(bm, im, tau, y, P, code, params, work)
     if kind == EV_XD:
         return sig * y[Y_XD], sig * work[Y_XD]
+    if kind == EV_TFP:
+        return im * (y[Y_X] - P[P_XNEXT]), im * y[Y_XD]
     if kind == EV_BSPEED:
         return bm * y[ud], bm * work[ud]
     if kind == EV_ISPEED:
@@ -382,9 +589,12 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     za = work[Y_XS + n:Y_XS + 2 * n]
     if kind == EV_BLOCK or kind == EV_BPEAK:
         fh = _hysteretic(im, nz, y, P)
-        lev, dlev = bearing_level(im * y[Y_XD], P)
-        # a sliding bearing's fh = q(|x'|) nz im: its rate adds q' |x'|' nz im = q' x'' nz while sliding
-        dfh = work[fhi] + dkd * y[Y_X] + (lev * dnz * im + dlev * work[Y_XD] * nz * im * im) * _pendulum(P)
+        if P[P_KIND] == KIND_TFP:
+            dfh = work[fhi] * nz + y[fhi] * dnz
+        else:
+            lev, dlev = bearing_level(im * y[Y_XD], P)
+            # a sliding bearing's fh = q(|x'|) nz im: its rate adds q' |x'|' nz im = q' x'' nz while sliding
+            dfh = work[fhi] + dkd * y[Y_X] + (lev * dnz * im + dlev * work[Y_XD] * nz * im * im) * _pendulum(P)
         g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, kd, P) - P[P_THR] * nz
         dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], zv, za, dfh, pd, kd, P) - P[P_THR] * dnz
         if kind == EV_BPEAK:
@@ -397,8 +607,9 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
         ph, dph = friction(y[ud], P)
         rs = P[P_M] * bm * ph * nz
         rsd = P[P_M] * (dph * work[ud] * nz + bm * ph * dnz)
-    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, kd, P) - P[P_QS] * nz
-    dg = sig * (_bearing_need(bm, 0.0, zv, za, pd, rsd, kd, P) - dkd * y[Y_X]) - P[P_QS] * dnz
+    lim = hold_limit(sig, P)
+    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, kd, P) - lim * nz
+    dg = sig * (_bearing_need(bm, 0.0, zv, za, pd, rsd, kd, P) - dkd * y[Y_X]) - lim * dnz
     if kind == EV_IPEAK:
         return dg, math.nan
     return g, dg
@@ -578,6 +789,10 @@ def _consistent(b, i, free_b, free_i, p, nz, y, P, A):
     ``nz`` is the normal-force factor (:func:`normal`), ``A`` scratch space for the floors'
     accelerations.
     """
+    if free_i and i != 0.0 and P[P_KIND] == KIND_TFP:
+        # a triple pendulum starts sliding at its band's edge
+        y = y.copy()
+        y[y.shape[0] - 1] = P[P_FHI] if i > 0.0 else P[P_FLO]
     Ab, AF, udd, fh, R = _accels(b, i, p, nz, y, P, A)
     if free_b:
         if b == 0.0:
@@ -587,7 +802,7 @@ def _consistent(b, i, free_b, free_i, p, nz, y, P, A):
             return False
     if free_i:
         if i == 0.0:
-            if abs(fh) > P[P_QS] * nz:
+            if _excess(fh, nz, P) > 0.0:
                 return False
         elif not i * (Ab - p) > 0.0:
             return False
@@ -616,7 +831,7 @@ def _select_modes(bm, im, free_b, free_i, tau, y, P, code, params):
         b = -1.0 if AF > 0.0 else 1.0
     if free_i:
         fh = _accels(bm if not free_b else 0.0, 0.0, p, nz, y, P, A)[3]
-        i = 1.0 if fh > 0.0 else -1.0
+        i = _push(fh, nz, P)
     return b, i
 
 
@@ -656,18 +871,33 @@ def _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
     if bm != 0.0:
         return False
     kind = P[P_KIND]
-    if kind == KIND_SLIDING and im != 0.0:
-        return False
-    if kind == KIND_BILINEAR and im != 0.0:
+    if (_sticks(P) or kind == KIND_BILINEAR) and im != 0.0:
         return False
     limits = np.array([P[P_THR], P[P_QS]])
     if _held(im, P):
         if _energy_settled(im, y, P):
             return True
-        return _modal_within(Wh, Ch, y, limits, np.array([0.0, P[P_KD] * y[Y_X]]))
+        offset = P[P_KD] * y[Y_X]
+        if kind == KIND_TFP:
+            offset, limits[1] = held_band(P)
+        return _modal_within(Wh, Ch, y, limits, np.array([0.0, offset]))
     if _energy_settled(im, y, P):
         return True
     return _modal_within(Wm, Cm, y, limits, np.zeros(2))
+
+
+@njit(cache=True)
+def held_band(P):
+    """A held triple pendulum's band as ``(centre, half-width)``: ``|fh - centre| <= half-width`` keeps it held.
+
+    A band open on one side (every surface on its restrainer that way) is narrowed to the symmetric
+    one about zero that it contains.
+    """
+    hi = P[P_FHI]
+    lo = P[P_FLO]
+    if math.isinf(hi) or math.isinf(lo):
+        return 0.0, max(min(hi, -lo), 0.0)
+    return 0.5 * (hi + lo), 0.5 * (hi - lo)
 
 
 @njit(cache=True)
@@ -696,6 +926,8 @@ def _energy_settled(im, y, P):
         if roof and smax / mst > thr:
             return False
         if kind == KIND_SLIDING and abs(P[P_KD] * y[Y_X]) + smax > P[P_QS]:
+            return False
+        if kind == KIND_TFP and (smax > P[P_FHI] or -smax < P[P_FLO]):
             return False
         return True
     kd = P[P_KD]
@@ -772,8 +1004,43 @@ def _creep_settled(bm, im, y, P, xmax):
 
 
 @njit(cache=True)
-def _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params):
-    """Append ``[tau, x, x', xs.., xs'.., u, u', fh, bm, im]`` to the history while it has room."""
+def _tfp_enter(im, y, P, u0, r, x0):
+    """Set a triple pendulum's surfaces up for the slab's mode ``im`` at the present point.
+
+    ``u0`` (the surfaces' displacements where the slab was at ``x0``) and ``r`` (their rates in the
+    mode that ends) are carried to the slab's displacement ``y[Y_X]``; held (``im = 0``): the stick
+    band ``[P_FLO, P_FHI]``; moving: the sliding set (:func:`tfp_mode`), its tangent stiffness
+    ``P_KE`` and the displacement ``P_XNEXT`` where the set next changes.  Within a mode the
+    surfaces' displacements are linear in ``x``, so they are exact from event to event.
+
+    Returns ``(x0, stage, capacity)``: the new reference point, the regime (:func:`tfp_stage`) and
+    whether the bearing has reached its displacement capacity (an inner surface on its restrainer
+    in the direction of motion, or no surface able to move that way).
+    """
+    u = np.empty(4)
+    tfp_moved(u0, r, y[Y_X] - x0, P, u)
+    for i in range(4):
+        u0[i] = u[i]
+    x0 = y[Y_X]
+    if im == 0.0:
+        for i in range(4):
+            r[i] = 0.0
+        lo, hi = tfp_band(u0, P)
+        P[P_FLO] = lo
+        P[P_FHI] = hi
+        return x0, 0, False
+    K = tfp_mode(im, u0, y[y.shape[0] - 1], P, r)
+    if math.isinf(K) or _at_stop(1, im, u0, P) or _at_stop(2, im, u0, P):
+        return x0, -1, True
+    P[P_KE] = K
+    P[P_XNEXT] = x0 + im * tfp_reach(im, u0, y[y.shape[0] - 1], K, r, P)
+    return x0, tfp_stage(r, u0, P), False
+
+
+
+@njit(cache=True)
+def _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params):
+    """Append ``[tau, x, x', xs.., xs'.., u, u', fh, bm, im, stage]`` to the history while it has room."""
     if nh < hist_cap:
         ny = y.shape[0]
         hist[nh, H_TAU] = tau
@@ -783,6 +1050,7 @@ def _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params):
         hist[nh, ny] = _accels(bm, im, accel_at(code, params, tau), normal(tau, P)[0], y, P, A)[3]
         hist[nh, ny + 1] = bm
         hist[nh, ny + 2] = im
+        hist[nh, ny + 3] = stage
         return nh + 1
     return nh
 
@@ -812,10 +1080,12 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     hist : ndarray, shape (ints[R_HIST], history_width(n))
         Rows ``[tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im]`` (:func:`history_columns`).
     """
+    P = P.copy()    # a triple pendulum keeps its present band, stiffness and next change here
     thr = P[P_THR]
     q = P[P_Q]
     qs = P[P_QS]
     kind = P[P_KIND]
+    tfp = kind == KIND_TFP
     nfl = int(P[P_N])
     ny = 2 * nfl + 5
     Y_U = ny - 3
@@ -829,7 +1099,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     work = np.empty(ny)
     A = np.empty(nfl)
     cnt = np.zeros(1, dtype=np.int64)
-    hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 3))
+    hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 4))   # history_width(nfl)
     tau = tau_start
     bm = 0.0
     im = 0.0
@@ -850,7 +1120,8 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     h = h_restart
     hlast = h_restart
     ib = 0
-    nh = _record(hist, 0, hist_cap, tau, y, bm, im, P, code, params)
+    stage = 0
+    nh = _record(hist, 0, hist_cap, tau, y, bm, im, stage, P, code, params)
     a_x = np.empty(max(Wm.shape[0], Wh.shape[0]), dtype=np.complex128)
     a_y = np.zeros(a_x.shape[0], dtype=np.complex128)
     limits = np.array([thr, qs])
@@ -859,14 +1130,31 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < thr:
         zone = 30.0 / P[P_PI6]
     check = zone > 0.0
+    # a triple pendulum's surfaces: displacements u0 where the slab was at tx0, rates tr in its mode
+    tu0 = np.zeros(4)
+    tr = np.zeros(4)
+    tx0 = 0.0
+    tfp_im = 0.0
+    stage_max = 0
+    capacity = False
+    if tfp:
+        tx0, stage, capacity = _tfp_enter(0.0, y, P, tu0, tr, tx0)
     while True:
+        if tfp and im != tfp_im:
+            if tfp_im == 0.0:
+                y[Y_FH] = P[P_FHI] if im > 0.0 else P[P_FLO]
+            tx0, stage, capacity = _tfp_enter(im, y, P, tu0, tr, tx0)
+            tfp_im = im
+            stage_max = max(stage_max, stage)
+            if capacity:
+                break
         # --- mode checks at the accepted point (round-off past a limit) ---------
         p_now = accel_at(code, params, tau)
-        if bm == 0.0 or (kind == KIND_SLIDING and im == 0.0):
+        if bm == 0.0 or (_sticks(P) and im == 0.0):
             nz_now, _ = normal(tau, P)
             Ab, AF, udd, fh, R = _accels(bm, im, p_now, nz_now, y, P, A)
             free_b = bm == 0.0 and abs(AF) > thr * nz_now
-            free_i = kind == KIND_SLIDING and im == 0.0 and abs(fh) > qs * nz_now
+            free_i = _sticks(P) and im == 0.0 and _excess(fh, nz_now, P) > 0.0
             if free_b or free_i:
                 nb_, ni_ = _select_modes(bm, im, free_b, free_i, tau, y, P, code, params)
                 if nb_ != bm:
@@ -875,6 +1163,8 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 if ni_ != im:
                     im, i_just, moved = ni_, True, True
                     iso_events += 1
+                    if tfp:
+                        continue
         if kind == KIND_BILINEAR and im == 0.0 and abs(y[Y_FH]) > q:
             im = 1.0 if y[Y_FH] > 0.0 else -1.0
             y[Y_FH] = im * q
@@ -890,19 +1180,22 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         if tau >= tau_end and bm == 0.0 and im == 0.0:
             held = _held(im, P)
             W, Cd, V, L = (Wh, Ch, Vh, Lh) if held else (Wm, Cm, Vm, Lm)
-            taken, tau = free_phase.exact_step(W, Cd, V, L, y, -1, held, P[P_KD], limits, offsets, a_x, a_y, tau,
-                                               tau_stop, h_max_free, hist_cap > 0)
+            base = 0.0
+            if tfp:
+                base, limits[1] = held_band(P)
+            taken, tau = free_phase.exact_step(W, Cd, V, L, y, -1, held, base, P[P_KD], limits, offsets, a_x, a_y,
+                                               tau, tau_stop, h_max_free, hist_cap > 0)
             if taken:
                 steps += 1
                 xmax = max(xmax, abs(y[Y_X]))
-                nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+                nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
                 continue
         # --- step length ---------------------------------------------------------
         ib = _next_breakpoint(breakpoints, ib, tau)
         # after the pulse, steps are held to h_max_free while a demand is watched for its limit
         # (a stuck block, a held or elastic bearing); a sliding block and a linear, sliding or
         # yielding isolator have only speed events, found by sign, as during the pulse
-        watch = bm == 0.0 or ((kind == KIND_SLIDING or kind == KIND_BILINEAR) and im == 0.0)
+        watch = bm == 0.0 or ((_sticks(P) or kind == KIND_BILINEAR) and im == 0.0)
         hmax = h_max_pulse if tau < tau_end or not watch else h_max_free
         h = min(h, hmax)
         target = _step_target(breakpoints, ib, tau_stop)
@@ -941,7 +1234,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             if found and hs < hbest:
                 best, hbest, herr_best = EV_BSPEED, hs, herr
                 copy_state(yb, ye)
-        if kind == KIND_SLIDING and im == 0.0:
+        if _sticks(P) and im == 0.0:
             best, best_sig, hbest, herr_best = _earliest_demand_event(
                 EV_BEAR, EV_IPEAK, qs, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
                 ye, yb, work, cnt, best, best_sig, hbest, herr_best)
@@ -971,12 +1264,25 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                         if hs < hbest:
                             best, best_sig, hbest, herr_best = EV_YIELD, sig, hs, herr
                             copy_state(yb, ye)
-        elif kind == KIND_SLIDING or kind == KIND_BILINEAR:
+        elif _sticks(P) or kind == KIND_BILINEAR:
             found, hs, herr = _speed_candidate(EV_ISPEED, bm, im, tau, y, y1, h, t_end_step, i_just, check, P, code,
                                                params, atol, rtol, K, ye, work, cnt)
             if found and hs < hbest:
                 best, hbest, herr_best = EV_ISPEED, hs, herr
                 copy_state(yb, ye)
+            if tfp:
+                g1, r1 = _event(EV_TFP, 0.0, bm, im, t_end_step, y1, P, code, params, work)
+                if g1 >= 0.0:
+                    g0, r0 = _event(EV_TFP, 0.0, bm, im, tau, y, P, code, params, work)
+                    if g0 >= 0.0:
+                        hs, herr = 0.0, 0.0
+                        copy_state(ye, y)
+                    else:
+                        hs, herr = locate(EV_TFP, 0.0, bm, im, tau, y, 0.0, g0, h, g1, hermite_root(g0, r0, g1, r1, h),
+                                          check, P, code, params, atol, rtol, K, ye, work, cnt)
+                    if hs < hbest:
+                        best, hbest, herr_best = EV_TFP, hs, herr
+                        copy_state(yb, ye)
         if best >= 0:
             if herr_best > 1.0:
                 h = 0.5 * hbest
@@ -1002,17 +1308,28 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 events += 1
                 if abs(y[Y_U]) > umax:
                     umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
-                free_i = kind == KIND_SLIDING and im == 0.0
+                free_i = _sticks(P) and im == 0.0
                 bm, ni_ = _select_modes(bm, im, True, free_i, tau, y, P, code, params)
                 b_just = bm != 0.0
                 if ni_ != im:
                     im, i_just, moved = ni_, True, True
                     iso_events += 1
                 short = check and bm != 0.0
+            elif best == EV_TFP:
+                iso_events += 1
+                tx0, stage, capacity = _tfp_enter(im, y, P, tu0, tr, tx0)
+                stage_max = max(stage_max, stage)
+                if capacity:
+                    nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
+                    break
+                short = False
             else:  # EV_ISPEED
                 y[Y_XD] = 0.0
                 iso_events += 1
-                if kind == KIND_SLIDING:
+                if tfp:
+                    tx0, stage, capacity = _tfp_enter(0.0, y, P, tu0, tr, tx0)
+                    tfp_im = 0.0
+                if _sticks(P):
                     free_b = bm == 0.0
                     nb_, im = _select_modes(bm, im, free_b, True, tau, y, P, code, params)
                     i_just = im != 0.0
@@ -1027,7 +1344,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     else:
                         im, i_just = 0.0, False
             h = h_restart if short else max(h_restart, 0.5 * hlast)
-            nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+            nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
             continue
         if bm != 0.0:
             b_just = False
@@ -1045,11 +1362,11 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         xmax = max(xmax, abs(y[Y_X]))
         hlast = h
         h = hnext
-        nh = _record(hist, nh, hist_cap, tau, y, bm, im, P, code, params)
+        nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
     if not settled and bm != 0.0 and abs(y[Y_U]) > umax:
         umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
     ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh, iso_events,
-                     1 if moved else 0, rejected], dtype=np.int64)
+                     1 if moved else 0, rejected, stage_max, 1 if capacity else 0], dtype=np.int64)
     floats = np.array([umax, tpeak, y[Y_U], tau, xmax, vmax, upeak])
     return ints, floats, hist[:nh]
 

@@ -137,7 +137,7 @@ def advance(a, lam, V, h, y, o):
 
 
 @njit(cache=True)
-def exact_step(W, C, V, lam, y, oy, held, kd, limits, offsets, a_x, a_y, tau, tau_stop, h_useful, capped):
+def exact_step(W, C, V, lam, y, oy, held, base, kd, limits, offsets, a_x, a_y, tau, tau_stop, h_useful, capped):
     """One exact step of the free phase from ``(tau, y)``, where :func:`safe_step` proves a useful one safe.
 
     Parameters
@@ -148,8 +148,9 @@ def exact_step(W, C, V, lam, y, oy, held, kd, limits, offsets, a_x, a_y, tau, ta
         The state, advanced in place: the x axis's states from 0, the y axis's from ``oy``
         (``oy < 0`` along a line, where ``a_y`` stays zero).
     held : bool
-        A sliding bearing holds the slab: its demand has the constant part ``kd`` times the slab's
-        displacement (``kd`` its pendulum stiffness, units of ``M_b / T_p^2``).
+        A bearing holds the slab: its demand has the constant part ``base + kd`` times the slab's
+        displacement (``kd`` a pendulum's stiffness, units of ``M_b / T_p^2``; ``base`` the centre
+        of a triple pendulum's stick band, units of ``M_b a_p``).
     limits, offsets, a_x, a_y : ndarray
         The demands' limits, scratch space for their constant parts ``(n_demands, 2)`` and for the
         modal coordinates of each axis (at least as long as the modes).
@@ -173,9 +174,9 @@ def exact_step(W, C, V, lam, y, oy, held, kd, limits, offsets, a_x, a_y, tau, ta
     if oy >= 0:
         modal_coordinates(W, y, oy, ay)
     if held:
-        offsets[1, 0] = kd * y[0]
+        offsets[1, 0] = base + kd * y[0]
         if oy >= 0:
-            offsets[1, 1] = kd * y[oy]
+            offsets[1, 1] = base + kd * y[oy]
     hf = min(safe_step(ax, ay, lam, C, offsets, limits), tau_stop - tau)
     if capped:
         hf = min(hf, h_useful)

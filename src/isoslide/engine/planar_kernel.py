@@ -1016,7 +1016,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         if tau >= tau_end and md[M_BM] == 0.0 and md[M_IM] == 0.0 and not hold:
             held = _held(0.0, P)
             W, Cd, V, L = (Wh, Ch, Vh, Lh) if held else (Wm, Cm, Vm, Lm)
-            taken, tau = free_phase.exact_step(W, Cd, V, L, y, nb_, held, P[P_KD], limits, offsets, a_x, a_y, tau,
+            taken, tau = free_phase.exact_step(W, Cd, V, L, y, nb_, held, 0.0, P[P_KD], limits, offsets, a_x, a_y, tau,
                                                tau_stop, h_max_free, hist_cap > 0)
             if taken:
                 steps += 1

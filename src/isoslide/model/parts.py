@@ -16,6 +16,7 @@ linear isolator    ``Pi3 = T_b/T_p``, ``Pi4 = xi_b``
 bilinear bearing   ``Pi3``, ``Pi4``, ``Pi9 = Q/(M_b a_p)``, ``Pi10 = D_y/(a_p T_p^2)``
 sliding bearing    ``Pi3``, ``Pi4``, ``Pi9`` (true stick: no yield displacement), and for friction
                    that rises with speed ``Pi22 = mu_slow/mu_fast``, ``Pi23 = a a_p T_p``
+triple pendulum    ``Pi3``, ``Pi4``, ``Pi9`` and ``Pi24 .. Pi30`` (a sliding bearing with ``Pi24 > 0``)
 rigid              none (``Pi12 = 0``)
 shear building     ``Pi11 = m_st/M_b``, ``Pi12 = T_s/T_p``, ``Pi13 = xi_s``, ``storeys``, the
                    floors' masses and storeys' stiffnesses (uniform by default)
@@ -33,7 +34,7 @@ import numpy as np
 
 from . import shear_building
 
-ISOLATOR_KINDS = ("fixed", "linear", "bilinear", "sliding")
+ISOLATOR_KINDS = ("fixed", "linear", "bilinear", "sliding", "tfp")
 """Kinds of :class:`Isolator`."""
 
 
@@ -43,12 +44,14 @@ class Isolator:
 
     Attributes
     ----------
-    kind : {"fixed", "linear", "bilinear", "sliding"}
+    kind : {"fixed", "linear", "bilinear", "sliding", "tfp"}
         A fixed base; the paper's linear spring and dashpot; a bilinear (lead-rubber) bearing, an
         elastic-perfectly-plastic spring in parallel; a sliding bearing (friction pendulum) that
-        holds the slab (true stick) while the force needed is within its strength.
+        holds the slab (true stick) while the force needed is within its strength; a triple
+        friction pendulum, four such surfaces in series with rigid restrainers.
     period : float
-        ``Pi3 = T_b / T_p`` with the post-yield (or linear) stiffness ``k_d``; 0 for a fixed base.
+        ``Pi3 = T_b / T_p`` with the post-yield (or linear) stiffness ``k_d`` (a triple pendulum's:
+        its outer surfaces sliding together, ``M_b g/(L2 + L3)``); 0 for a fixed base.
     damping : float
         ``Pi4 = xi_b``.
     strength : float
@@ -60,6 +63,10 @@ class Isolator:
         (1 otherwise).
     rate : float
         ``Pi23 = a a_p T_p`` of that bearing (0: constant friction ``strength`` at every speed).
+    shape : tuple
+        A triple pendulum's ``(Pi24, Pi25, Pi26, Pi27, Pi28, Pi29, Pi30)``: radius ratios
+        ``L1/(L2 + L3)``, ``L2/(L2 + L3)``, friction ratios ``mu1/mu2``, ``mu3/mu2`` (``strength`` is
+        ``mu2``'s) and limits ``d1, d2, d3`` (units ``a_p T_p^2``); empty for any other kind.
 
     A sliding bearing's friction level (units ``M_b a_p``, before the normal-force factor) at the
     slab's speed ``v`` (units ``a_p T_p``) is ``strength (1 - (1 - slow) exp(-rate v))``
@@ -74,10 +81,22 @@ class Isolator:
     yield_displacement: float = 0.0
     slow: float = 1.0
     rate: float = 0.0
+    shape: tuple = ()
 
     def __post_init__(self):
         if self.kind not in ISOLATOR_KINDS:
             raise ValueError(f"kind = {self.kind!r} is invalid; allowed: {ISOLATOR_KINDS}")
+
+    def surfaces(self) -> tuple:
+        """A triple pendulum's four surfaces, bottom to top: stiffnesses, strengths and limits.
+
+        ``k_i = M_b g/L_i = k_d (L2 + L3)/L_i`` (units ``M_b/T_p^2``), ``mu_i M_b g`` (units ``M_b
+        a_p``) and ``d_i`` (units ``a_p T_p^2``) of surface 1 (``L2, mu2, d2``), the inner surfaces 2
+        and 3 (``L1, mu1, d1``) and surface 4 (``L3, mu3, d3``).
+        """
+        r1, r2, f1, f3, d1, d2, d3 = self.shape
+        kd, q = self.stiffness, self.strength
+        return ((kd / r2, kd / r1, kd / r1, kd / (1.0 - r2)), (q, q * f1, q * f1, q * f3), (d2, d1, d1, d3))
 
     @property
     def speed_dependent(self) -> bool:
@@ -86,7 +105,13 @@ class Isolator:
 
     @property
     def breakaway(self) -> float:
-        """Breakaway strength ``Pi9 Pi22`` of a sliding bearing (the strength of any other kind)."""
+        """Force that first moves the slab from rest (units ``M_b a_p``).
+
+        ``Pi9 Pi22`` of a sliding bearing, ``mu1``'s strength ``Pi9 Pi26`` of a triple pendulum (its
+        inner surfaces), the strength of any other kind.
+        """
+        if self.kind == "tfp":
+            return self.strength * self.shape[2]
         return self.strength * self.slow
 
     def level(self, v: float) -> float:
@@ -118,11 +143,23 @@ class Isolator:
 
     @property
     def shortest_period(self) -> float:
-        """Shortest period of the isolator (the bilinear bearing's elastic one); 0 for a fixed base."""
+        """Shortest period of the isolator; 0 for a fixed base.
+
+        The bilinear bearing's elastic one, a triple pendulum's stiffest regime.
+        """
+        if self.kind == "tfp":
+            k = self.surfaces()[0]
+            pairs = (_series(k[1], k[2]), _series(k[0], k[2]), _series(k[0], k[3]), _series(k[1], k[3]))
+            return self.period * math.sqrt(self.stiffness / max(pairs))
         if self.kind != "bilinear":
             return self.period
         kd = self.stiffness
         return self.period * math.sqrt(kd / (kd + self.elastic_stiffness))
+
+
+def _series(a: float, b: float) -> float:
+    """Stiffness of two springs in series."""
+    return a * b / (a + b)
 
 
 @dataclass(frozen=True)
@@ -243,7 +280,9 @@ def building_of(scene) -> Building:
     groups = {"fixed": {}, "linear": dict(period=scene.pi3, damping=scene.pi4),
               "bilinear": dict(period=scene.pi3, damping=scene.pi4, strength=scene.pi9,
                                yield_displacement=scene.pi10),
-              "sliding": _sliding(scene)}[kind]
+              "sliding": _sliding(scene), "tfp": {}}[kind]
+    if kind == "tfp":
+        groups = {**_sliding(scene), "shape": tuple(getattr(scene, f"pi{i}") for i in range(24, 31))}
     iso = Isolator(kind, **groups)
     flexible = scene.pi12 > 0.0
     sup = Superstructure(scene.pi11, scene.pi12, scene.pi13, scene.storeys, scene.floor_masses,

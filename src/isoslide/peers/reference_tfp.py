@@ -11,7 +11,8 @@ Time ``tau = t/T_p``, lengths in ``a_p T_p**2``, masses in ``M_b`` (the slab wit
 superstructure), forces in ``M_b a_p``.  The bearing: effective radii ``(L1, L2, L3)`` and limits
 ``(d1, d2, d3)`` divided by ``a_p T_p**2``, friction coefficients ``(mu1, mu2, mu3)`` (constant),
 and the gravity ratio ``G = g/a_p``.  The weight on the bearing is ``W = (M_b + m_EC) g``, i.e.
-``W = (1 + Pi8) G`` in units ``M_b a_p``; it sets the pendulum's restoring force ``W u_i/L_i`` and
+``W = (1 + Pi8) G`` in units ``M_b a_p`` (``W = G``, the isolated mass's weight alone, with
+``contents_weight=False``, the convention of isoslide's bearings); it sets the pendulum's restoring force ``W u_i/L_i`` and
 the friction strengths ``mu_i W``.  An optional viscous damper beside the bearing has the coefficient
 ``c = c_b T_p/M_b`` (default 0).  The contents: ``Pi8 = m_EC/M_b``, kinetic friction
 ``Pi2 = mu_k g/a_p`` and ``Pi5 = mu_k/mu_s`` (Coulomb friction with a static level
@@ -170,6 +171,8 @@ class TFPBuilding:
         Viscous coefficient beside the bearing ``c_b T_p/M_b`` (>= 0).
     polarity : int
         +1 or -1: the ground acceleration is ``polarity * p(tau)``.
+    contents_weight : bool
+        Whether the bearing carries the contents' weight too: ``W = (1 + Pi8) G``; else ``W = G``.
 
     Raises
     ------
@@ -188,6 +191,7 @@ class TFPBuilding:
     pulse: str | Pulse = "ricker"
     damping: float = 0.0
     polarity: int = 1
+    contents_weight: bool = True
     _bearing: TripleFrictionPendulum = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
@@ -200,7 +204,7 @@ class TFPBuilding:
         if self.polarity not in (1, -1):
             raise ValueError(f"polarity = {self.polarity!r} is invalid; allowed: 1 or -1")
         set_(self, "pulse", get_pulse(self.pulse) if not isinstance(self.pulse, Pulse) else self.pulse)
-        b = TripleFrictionPendulum(self.L, self.mu, self.d, W=(1.0 + self.pi8) * self.gravity)
+        b = TripleFrictionPendulum(self.L, self.mu, self.d, W=self.W)
         set_(self, "L", b.L)
         set_(self, "mu", b.mu)
         set_(self, "d", b.d)
@@ -245,7 +249,7 @@ class TFPBuilding:
     @property
     def W(self) -> float:  # noqa: N802 - the weight, named as in the mechanics
         """Weight on the bearing, units ``M_b a_p``."""
-        return (1.0 + self.pi8) * self.gravity
+        return ((1.0 + self.pi8) if self.contents_weight else 1.0) * self.gravity
 
 
 def single_pendulum_scene(building: TFPBuilding) -> Scene:

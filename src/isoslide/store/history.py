@@ -34,6 +34,10 @@ class History:
     iso_phase : ndarray of int8 or None
         Isolator mode: 0 stuck (sliding bearing) or elastic (bilinear bearing), +1 / -1
         sliding or yielding in the positive / negative direction; ``None`` for a linear isolator.
+    stage : ndarray of int8 or None
+        A triple friction pendulum's regime (0 held, 1..5 Fenz and Constantinou's I..V, -1 another
+        set of sliding surfaces; :func:`isoslide.engine.building_kernel.tfp_stage`); ``None`` for
+        any other isolator.
     """
 
     tau: np.ndarray
@@ -46,6 +50,7 @@ class History:
     xsd: np.ndarray | None = None
     fh: np.ndarray | None = None
     iso_phase: np.ndarray | None = None
+    stage: np.ndarray | None = None
 
 
 def phase_of(sliding, ud) -> np.ndarray:

@@ -28,7 +28,7 @@ import xarray as xr
 
 from . import claims
 from ..datasets import global_attrs, open_dataset, pi_attrs
-from ..groups import BEARING_FRICTION_NAMES, BUILDING_NAMES, EXCITATION_NAMES, INPUT_NAMES, INPUTS
+from ..groups import BEARING_FRICTION_NAMES, BUILDING_NAMES, EXCITATION_NAMES, INPUT_NAMES, INPUTS, TFP_NAMES
 from ..groups import group as registry_group
 from ..peers.si import simulate_si
 from ..scene import FLOORS, G_STANDARD
@@ -106,7 +106,7 @@ def _point_pis(ds: xr.Dataset, index: tuple) -> dict:
     """
     sel = {d: i for d, i in zip(ds["pi1"].dims, index, strict=True)}
     pt = ds.isel(sel)
-    optional = BUILDING_NAMES + BEARING_FRICTION_NAMES + EXCITATION_NAMES
+    optional = BUILDING_NAMES + BEARING_FRICTION_NAMES + TFP_NAMES + EXCITATION_NAMES
     return {g: float(pt[g]) if g in pt.variables or g not in optional else
             (registry_group(g).default if g not in BUILDING_NAMES and registry_group(g).default is not None else 0.0)
             for g in GROUPS}
