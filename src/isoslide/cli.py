@@ -47,7 +47,7 @@ from .store.history_io import FORMATS, history_format, history_table, write_hist
 from .pulses import PULSE_NAMES
 from .reports.quicklook import check_plot_path, plot_fit, plot_history
 from .records import SUITES, load_record, suite
-from .scene import FLOORS, G_STANDARD, Scene, friction_pendulum
+from .scene import FLOORS, G_STANDARD, Scene, friction_pendulum, triple_friction_pendulum
 from .solver import DEFAULT_RTOL, solve
 
 EXIT_USAGE = 2
@@ -147,6 +147,11 @@ def _parser() -> argparse.ArgumentParser:
                                                     "a-py", "T-py")
         q.add_argument(f"--{name}", type=float, required=required, default=default,
                        help=f"{name.replace('-', '_')} [{unit}]")
+    for name, unit in (("L", "m, effective radii L1 (each inner surface), L2 (lower outer), L3 (upper outer)"),
+                       ("mu", "-, friction coefficients mu1 <= mu2 <= mu3 of the same surfaces"),
+                       ("d", "m, displacement limits d1, d2, d3 of the same surfaces")):
+        q.add_argument(f"--tfp-{name}", type=float, nargs=3, metavar=(f"{name}1", f"{name}2", f"{name}3"),
+                       help=f"triple friction pendulum (with the other --tfp options; sets T_b and Q_d): {unit}")
     _common(q)
     f = sub.add_parser("fit", help="fit a pulse to a record's dominant acceleration pulse")
     f.add_argument("record", metavar="PATH|SAMPLE", help=".AT2 or .csv file, or a bundled sample name")
@@ -248,7 +253,19 @@ def _scene(args):
     bearing = {"Q_slow": args.Q_slow, "rate": args.rate}
     if (args.R is None) != (args.mu_b is None):
         raise ValueError("a friction pendulum needs both --R and --mu-b; allowed: both or neither")
-    if args.mu_b_slow is not None and args.R is None:
+    tfp = [v for v in (args.tfp_L, args.tfp_mu, args.tfp_d) if v is not None]
+    if tfp:
+        if len(tfp) != 3:
+            raise ValueError("a triple friction pendulum needs --tfp-L, --tfp-mu and --tfp-d; allowed: all three or "
+                             "none")
+        if args.R is not None or T_b is not None or Q_d != 0.0 or D_y != 0.0 or args.Q_slow is not None:
+            raise ValueError("--tfp-L/--tfp-mu/--tfp-d set T_b, Q_d and D_y; allowed: either the --tfp options or "
+                             "--R/--mu-b or --T-b/--Q-d/--D-y/--Q-slow")
+        fp = triple_friction_pendulum(args.tfp_L, args.tfp_mu, args.tfp_d, args.M_b, args.g,
+                                      mu_slow=args.mu_b_slow, rate=args.rate)
+        T_b, Q_d, D_y = fp["T_b"], fp["Q_d"], fp["D_y"]
+        bearing = {"tfp": fp["tfp"]}
+    elif args.mu_b_slow is not None and args.R is None:
         raise ValueError("--mu-b-slow is given without a friction pendulum; allowed: with --R and --mu-b "
                          "(or --Q-slow with --Q-d)")
     if args.R is not None:
@@ -285,7 +302,7 @@ def _solve(args) -> int:
            "peak_angle": sol.peak_angle if slid else None,
            "peak_angle_deg": math.degrees(sol.peak_angle) if slid else None,
            "settled": sol.settled, "model": sol.model, "contact": sol.facets.contact,
-           "n_steps": sol.n_steps, "n_events": sol.n_events,
+           "n_steps": sol.n_steps, "n_events": sol.n_events, "peak_stage": sol.peak_stage,
            "scene": {**scene.pis(), "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name,
                      "pulse_y": None if scene.pulse_y is None else scene.pulse_y.name, "angle": scene.angle,
                      "planar": scene.planar,

@@ -46,7 +46,8 @@ The smallest exact model (:func:`reduction`)
     ``Pi3 = 0`` with the contents on the slab (or a rigid superstructure): the slab moves with
     the ground, so neither the isolator nor the superstructure acts on the contents.
 ``bearing-stuck``
-    A sliding bearing under a rigid superstructure that provably never slips:
+    A sliding bearing (or a triple pendulum, whose first breakaway is its inner surfaces'
+    ``Pi9 Pi26``) under a rigid superstructure that provably never slips:
     the force holding the slab is ``-(p + R)`` with ``|R| <= Pi8 max|p|`` for
     speed-independent contact (``Pi7 = 0``; a stuck block needs ``Pi8 |p|``,
     a sliding one ``Pi8 phi <= Pi8 mu_s g/a_p < Pi8 max|p|``), so
@@ -74,6 +75,7 @@ from dataclasses import replace
 import numpy as np
 
 from . import building_kernel as bk
+from ..groups import GROUPS, TFP_NAMES
 from ..model.parts import building_of
 from ..pulses import SAMPLED
 from ..scene import Scene
@@ -119,7 +121,7 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
         ``"general"``).
     """
     paper_keys = {"pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "floor": "base", "storeys": 1,
-                  "floor_masses": None, "storey_stiffnesses": None}
+                  "floor_masses": None, "storey_stiffnesses": None, **{n: GROUPS[n].default for n in TFP_NAMES}}
     parts = building_of(scene)
     iso, contents = parts.isolator, parts.contents
     if scene.paper_model:
