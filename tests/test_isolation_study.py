@@ -1,6 +1,8 @@
 """The isolation studies (isoslide.studies.isolation_study) and their figures (isoslide.reports.isolation_plot)."""
 
 import copy
+import tempfile
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -23,7 +25,8 @@ def tiny_config(**isolation):
         "flexible": {"pi3": [1.0], "pi12": [0.0, 0.5], "pi2": {"num": 5}},
         "design": {"pulses": ["ricker"], "T_p": [1.0], "records": [], "mu_k": {"start": 0.02, "stop": 0.3, "num": 3}},
         # a_p = 0.05 m/s^2: both pendulums hold (below mu_slow g = 0.21 m/s^2); 0.3: only the speed-dependent one
-        # breaks away (below mu g = 0.41 m/s^2); 6: both slide
+        # breaks away (below mu g = 0.41 m/s^2); 6: both slide.  The triple pendulum: held at 0.05 (below mu1 g =
+        # 0.13 m/s^2), its inner slider alone (regime I) at 0.3, its outer surfaces (regime III) at 6
         "bearings": {"a_p": [0.05, 0.3, 6.0], "mu_k": [0.05, 0.1]},
     }
     for k, v in isolation.items():
@@ -32,14 +35,20 @@ def tiny_config(**isolation):
 
 
 @pytest.fixture(scope="module")
-def solved():
+def bearings():
+    """The bearing study of the tiny configuration: ``(cfg, {"isolation_bearings": dataset})``."""
     cfg = tiny_config()
-    data = {name: sweep.solve_study(spec) for name, spec in isolation_study.study_specs(cfg).items()}
+    return cfg, {"isolation_bearings": isolation_study.bearings_dataset(isolation_study.isolation_settings(cfg))}
+
+
+@pytest.fixture(scope="module")
+def solved(bearings):
+    cfg, data = bearings
+    data = {**data, **{name: sweep.solve_study(spec) for name, spec in isolation_study.study_specs(cfg).items()}}
     settings = isolation_study.isolation_settings(cfg)
     data["isolation_rigid"] = isolation_study.rigid_dataset(
         {"base": data["iso_flex_base"], "roof": data["iso_flex_roof"]}, settings)
     data["isolation_design"] = isolation_study.design_dataset(settings)
-    data["isolation_bearings"] = isolation_study.bearings_dataset(settings)
     return cfg, data
 
 
@@ -234,7 +243,7 @@ def test_every_isolation_figure_is_drawn_with_its_caption(solved, tmp_path):
 
 
 # ----------------------------------------------------------------------------------------------
-# the bearings over the pulse's intensity: lead-rubber, constant and speed-dependent pendulums
+# the bearings over the pulse's intensity: lead-rubber, constant and speed-dependent pendulums, triple pendulum
 # ----------------------------------------------------------------------------------------------
 
 def _designed(cfg):
@@ -252,6 +261,21 @@ def _scene(cfg, building, iso, a_p, mu_k):
                                         mu_s=mu_k, mu_k=mu_k, **frame, **iso)
 
 
+def _triple(cfg):
+    """The triple friction pendulum of the bearing study, designed here from the configuration's parts."""
+    des, tfp = cfg["isolation"]["design"], cfg["isolation"]["bearings"]["tfp"]
+    return design.design_triple_friction_pendulum(isolation_study.NOMINAL_MASS, des["T_eff"], des["beta_eff"], des["D"],
+                                                  tfp["inner_radius"], tfp["mu1_ratio"], tfp["mu3_ratio"],
+                                                  tfp["stiffening"], tfp["capacity"])
+
+
+def _triple_params(cfg):
+    """Its keywords of Scene.from_physical, through isoslide.triple_friction_pendulum."""
+    iso = _triple(cfg)
+    M = isolation_study.NOMINAL_MASS
+    return {"M_b": M, "xi_b": 0.0, **isoslide.triple_friction_pendulum(iso.L, iso.mu, iso.d, M)}
+
+
 def _speed_pendulum(cfg, **override):
     sec = {**cfg["isolation"]["bearings"], **override}
     fp = _designed(cfg)["friction_pendulum"]
@@ -260,18 +284,24 @@ def _speed_pendulum(cfg, **override):
                                                                  * fp.mu(G), rate=sec["rate"])}
 
 
-def test_bearing_study_labels_and_designs(solved):
-    cfg, data = solved
+def test_bearing_study_labels_and_designs(bearings):
+    cfg, data = bearings
     ds = data["isolation_bearings"]
     sec, des = cfg["isolation"]["bearings"], cfg["isolation"]["design"]
     assert ds["u_max"].dims == ("building", "isolator", "a_p", "mu_k")
-    assert dict(ds.sizes) == {"building": 2, "isolator": 3, "a_p": 3, "mu_k": 2}
+    assert dict(ds.sizes) == {"building": 2, "isolator": 4, "a_p": 3, "mu_k": 2, "regime": 5}
     assert list(ds["isolator"].values) == list(isolation_study.BEARING_ISOLATORS)
     assert list(ds["building"].values) == ["rigid", "flexible"] and list(ds["floor"].values) == ["base", "roof"]
     assert ds["a_p"].values.tolist() == sec["a_p"] and ds["mu_k"].values.tolist() == sec["mu_k"]
     assert ds["a_p"].attrs["units"] == "m s-2" and ds["u_max"].attrs["units"] == "m" and ds["pfa"].attrs["units"] == "m s-2"
-    for name in ("u_max", "pi1", "pi2", "settled", "pfa", "bearing_disp", "bearing_slid", "model_isolator", "T_eff"):
+    for name in ("u_max", "pi1", "pi2", "settled", "pfa", "bearing_disp", "bearing_slid", "model_isolator", "T_eff",
+                 "peak_stage", "capacity_reached", "tfp_regime_start"):
         assert ds[name].attrs.get("long_name") and "units" in ds[name].attrs, name
+    assert ds["peak_stage"].dims == ds["capacity_reached"].dims == ("building", "isolator", "a_p", "mu_k")
+    assert ds["peak_stage"].attrs["flag_meanings"] == "not_triple_pendulum held I II III IV V"
+    assert ds["peak_stage"].attrs["flag_values"].tolist() == [-1, 0, 1, 2, 3, 4, 5]
+    assert ds["capacity_reached"].attrs["flag_meanings"] == "within_capacity capacity_reached"
+    assert ds["regime"].attrs["flag_meanings"] == "I II III IV V" and ds["tfp_regime_start"].attrs["units"] == "m"
     assert ds.attrs["Conventions"].startswith("CF") and "isoslide_config" in ds.attrs and ds.attrs["source"]
     # the design's isolators: the same T_eff and beta_eff at D (the speed-dependent pendulum's with mu_fast)
     np.testing.assert_allclose(ds["T_eff"].values, des["T_eff"], rtol=1e-12)
@@ -293,13 +323,24 @@ def test_bearing_study_labels_and_designs(solved):
     assert iso_parts["lead_rubber"] <= {"bilinear", "linear"}
     assert "sliding-bearing" in iso_parts["friction_pendulum"]
     assert "sliding-bearing-speed" in iso_parts["friction_pendulum_speed"]
+    assert "triple-friction-pendulum" in iso_parts["triple_friction_pendulum"]
+    # the triple pendulum: the design's, its regimes and capacity recorded; the others have no regime
+    tri = _triple(cfg)
+    assert list(ds.attrs["tfp_L"]) == list(tri.L) and list(ds.attrs["tfp_mu"]) == list(tri.mu)
+    assert list(ds.attrs["tfp_d"]) == list(tri.d) and ds.attrs["tfp_capacity"] == tri.capacity
+    assert ds["tfp_regime_start"].values.tolist() == list(tri.boundaries().u[:5])
+    assert float(ds["T_b"].sel(isolator="triple_friction_pendulum")) == pytest.approx(tri.T_b, rel=1e-12)
+    assert float(ds["R"].sel(isolator="triple_friction_pendulum")) == pytest.approx(tri.L[1] + tri.L[2], rel=1e-12)
+    assert float(ds["Q_over_W"].sel(isolator="triple_friction_pendulum")) == pytest.approx(tri.mu[1], rel=1e-12)
+    others = ds.drop_sel(isolator="triple_friction_pendulum")
+    assert (others["peak_stage"] == -1).all() and (ds["capacity_reached"] == 0).all()
     labels = isoslide.datasets.model_labels(ds, "u_max")
     assert labels.sel(building="rigid", isolator="friction_pendulum", a_p=0.05).values.tolist() == [
         "bearing-stuck+fixed-base+no-slide"] * 2
 
 
-def test_constant_pendulum_is_a_direct_solve_of_the_designed_scene(solved):
-    cfg, data = solved
+def test_constant_pendulum_is_a_direct_solve_of_the_designed_scene(bearings):
+    cfg, data = bearings
     ds = data["isolation_bearings"]
     rtol = cfg["solver"]["rtol"]
     fp = _designed(cfg)["friction_pendulum"].scene_parameters()
@@ -314,8 +355,87 @@ def test_constant_pendulum_is_a_direct_solve_of_the_designed_scene(solved):
     assert float(ds["u_max"].sel(building="rigid", isolator="friction_pendulum", a_p=6.0, mu_k=0.05)) > 0.0
 
 
-def test_speed_dependent_pendulum_differs_where_the_bearing_slides(solved):
-    _, data = solved
+def test_triple_pendulum_is_a_direct_solve_of_the_designed_scene(bearings):
+    """Its Pi1 and regime are those of isoslide.solve of the same scene, written out from its parts."""
+    cfg, data = bearings
+    ds = data["isolation_bearings"]
+    rtol = cfg["solver"]["rtol"]
+    tri = _triple_params(cfg)
+    for building in ("rigid", "flexible"):
+        for a_p in ds["a_p"].values:
+            for mu_k in ds["mu_k"].values:
+                sol = isoslide.solve(_scene(cfg, building, tri, float(a_p), float(mu_k)), rtol=rtol)
+                at = ds.sel(building=building, isolator="triple_friction_pendulum", a_p=a_p, mu_k=mu_k)
+                assert float(at["pi1"]) == pytest.approx(sol.pi1, rel=1e-9, abs=1e-15), (building, a_p, mu_k)
+                assert int(at["peak_stage"]) == sol.peak_stage and int(at["capacity_reached"]) == 0
+                assert int(at["model_isolator"]) == isoslide.models.FACETS["isolator"].index(sol.facets.isolator)
+                if sol.peak_stage > 0:
+                    assert sol.facets.isolator == "triple-friction-pendulum"
+
+
+def test_triple_pendulum_regimes_over_the_intensity(bearings):
+    """Held below mu1 g, its inner slider alone (I) just above, the outer surfaces (III) at the design level."""
+    cfg, data = bearings
+    ds = data["isolation_bearings"]
+    tri = _triple(cfg)
+    for building in ("rigid", "flexible"):
+        sub = ds.sel(building=building)
+        t, fp = sub.sel(isolator="triple_friction_pendulum"), sub.sel(isolator="friction_pendulum")
+        stage = t["peak_stage"]
+        # a_p = 0.05 m/s^2 < mu1 g: the bearing holds, the floor moves with the ground, the contents hold
+        assert (stage.sel(a_p=0.05) == 0).all() and int(t["bearing_slid"].sel(a_p=0.05)) == 0
+        assert float(t["bearing_disp"].sel(a_p=0.05)) == 0.0 and (t["u_max"].sel(a_p=0.05) == 0).all()
+        # a_p = 0.3 m/s^2: mu1 g < 0.3 < mu g: the single pendulum holds, the triple one's inner slider moves
+        assert (stage.sel(a_p=0.3) == 1).all() and int(t["bearing_slid"].sel(a_p=0.3)) == 1
+        assert 0.0 < float(t["bearing_disp"].sel(a_p=0.3)) <= tri.boundaries().u_star * (1.0 + 1e-9)
+        if building == "rigid":
+            # the single pendulum holds and its floor moves with the ground; the triple one's floor peaks below it
+            assert int(fp["bearing_slid"].sel(a_p=0.3)) == 0
+            assert float(t["pfa"].sel(a_p=0.3)) < float(fp["pfa"].sel(a_p=0.3)) == pytest.approx(0.3, rel=1e-9)
+        # a_p = 6 m/s^2: about D, in regime III (the outer surfaces), within the capacity
+        assert (stage.sel(a_p=6.0) == 3).all()
+        b = tri.boundaries()
+        assert b.u_2star < float(t["bearing_disp"].sel(a_p=6.0)) <= b.u_dr1
+    runs = {r[0]: r for r in isolation_study.triple_regimes(ds)}
+    assert [(name, lo, hi) for name, lo, hi, _ in runs["rigid"][1]] == [("held", 0.05, 0.05), ("I", 0.3, 0.3),
+                                                                          ("III", 6.0, 6.0)]
+    assert np.isnan(runs["rigid"][2])
+
+
+def test_triple_pendulum_past_its_capacity_is_flagged_never_a_number():
+    """a_p = 15 m/s^2 drives the triple pendulum to its capacity: Pi1, u_max, pfa, bearing_disp NaN, flagged."""
+    cfg = tiny_config(bearings={"a_p": [1.0, 15.0], "mu_k": [0.1], "buildings": ["rigid"]})
+    ds = isolation_study.bearing_study(isolation_study.isolation_settings(cfg))
+    t = ds.sel(building="rigid", isolator="triple_friction_pendulum")
+    with pytest.raises(isoslide.solver.CapacityError):
+        isoslide.solve(_scene(cfg, "rigid", _triple_params(cfg), 15.0, 0.1), rtol=cfg["solver"]["rtol"])
+    assert t["capacity_reached"].values.tolist() == [[0], [1]]
+    assert t["peak_stage"].values.tolist() == [[2], [5]]             # V: the capacity ends regime V
+    for name in ("pi1", "u_max"):
+        assert np.isfinite(t[name].sel(a_p=1.0)).all() and np.isnan(t[name].sel(a_p=15.0)).all()
+    for name in ("pfa", "bearing_disp"):
+        assert np.isfinite(float(t[name].sel(a_p=1.0))) and np.isnan(float(t[name].sel(a_p=15.0)))
+    assert int(t["bearing_slid"].sel(a_p=15.0)) == 1 and int(t["settled"].sel(a_p=15.0, mu_k=0.1)) == 0
+    # the other bearings have no capacity in the model: numbers there
+    others = ds.drop_sel(isolator="triple_friction_pendulum").sel(a_p=15.0)
+    assert np.isfinite(others["pi1"]).all() and (others["capacity_reached"] == 0).all()
+    # the flags survive the file; the findings and the figure say so
+    path = isoslide.datasets.write_netcdf(ds, Path(tempfile.mkdtemp()) / "bearings.nc")
+    back = isoslide.datasets.open_dataset(path)
+    assert back["capacity_reached"].values.tolist() == ds["capacity_reached"].values.tolist()
+    assert np.isnan(back["pi1"].sel(isolator="triple_friction_pendulum", a_p=15.0)).all()
+    assert back["peak_stage"].dtype == np.int8 and back["peak_stage"].attrs["flag_meanings"].endswith("IV V")
+    text = " ".join(t for _, t in isolation_study.bearing_findings(back))
+    assert "past its capacity from a_p = 15 m/s²" in text and "triple friction pendulum past its capacity" in text
+    cap = isolation_study.bearing_onsets(back)[-1]
+    assert cap[1] == "triple_friction_pendulum" and cap[7] == 15.0 and np.isnan(cap[5])
+    fig, caption = isolation_plot.intensity({"isolation_bearings": back})
+    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert "cap." in texts and "II" in texts and "capacity" in caption
+
+
+def test_speed_dependent_pendulum_differs_where_the_bearing_slides(bearings):
+    _, data = bearings
     ds = data["isolation_bearings"]
     rigid = ds.sel(building="rigid")
     const, speed = rigid.sel(isolator="friction_pendulum"), rigid.sel(isolator="friction_pendulum_speed")
@@ -373,8 +493,13 @@ def test_bearing_study_asks_the_batch_solver_for_every_scene_in_order():
                                facets=np.array([Facets()] * n, dtype=object))
 
     ds = isolation_study.bearing_study(isolation_study.isolation_settings(cfg), stub)
+    # the triple pendulum's scenes are solved one by one (isoslide.solve reports the regime and the capacity)
     assert len(calls) == 1 and len(calls[0]) == 3 * 2 * 2
-    np.testing.assert_array_equal(ds["pi1"].values.ravel(), np.arange(12.0))
+    singles = ds.drop_sel(isolator="triple_friction_pendulum")
+    np.testing.assert_array_equal(singles["pi1"].values.ravel(), np.arange(12.0))
+    tri = ds.sel(isolator="triple_friction_pendulum")
+    assert np.isfinite(tri["pi1"]).all() and (tri["peak_stage"].sel(a_p=0.05) == 0).all()
+    assert not any(s.isolator == "tfp" for s in calls[0])
     assert [s.pi9 > 0 for s in calls[0]] == [True] * 12                     # every isolator is hysteretic
     assert calls[0][0].pi10 > 0.0 and calls[0][4].pi10 == 0.0 == calls[0][8].pi10
     assert calls[0][4].pi22 == 1.0 and calls[0][8].pi22 == pytest.approx(0.5)
@@ -385,7 +510,7 @@ def test_bearing_study_asks_the_batch_solver_for_every_scene_in_order():
 def _hand_made(u_const, u_speed):
     """A bearing dataset of one building and one mu_k with the two pendulums' u_max given."""
     a_p = np.array([0.25, 0.5, 1.0, 2.0, 4.0, 8.0])
-    u = np.array([np.zeros_like(a_p), u_const, u_speed], dtype=float)[None, :, :, None]
+    u = np.array([np.zeros_like(a_p), u_const, u_speed, np.zeros_like(a_p)], dtype=float)[None, :, :, None]
     return xr.Dataset({"u_max": (("building", "isolator", "a_p", "mu_k"), u)},
                       coords={"building": ["rigid"], "isolator": list(isolation_study.BEARING_ISOLATORS),
                               "a_p": a_p, "mu_k": [0.1]})
@@ -403,11 +528,11 @@ def test_speed_effect_splits_the_intensities_into_runs_by_hand():
     assert rows[3][6] == pytest.approx(1.0) and rows[3][7] == pytest.approx(1.005)
 
 
-def test_bearing_findings_quote_the_dataset(solved):
-    _, data = solved
+def test_bearing_findings_quote_the_dataset(bearings):
+    _, data = bearings
     ds = data["isolation_bearings"]
     found = isolation_study.bearing_findings(ds)
-    assert len(found) == 4 and all(title and text for title, text in found)
+    assert len(found) == 5 and all(title and text for title, text in found)
     text = " ".join(t for _, t in found)
     rows = isolation_study.speed_effect(ds)
     for r in rows:
@@ -421,6 +546,22 @@ def test_bearing_findings_quote_the_dataset(solved):
     assert f"{fs[3] / G:.4f} g on the speed-dependent one" in found[1][1]
     assert f"{onsets[('rigid', 'lead_rubber')][5]:.3f} m" in found[2][1]
     assert "Flexible superstructure, contents on the roof" in found[0][1]
+    # the triple friction pendulum: its design, its regimes over a_p, its contents against the single pendulum's
+    title, text = found[4]
+    assert "triple friction pendulum" in title.lower()
+    mu1, mu2, _ = ds.attrs["tfp_mu"]
+    assert f"μ1 = {mu1:.4f}, μ2 = {mu2:.4f}" in text and f"μ1 g = {mu1 * G:.3f} m/s²" in text
+    assert "Rigid superstructure, contents on the slab: its regimes held at a_p = 0.05 m/s² (0.00 D), I at a_p = 0.3 m/s²" in text
+    assert "III at a_p = 6 m/s²" in text and "within its capacity at every a_p" in text
+    pfa = ds["pfa"].sel(building="rigid", a_p=0.05)
+    assert (f"the floor peaks at {float(pfa.sel(isolator='triple_friction_pendulum')) / G:.4f} g on it, "
+            f"{float(pfa.sel(isolator='friction_pendulum')) / G:.4f} g on the single pendulum") in text
+    for r in isolation_study.triple_against(ds, "friction_pendulum"):
+        assert f"of the {r[2]} (a_p, μ_k) points within its capacity where either's contents slide" in text
+        assert f"more at {r[3]}, less at {r[4]}, the same at {r[5]}" in text
+    u = ds["u_max"].sel(building="rigid", a_p=6.0, isolator="triple_friction_pendulum").values
+    assert f"at a_p = 6 m/s² (regime III, the largest a_p within its capacity) its contents slide " \
+           f"{', '.join(f'{v * 100:.2f}' for v in u)} cm" in text
 
 
 # ----------------------------------------------------------------------------------------------
@@ -436,10 +577,25 @@ def test_bearing_findings_quote_the_dataset(solved):
     ({"mu_k": []}, r"isolation\.bearings\.mu_k: \[\] should be non-empty"),
     ({"buildings": ["attic"]}, r"isolation\.bearings\.buildings\.0: 'attic' is not one of \['rigid', 'flexible'\]"),
     ({"shape": "ricker"}, r"isolation\.bearings: Additional properties are not allowed \('shape' was unexpected\)"),
+    ({"tfp": {"mu3_ratio": 0.5}}, r"isolation\.bearings\.tfp\.mu3_ratio: 0\.5 is less than the minimum of 1"),
+    ({"tfp": {"stiffening": 1.0}}, r"isolation\.bearings\.tfp\.stiffening: 1\.0 is less than or equal to the minimum"),
+    ({"tfp": {"mu2": 0.05}}, r"isolation\.bearings\.tfp: Additional properties are not allowed \('mu2' was unexpected\)"),
 ])
 def test_bad_bearing_settings_are_refused_by_the_schema_naming_the_key(bad, message):
     with pytest.raises(ConfigError, match=message):
         tiny_config(bearings=bad)
+
+
+def test_triple_pendulum_the_design_cannot_meet_is_refused_naming_its_section():
+    settings = isolation_study.isolation_settings(isoslide.config.load())
+    settings["isolation"]["bearings"]["tfp"]["capacity"] = 1.3          # regime IV of the design ends at 1.39 D
+    with pytest.raises(ConfigError, match=r"^isolation\.bearings\.tfp = .* with isolation\.design T_eff = 3\.0, "
+                                          r"beta_eff = 0\.2, D = 0\.3: capacity = 1\.3 is out of range"):
+        isolation_study.bearing_isolators(settings)
+    settings["isolation"]["bearings"]["tfp"]["capacity"] = 1.6
+    settings["isolation"]["design"]["beta_eff"] = 0.55
+    with pytest.raises(ConfigError, match=r"beta_eff = 0\.55 is out of range for a triple friction pendulum"):
+        isolation_study.bearing_study(settings, solve_many=lambda scenes, rtol=None: pytest.fail("solved"))
 
 
 @pytest.mark.parametrize("bad, message", [
@@ -452,6 +608,11 @@ def test_bad_bearing_settings_are_refused_by_the_schema_naming_the_key(bad, mess
     ({"pulse": "sine"}, r"isolation\.bearings\.pulse = 'sine' is invalid"),
     ({"buildings": ["rigid", "rigid"]}, r"isolation\.bearings\.buildings = \['rigid', 'rigid'\] is invalid; allowed: "
                                         r"a non-empty list of distinct values among \['rigid', 'flexible'\]"),
+    ({"tfp": {"inner_radius": 0.2, "mu1_ratio": 0.3, "mu3_ratio": 1.5, "stiffening": 1.5, "capacity": 1.4}},
+     r"isolation\.bearings\.tfp\.capacity = 1\.4 is out of range; allowed: above isolation\.bearings\.tfp\.stiffening"),
+    ({"tfp": {"inner_radius": 0.2, "mu1_ratio": 0.0, "mu3_ratio": 1.5, "stiffening": 1.5, "capacity": 2.0}},
+     r"isolation\.bearings\.tfp\.mu1_ratio = 0\.0 is out of range; allowed range: 0 < value <= 1"),
+    ({"tfp": {"inner_radius": 0.2, "mu1_ratio": 0.3}}, r"isolation\.bearings\.tfp = .* is invalid; allowed: a mapping"),
 ])
 def test_bad_bearing_settings_are_refused_by_the_study_naming_the_key(bad, message):
     section = {**isoslide.config.load()["isolation"]["bearings"], **bad}
@@ -466,6 +627,11 @@ def test_bad_bearing_settings_are_refused_by_the_study_naming_the_key(bad, messa
 def test_default_bearing_settings_pass_and_keep_the_design_keys_only():
     cfg = isoslide.config.load()
     sec = isolation_study.check_bearings(cfg["isolation"]["bearings"])
+    assert set(sec["tfp"]) == set(isolation_study.TFP_KEYS)
+    # the default triple pendulum: D in regime III, its capacity beyond the single pendulum's reach at 1.5 x the
+    # intensity that brings it to D (the maximum considered), short of it at the largest a_p
+    tri = isolation_study.bearing_triple(isolation_study.isolation_settings(cfg))
+    assert tri.regime(cfg["isolation"]["design"]["D"]) == 3 and 1.45 < tri.capacity / cfg["isolation"]["design"]["D"]
     assert sec["a_p"][0] < 1.0 < 6.0 <= sec["a_p"][-1] and sec["mu_slow_ratio"] == 0.5 and sec["rate"] == 30.0
     sub = isolation_study.bearing_settings(isolation_study.isolation_settings(cfg))
     assert set(sub["isolation"]) == {"bearings", "design"}

@@ -7,8 +7,9 @@
 * ``isolation_design`` -- peak sliding over the contents' friction under linear, bilinear and
   friction-pendulum isolation of equal effective period and damping;
 * ``isolation_intensity`` -- the contents' peak sliding, the floor's peak acceleration and the
-  bearing's displacement over the pulse's amplitude, under a lead-rubber bearing and friction
-  pendulums of constant and speed-dependent friction (``isolation_bearings``).
+  bearing's displacement over the pulse's amplitude, under a lead-rubber bearing, friction
+  pendulums of constant and speed-dependent friction and a triple friction pendulum, whose regime
+  reached (I..V) and displacement capacity are marked (``isolation_bearings``).
 
 :func:`draw_all` renders them with the paper figures' style and deterministic writer
 (:data:`isoslide.reports.figures.STYLE`).
@@ -174,15 +175,44 @@ def design(datasets):
 BEARING_STYLES = {"lead_rubber": {"color": 0, "ls": "-", "marker": "s", "label": "lead-rubber"},
                   "friction_pendulum": {"color": 1, "ls": "-", "marker": "o", "label": r"pendulum, constant $\mu$"},
                   "friction_pendulum_speed": {"color": 1, "ls": "--", "marker": "x",
-                                              "label": r"pendulum, $\mu$ rising with speed"}}
+                                              "label": r"pendulum, $\mu$ rising with speed"},
+                  "triple_friction_pendulum": {"color": 2, "ls": "-", "marker": "^",
+                                               "label": "triple pendulum (regime I-V marked)"}}
 """Line of each isolator of the bearing study: the two pendulums share a colour, the speed-dependent one dashed."""
+
+TRIPLE = "triple_friction_pendulum"
+ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V"}
+
+
+def _mark_regimes(ax, a_p, y, stage, capacity, color):
+    """Roman numeral of the triple pendulum's regime above each point; ``capacity`` points as a cross at the top.
+
+    ``stage`` and ``capacity`` per ``a_p``; where the bearing reached its capacity ``y`` is NaN and
+    a cross at the top of the panel says so.
+    """
+    from matplotlib.transforms import blended_transform_factory
+
+    if np.any(capacity):              # room at the top for the crosses
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(lo, lo + 1.2 * (hi - lo))
+    for a, v, st, cap in zip(a_p, y, stage, capacity, strict=True):
+        if cap:
+            tr = blended_transform_factory(ax.transData, ax.transAxes)
+            ax.plot([a], [0.97], marker="X", ms=5.0, color=color, transform=tr, clip_on=False, ls="none")
+            ax.text(a, 0.9, "cap.", transform=tr, fontsize=5.0, color=color, ha="center", va="top")
+        elif st > 0 and np.isfinite(v):
+            ax.annotate(ROMAN[int(st)], (a, v), textcoords="offset points", xytext=(0, 4), fontsize=5.0,
+                        color=color, ha="center", va="bottom")
 
 
 def intensity(datasets):
     """The bearing study over the pulse's intensity, two rows of panels per building.
 
-    First row: u_max over a_p, one panel per mu_k; second row: the floor's peak acceleration, the
-    bearing's displacement over D, and the speed-dependent pendulum's u_max and PFA over the constant one's.
+    First row: u_max over a_p, one panel per mu_k (and the legend); second row: the floor's peak
+    acceleration, the bearing's displacement over D, the speed-dependent pendulum's u_max and PFA over
+    the constant one's, the triple pendulum's over the constant one's.  The triple pendulum's
+    points carry the regime reached (roman numerals; its floor and displacement panels at the
+    largest mu_k, the history's), a cross where it reached its displacement capacity.
     """
     import matplotlib.pyplot as plt
     from matplotlib.ticker import NullLocator
@@ -190,34 +220,51 @@ def intensity(datasets):
     ds = _open(datasets["isolation_bearings"])
     G = 9.80665
     mus, buildings = ds["mu_k"].values, ds["building"].values
-    ncol = max(mus.size, 3)
+    isolators = [str(i) for i in ds["isolator"].values]
+    has_triple = TRIPLE in isolators
+    ncol = max(mus.size + 1, 4 if has_triple else 3)
     fig, axs = plt.subplots(2 * buildings.size, ncol, figsize=(WIDTH, 3.3 * buildings.size + 0.5), squeeze=False,
                             layout="constrained")
-    colors = _colors(3)[:2]
+    colors = _colors(3)
     a_p, D = ds["a_p"].values, float(ds.attrs["D"])
-    ticks = _log_ticks(a_p)
+    ticks = _log_ticks(a_p, spacing=0.25 * ncol / 3.0)      # narrower panels, fewer labels
 
     def line(ax, iso, y, **kw):
         st = BEARING_STYLES.get(str(iso), {"color": 0, "ls": ":", "marker": ".", "label": str(iso)})
         ax.plot(a_p, y, color=colors[st["color"]], ls=st["ls"], marker=st["marker"], ms=3.0, lw=1.0,
                 label=st["label"], **kw)
 
+    tcolor = colors[BEARING_STYLES[TRIPLE]["color"]]
     for r, b in enumerate(buildings):
         sub = ds.sel(building=b)
         where = "slab (rigid)" if str(b) == "rigid" else "roof (flexible)"
         top, bottom = axs[2 * r], axs[2 * r + 1]
+        tri = sub.sel(isolator=TRIPLE) if has_triple else None
         for j, m in enumerate(mus):
             ax = top[j]
-            for iso in ds["isolator"].values:
+            for iso in isolators:
                 line(ax, iso, sub["u_max"].sel(isolator=iso, mu_k=m).values * 100.0)
             ax.set_title(rf"{where}: $\mu_k = {float(m):g}$", fontsize=7)
             ax.set_ylabel(r"$u_{max}$ [cm]" if j == 0 else "")
             ax.set_ylim(bottom=0.0)
+            if has_triple:
+                t = tri.sel(mu_k=m)
+                _mark_regimes(ax, a_p, t["u_max"].values * 100.0, t["peak_stage"].values,
+                              t["capacity_reached"].values > 0, tcolor)
         for ax in top[mus.size:]:
-            ax.set_visible(False)
-        for iso in ds["isolator"].values:
+            ax.axis("off")
+        for iso in isolators:
             line(bottom[0], iso, sub["pfa"].sel(isolator=iso).values / G)
             line(bottom[1], iso, sub["bearing_disp"].sel(isolator=iso).values / D)
+        if has_triple:
+            t = tri.isel(mu_k=-1)          # the probe's scene: the contents at the largest mu_k
+            for ax, y in ((bottom[0], t["pfa"].values / G), (bottom[1], t["bearing_disp"].values / D)):
+                _mark_regimes(ax, a_p, y, t["peak_stage"].values, t["capacity_reached"].values > 0, tcolor)
+            cap = float(ds.attrs["tfp_capacity"]) / D
+            stiff = float(ds["tfp_regime_start"].sel(regime=4)) / D
+            for level, text in ((stiff, "IV"), (cap, "capacity")):
+                bottom[1].axhline(level, color=tcolor, lw=0.6, ls=":")
+                bottom[1].text(a_p[0], level, f" triple: {text}", color=tcolor, fontsize=5.0, va="bottom")
         bottom[0].set_ylabel("peak floor accel. [g]")
         bottom[0].set_title(f"{where}: floor", fontsize=7)
         bottom[0].set_ylim(bottom=0.0)
@@ -225,25 +272,36 @@ def intensity(datasets):
         bottom[1].set_ylabel(r"bearing displacement / $D$")
         bottom[1].set_title(f"{where}: bearing", fontsize=7)
         const, speed = sub.sel(isolator="friction_pendulum"), sub.sel(isolator="friction_pendulum_speed")
-        ax = bottom[2]
         mcolors = _colors(mus.size + 1)
-        for j, m in enumerate(mus):
-            uc, us = const["u_max"].sel(mu_k=m).values, speed["u_max"].sel(mu_k=m).values
-            ratio = np.where(uc > 0, us / np.where(uc > 0, uc, 1.0), np.nan)
-            ax.plot(a_p, ratio, color=mcolors[j], marker="o", ms=3.0, lw=1.0, label=rf"$u_{{max}}$, $\mu_k = {float(m):g}$")
-        ax.plot(a_p, speed["pfa"].values / const["pfa"].values, color="k", ls="--", lw=1.0, label="peak floor accel.")
-        ax.axhline(1.0, color="0.6", lw=0.8, ls=":")
-        ax.set_ylabel("speed-dependent / constant")
-        ax.set_title(f"{where}: pendulums", fontsize=7)
-        ax.legend(fontsize=5.5, loc="lower right")
-        for ax in bottom[3:]:
+        ratio_panels = [(bottom[2], speed, "speed-dependent / constant", f"{where}: pendulums")]
+        if has_triple:
+            ratio_panels.append((bottom[3], tri, "triple / single pendulum", f"{where}: triple pendulum"))
+        for ax, other, ylabel, title in ratio_panels:
+            for j, m in enumerate(mus):
+                uc, uo = const["u_max"].sel(mu_k=m).values, other["u_max"].sel(mu_k=m).values
+                ratio = np.where(uc > 0, uo / np.where(uc > 0, uc, 1.0), np.nan)
+                _ratio_line(ax, a_p, ratio, color=mcolors[j], marker="o", label=rf"$u_{{max}}$, $\mu_k = {float(m):g}$")
+            _ratio_line(ax, a_p, other["pfa"].values / const["pfa"].values, color="k", ls="--",
+                        label="peak floor accel.")
+            shown = [np.nanmax(np.append(ln.get_ydata(), 1.0)) for ln in ax.get_lines()]
+            ax.set_ylim(0.0, 1.1 * max(shown))
+            ax.axhline(1.0, color="0.6", lw=0.8, ls=":")
+            ax.set_ylabel(ylabel)
+            ax.set_title(title, fontsize=7)
+            ax.legend(fontsize=5.5, loc="best")
+        for ax in bottom[len(ratio_panels) + 2:]:
             ax.set_visible(False)
-        for ax in (*top[:mus.size], *bottom[:3]):
+        for ax in (*top[:mus.size], *bottom[:len(ratio_panels) + 2]):
             ax.set_xscale("log")
+            ax.set_xlim(a_p[0] / 1.25, a_p[-1] * 1.25)
             ax.set_xticks(ticks, [f"{v:g}" for v in ticks])
             ax.xaxis.set_minor_locator(NullLocator())     # the grid's a_p are the ticks
             ax.set_xlabel(r"$a_p$ [m/s$^2$]")
-    axs[0][0].legend(fontsize=5.5, loc="upper left")
+    handles, labels = axs[0][0].get_legend_handles_labels()
+    if ncol > mus.size:
+        axs[0][ncol - 1].legend(handles, labels, fontsize=6, loc="center", frameon=False)
+    else:
+        axs[0][0].legend(fontsize=5.5, loc="upper left")
     fs = ds.sel(isolator="friction_pendulum_speed")
     caption = (f"What the bearing does to the contents, from service-level shaking to beyond the design. Peak sliding "
                f"u_max of Coulomb contents (mu_k = {_list(ds['mu_k'])}), peak floor acceleration and peak bearing "
@@ -251,14 +309,42 @@ def intensity(datasets):
                f"T_p = {ds.attrs['T_p']:g} s, under a lead-rubber bearing (D_y = {ds.attrs['D_y_bilinear']:g} m) and a "
                f"friction pendulum designed to the same T_eff = {ds.attrs['T_eff_target']:g} s and beta_eff = "
                f"{ds.attrs['beta_eff_target']:g} at D = {D:g} m (mu = {float(ds['Q_over_W'].sel(isolator='friction_pendulum')):.4f}, "
-               f"R = {float(ds['R'].sel(isolator='friction_pendulum')):.2f} m), and that pendulum with friction rising "
-               f"with speed (dashed: mu_slow = {float(fs['mu_slow']):.4f}, a = {float(fs['rate']):g} s/m); contents on "
-               f"the slab of a rigid superstructure"
+               f"R = {float(ds['R'].sel(isolator='friction_pendulum')):.2f} m), that pendulum with friction rising "
+               f"with speed (dashed: mu_slow = {float(fs['mu_slow']):.4f}, a = {float(fs['rate']):g} s/m)"
+               + (_triple_caption(ds) if has_triple else "")
+               + "; contents on the slab of a rigid superstructure"
                + (f" and on the roof of a flexible one (Pi11 = {ds.attrs['pi11_flexible']:g}, Pi12 = T_s/T_p = "
                   f"{ds.attrs['pi12_flexible']:g}, xi_s = {ds.attrs['pi13_flexible']:g})" if "flexible" in buildings else "")
-               + ". Last panel of each building: the speed-dependent pendulum's u_max and peak floor acceleration over "
-               "the constant one's.")
+               + ". Bottom rows: the speed-dependent pendulum's u_max and peak floor acceleration over the constant "
+               "one's" + (", and the triple pendulum's over the constant single pendulum's" if has_triple else "")
+               + f" (ratios above {RATIO_TOP:g}, over a tiny u_max, on the panel's top edge with their value).")
     return fig, caption
+
+
+RATIO_TOP = 3.0
+"""Ratios above this are drawn on the top edge of their panel, their value written next to them."""
+
+
+def _ratio_line(ax, x, ratio, color, label, ls="-", marker=None):
+    """A ratio over ``x``; values above :data:`RATIO_TOP` (a tiny denominator) on the top edge, with their value."""
+    ratio = np.asarray(ratio, dtype=float)
+    high = ratio > RATIO_TOP
+    ax.plot(x, np.where(high, RATIO_TOP, ratio), color=color, ls=ls, marker=marker, ms=3.0, lw=1.0, label=label)
+    for xv, r in zip(np.asarray(x)[high], ratio[high], strict=True):
+        ax.annotate(f"{r:.0f}×", (xv, RATIO_TOP), textcoords="offset points", xytext=(3, -2), fontsize=5.0,
+                    color=color, ha="left", va="top")
+
+
+def _triple_caption(ds) -> str:
+    """The triple friction pendulum's part of the intensity figure's caption."""
+    (L1, L2, L3), (m1, m2, m3), (d1, d2, d3) = (np.asarray(ds.attrs[k], dtype=float) for k in ("tfp_L", "tfp_mu", "tfp_d"))
+    D = float(ds.attrs["D"])
+    return (f", and a triple friction pendulum of the same T_eff and beta_eff at D (constant friction; L1 = {L1:.3f} m, "
+            f"L2 = L3 = {L2:.3f} m, mu1 = {m1:.4f}, mu2 = {m2:.4f}, mu3 = {m3:.4f}, d1 = {d1:.3f} m, d2 = d3 = {d2:.3f} m: "
+            f"D in regime III, regime IV from {float(ds['tfp_regime_start'].sel(regime=4)) / D:.2f} D, capacity "
+            f"{float(ds.attrs['tfp_capacity']) / D:.2f} D), its regime reached written above its points (I: the inner "
+            f"slider, II-III: the outer surfaces, IV-V: on the restrainers; the floor and bearing panels at the largest "
+            f"mu_k) and a cross (cap.) where it reached its displacement capacity (no value: the model stops there)")
 
 
 def _log_ticks(values, spacing: float = 0.25) -> list:

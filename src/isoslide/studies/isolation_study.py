@@ -16,8 +16,10 @@ Three studies beyond the paper's Fig. 1-b model (configuration section ``isolati
   displacement (:mod:`isoslide.studies.design`), under the same pulses and real records, over the
   contents' friction coefficient: :func:`design_comparison` (``results/datasets/isolation_design.nc``).
 * **what the bearing does to the contents, from service-level shaking to beyond the design** -- the
-  lead-rubber bearing and the friction pendulum of that design, and the same pendulum with friction
-  rising with speed (Constantinou, Mokha and Reinhorn 1990), under one pulse scaled over its
+  lead-rubber bearing and the friction pendulum of that design, the same pendulum with friction
+  rising with speed (Constantinou, Mokha and Reinhorn 1990) and a triple friction pendulum of the
+  same effective period and damping at the design displacement (Fenz and Constantinou 2008; its
+  regime I..V reached and its displacement capacity recorded), under one pulse scaled over its
   amplitude ``a_p``, with Coulomb contents of a few ``mu_k`` on the slab of a rigid superstructure
   and on the roof of a flexible one: :func:`bearing_study` (``results/datasets/isolation_bearings.nc``),
   its findings :func:`bearing_findings`.
@@ -44,11 +46,12 @@ from ..scene import FLOORS, Scene, friction_pendulum
 from ..store.history_io import history_table
 from .sweep import normalise_study
 
-__all__ = ["BEARING_ISOLATORS", "BUILDINGS", "FAMILIES", "NOMINAL_MASS", "bearing_findings", "bearing_isolators",
-           "bearing_onsets", "bearing_settings", "bearing_study", "bearing_summary", "bearings_dataset", "check_bearings",
-           "dataset_names", "findings", "sliding_end", "design_comparison", "design_dataset", "design_excitations",
-           "isolation_settings", "rigid_dataset", "rigid_error", "rigid_summary", "speed_effect", "study_entries",
-           "study_names", "study_specs"]
+__all__ = ["BEARING_ISOLATORS", "BUILDINGS", "FAMILIES", "NOMINAL_MASS", "REGIMES", "STAGE_FLAGS", "TRIPLE",
+           "bearing_findings", "bearing_isolators", "bearing_onsets", "bearing_settings", "bearing_study",
+           "bearing_summary", "bearing_triple", "bearings_dataset", "check_bearings", "dataset_names", "findings",
+           "sliding_end", "design_comparison", "design_dataset", "design_excitations", "isolation_settings",
+           "rigid_dataset", "rigid_error", "rigid_summary", "speed_effect", "study_entries", "study_names", "study_specs",
+           "triple_against", "triple_regimes"]
 
 FAMILIES = {"iso_fp": "friction_pendulum", "iso_lrb": "lead_rubber",
             "iso_flex_base": "flexible", "iso_flex_roof": "flexible"}
@@ -555,12 +558,27 @@ def findings(fp: xr.Dataset, lrb: xr.Dataset, rigid: xr.Dataset, design: xr.Data
 # what the bearing does to the contents, from service-level shaking to beyond the design
 # ----------------------------------------------------------------------------------------------
 
-BEARING_ISOLATORS = ("lead_rubber", "friction_pendulum", "friction_pendulum_speed")
+BEARING_ISOLATORS = ("lead_rubber", "friction_pendulum", "friction_pendulum_speed", "triple_friction_pendulum")
 """Isolators of the bearing study (:func:`bearing_study`), in the order of its ``isolator`` dimension."""
 
+TRIPLE = "triple_friction_pendulum"
+"""The triple friction pendulum's name in the ``isolator`` dimension."""
+
 BEARING_LABELS = {"lead_rubber": "lead-rubber bearing", "friction_pendulum": "friction pendulum (constant μ)",
-                  "friction_pendulum_speed": "friction pendulum (μ rising with speed)"}
+                  "friction_pendulum_speed": "friction pendulum (μ rising with speed)",
+                  TRIPLE: "triple friction pendulum"}
 """Names of the bearing study's isolators in text."""
+
+REGIMES = ("I", "II", "III", "IV", "V")
+"""Fenz and Constantinou's regimes of the triple friction pendulum, numbered 1..5 in ``peak_stage``."""
+
+STAGE_FLAGS = {-1: "not_triple_pendulum", 0: "held", **dict(zip(range(1, 6), REGIMES, strict=True))}
+"""Values and meanings of the dataset's ``peak_stage``."""
+
+TFP_KEYS = {"inner_radius": (0.0, 1.0, False, False), "mu1_ratio": (0.0, 1.0, False, True),
+            "mu3_ratio": (1.0, 10.0, True, True), "stiffening": (1.0, 100.0, False, True),
+            "capacity": (1.0, 100.0, False, True)}
+"""Keys of ``isolation.bearings.tfp`` and their ranges ``(lo, hi, lo included, hi included)``."""
 
 BUILDINGS = {"rigid": "base", "flexible": "roof"}
 """Buildings of the bearing study -> the floor carrying the contents (the slab of a rigid
@@ -584,6 +602,7 @@ SPEED_TOLERANCE = 0.01
 
 
 def _bearing_number(key: str, value, lo: float, hi: float, lo_in: bool = True, hi_in: bool = True) -> float:
+    """``value`` as a float, or a :class:`~isoslide.config.ConfigError` naming ``isolation.bearings.<key>``."""
     ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
     ok = ok and (value >= lo if lo_in else value > lo) and (value <= hi if hi_in else value < hi)
     if not ok:
@@ -637,7 +656,20 @@ def check_bearings(section: dict) -> dict:
         "pi11": _bearing_number("pi11", section["pi11"], 0.0, 1.0, lo_in=False, hi_in=False),
         "pi12": _bearing_number("pi12", section["pi12"], 0.0, 1e4, lo_in=False),
         "pi13": _bearing_number("pi13", section["pi13"], 0.0, 1e3),
+        "tfp": _check_tfp(section["tfp"]),
     }
+
+
+def _check_tfp(tfp) -> dict:
+    """The checked ``isolation.bearings.tfp`` section (:data:`TFP_KEYS`)."""
+    if not isinstance(tfp, dict) or set(tfp) != set(TFP_KEYS):
+        raise ConfigError(f"isolation.bearings.tfp = {tfp!r} is invalid; allowed: a mapping of exactly "
+                          f"{list(TFP_KEYS)}")
+    out = {k: _bearing_number(f"tfp.{k}", tfp[k], *rng) for k, rng in TFP_KEYS.items()}
+    if out["capacity"] <= out["stiffening"]:
+        raise ConfigError(f"isolation.bearings.tfp.capacity = {tfp['capacity']!r} is out of range; allowed: above "
+                          f"isolation.bearings.tfp.stiffening = {tfp['stiffening']!r}")
+    return out
 
 
 def bearing_settings(settings: dict) -> dict:
@@ -652,13 +684,36 @@ def bearing_settings(settings: dict) -> dict:
             "defaults": copy.deepcopy(settings["defaults"]), "solver": copy.deepcopy(settings["solver"])}
 
 
+def bearing_triple(settings: dict) -> _design.TripleIsolator:
+    """The bearing study's triple friction pendulum (:func:`isoslide.studies.design.design_triple_friction_pendulum`).
+
+    The ``T_eff`` and ``beta_eff`` of ``isolation.design`` at its ``D``, the proportions of
+    ``isolation.bearings.tfp``; constant friction.
+
+    Raises
+    ------
+    isoslide.config.ConfigError
+        Naming ``isolation.bearings.tfp`` when no such bearing meets the targets.
+    """
+    tfp = check_bearings(settings["isolation"]["bearings"])["tfp"]
+    des = settings["isolation"]["design"]
+    try:
+        return _design.design_triple_friction_pendulum(
+            NOMINAL_MASS, float(des["T_eff"]), float(des["beta_eff"]), float(des["D"]), tfp["inner_radius"],
+            tfp["mu1_ratio"], tfp["mu3_ratio"], tfp["stiffening"], tfp["capacity"], g=G)
+    except ValueError as err:
+        raise ConfigError(f"isolation.bearings.tfp = {tfp!r} with isolation.design T_eff = {des['T_eff']!r}, "
+                          f"beta_eff = {des['beta_eff']!r}, D = {des['D']!r}: {err}") from None
+
+
 def bearing_isolators(settings: dict) -> dict:
     """The isolators of the bearing study: ``{name: keyword arguments of Scene.from_physical}``.
 
     The lead-rubber (bilinear) bearing and the friction pendulum of :func:`isoslide.studies.design.design`
-    (the isolators of :func:`design_comparison`: the same ``T_eff`` and ``beta_eff`` at ``D``), and
-    that pendulum with friction rising with speed (:func:`isoslide.friction_pendulum` with its radius,
-    ``mu_fast`` its ``mu``, ``mu_slow = mu_slow_ratio mu_fast`` and ``rate``), in the order of
+    (the isolators of :func:`design_comparison`: the same ``T_eff`` and ``beta_eff`` at ``D``), that
+    pendulum with friction rising with speed (:func:`isoslide.friction_pendulum` with its radius,
+    ``mu_fast`` its ``mu``, ``mu_slow = mu_slow_ratio mu_fast`` and ``rate``) and the triple friction
+    pendulum of :func:`bearing_triple` (:func:`isoslide.triple_friction_pendulum`), in the order of
     :data:`BEARING_ISOLATORS`.
     """
     sec = check_bearings(settings["isolation"]["bearings"])
@@ -670,7 +725,7 @@ def bearing_isolators(settings: dict) -> dict:
     speed = {"M_b": M, "xi_b": fp.xi_b,
              **friction_pendulum(fp.radius(G), mu, M, g=G, mu_slow=sec["mu_slow_ratio"] * mu, rate=sec["rate"])}
     return {"lead_rubber": systems["bilinear"].scene_parameters(), "friction_pendulum": fp.scene_parameters(),
-            "friction_pendulum_speed": speed}
+            "friction_pendulum_speed": speed, TRIPLE: bearing_triple(settings).scene_parameters()}
 
 
 def _building_parameters(building: str, sec: dict) -> dict:
@@ -693,9 +748,14 @@ def _probe(scene: Scene, rtol) -> tuple:
     :data:`PROBE_HORIZON` isolation periods after the pulse: the largest ``|floor_accel|``
     over the rows (:func:`isoslide.store.history_io.history_table`), the largest ``|x|`` (the slab
     relative to the ground) and whether the isolator ever slid or yielded (a bearing that held
-    throughout ran as a fixed base: facet ``isolator == "fixed-base"``).
+    throughout ran as a fixed base: facet ``isolator == "fixed-base"``).  A triple friction
+    pendulum that reaches its displacement capacity (:class:`isoslide.solver.CapacityError`) gives
+    ``(nan, nan, True)``: the model does not go past it.
     """
-    sol = solver.solve(scene, rtol=rtol, history=True, max_step=PROBE_STEP, horizon=PROBE_HORIZON)
+    try:
+        sol = solver.solve(scene, rtol=rtol, history=True, max_step=PROBE_STEP, horizon=PROBE_HORIZON)
+    except solver.CapacityError:
+        return math.nan, math.nan, True
     h = sol.history
     pfa = peak_abs(history_table(sol, scene).columns["floor_accel"])
     disp = float(np.max(np.abs(h.x))) * scene.scale.length
@@ -704,22 +764,50 @@ def _probe(scene: Scene, rtol) -> tuple:
     return pfa, disp, slid
 
 
+def _solve_triple(scenes: list, rtol) -> tuple:
+    """Triple-pendulum scenes, one :func:`isoslide.solve` each (it reports the regime and the capacity).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``pi1`` (NaN where the bearing reached its capacity), ``settled``, ``facets``,
+        ``peak_stage`` (:attr:`isoslide.Solution.peak_stage`; 5 = V, the regime the capacity ends,
+        where it was reached) and ``capacity`` (True where :class:`isoslide.solver.CapacityError`
+        was raised).
+    """
+    n = len(scenes)
+    pi1, settled, stage, cap = np.full(n, np.nan), np.zeros(n, bool), np.zeros(n, np.int8), np.zeros(n, bool)
+    facets = np.empty(n, dtype=object)
+    for i, sc in enumerate(scenes):
+        try:
+            sol = solver.solve(sc, rtol=rtol)
+        except solver.CapacityError:
+            facets[i] = solver.scene_facets(sc, friction="coulomb", oneway=sc.pi8 == 0.0)
+            stage[i], cap[i] = len(REGIMES), True
+            continue
+        pi1[i], settled[i], facets[i], stage[i] = sol.pi1, sol.settled, sol.facets, sol.peak_stage
+    return pi1, settled, facets, stage, cap
+
+
 def bearing_study(settings: dict, solve_many=None) -> xr.Dataset:
     """Peak sliding of the contents and the floor's peak acceleration over the pulse's intensity.
 
     The isolators of :func:`bearing_isolators` (a lead-rubber bearing and a friction pendulum of the
-    same ``T_eff``, ``beta_eff`` at ``D``, and that pendulum with friction rising with speed) under
-    the buildings of ``isolation.bearings.buildings`` (:data:`BUILDINGS`), one pulse of period ``T_p``
-    scaled to each ``a_p``, Coulomb contents (``mu_s = mu_k``, mass ratio Pi8 from ``defaults``) of
-    each ``mu_k``.
+    same ``T_eff``, ``beta_eff`` at ``D``, that pendulum with friction rising with speed, and a
+    triple friction pendulum of the same ``T_eff``, ``beta_eff`` at ``D``) under the buildings of
+    ``isolation.bearings.buildings`` (:data:`BUILDINGS`), one pulse of period ``T_p`` scaled to each
+    ``a_p``, Coulomb contents (``mu_s = mu_k``, mass ratio Pi8 from ``defaults``) of each ``mu_k``.
 
     Parameters
     ----------
     settings : dict
         :func:`isolation_settings` of a complete configuration (or its :func:`bearing_settings`).
     solve_many : callable, optional
-        The batch solver (:mod:`isoslide.studies.solving`); of its answers the study reads ``pi1``,
-        ``settled`` and ``facets``.
+        The batch solver (:mod:`isoslide.studies.solving`) of the scenes of every isolator but the
+        triple friction pendulum, called once; of its answers the study reads ``pi1``, ``settled``
+        and ``facets``.  The triple pendulum's scenes are solved one by one by :func:`isoslide.solve`,
+        which reports the regime reached and raises :class:`isoslide.solver.CapacityError` at the
+        bearing's displacement capacity.
 
     Returns
     -------
@@ -734,7 +822,15 @@ def bearing_study(settings: dict, solve_many=None) -> xr.Dataset:
         ``bearing_slid`` (the bearing slid, or the lead-rubber bearing yielded); per ``isolator``:
         ``T_b``, ``Q_over_W`` (``mu_fast`` of a pendulum), ``mu_slow``, ``rate``, ``D_y``, ``R``,
         ``T_eff`` and ``beta_eff`` at ``D`` (the code linearisation; the speed-dependent pendulum's
-        with ``mu_fast``).
+        with ``mu_fast``; the triple pendulum's from its closed-form backbone and loop, its
+        ``T_b``, ``R`` and ``Q_over_W`` those of regime III: ``L2 + L3`` and ``mu2``).  The triple
+        friction pendulum: ``peak_stage`` over ``building, isolator, a_p, mu_k`` (its regime
+        reached, :data:`STAGE_FLAGS`; -1 for the other isolators), ``capacity_reached`` (1 where
+        :class:`isoslide.solver.CapacityError` was raised: ``pi1``, ``u_max`` NaN there, and the
+        probe's ``pfa``, ``bearing_disp`` NaN where its history reached it), ``tfp_regime_start``
+        over ``regime`` (where each regime starts on the backbone [m]) and the attributes
+        ``tfp_L``, ``tfp_mu``, ``tfp_d`` (OpenSees's ``L1..L3`` [m], ``mu1..mu3``, ``d1..d3`` [m])
+        and ``tfp_capacity`` [m].
     """
     solve_many = batch_solver(solve_many)
     sec = check_bearings(settings["isolation"]["bearings"])
@@ -742,21 +838,31 @@ def bearing_study(settings: dict, solve_many=None) -> xr.Dataset:
     rtol = settings["solver"]["rtol"]
     pi8 = float(settings["defaults"]["pi8"])
     isolators = bearing_isolators(settings)
+    triple = bearing_triple(settings)
     buildings, a_p, mu = sec["buildings"], np.array(sec["a_p"]), np.array(sec["mu_k"])
     T_p, pulse = sec["T_p"], sec["pulse"]
     shape = (len(buildings), len(isolators), a_p.size, mu.size)
-    scenes, probes = [], []
+    scenes, probes, is_triple = [], [], []
     for b in buildings:
         frame = _building_parameters(b, sec)
-        for iso in isolators.values():
+        for name, iso in isolators.items():
             for a in a_p:
                 base = dict(a_p=float(a), T_p=T_p, pulse=pulse, **frame, **iso)
                 scenes += [Scene.from_physical(**base, **_coulomb(pi8, float(m))) for m in mu]
+                is_triple += [name == TRIPLE] * mu.size
                 probes.append(Scene.from_physical(**base, **_coulomb(pi8, float(mu[-1]))))
-    batch = solve_many(scenes, rtol=rtol)
-    pi1 = np.asarray(batch.pi1, dtype=float).reshape(shape)
+    is_triple = np.array(is_triple, dtype=bool)
+    n = len(scenes)
+    pi1, settled, facets = np.full(n, np.nan), np.zeros(n, bool), np.empty(n, dtype=object)
+    stage, capacity = np.full(n, -1, np.int8), np.zeros(n, bool)
+    batch = solve_many([s for s, t in zip(scenes, is_triple, strict=True) if not t], rtol=rtol)
+    pi1[~is_triple] = np.asarray(batch.pi1, dtype=float)
+    settled[~is_triple] = np.asarray(batch.settled, dtype=bool)
+    facets[~is_triple] = list(batch.facets)
+    (pi1[is_triple], settled[is_triple], facets[is_triple], stage[is_triple],
+     capacity[is_triple]) = _solve_triple([s for s, t in zip(scenes, is_triple, strict=True) if t], rtol)
+    pi1, settled, stage, capacity = (x.reshape(shape) for x in (pi1, settled, stage, capacity))
     length = np.array([s.scale.length for s in scenes]).reshape(shape)
-    settled = np.asarray(batch.settled, dtype=bool).reshape(shape)
     peaks = np.array([_probe(s, rtol) for s in probes], dtype=float).reshape(*shape[:3], 3)
 
     one = {"units": "1"}
@@ -771,31 +877,46 @@ def bearing_study(settings: dict, solve_many=None) -> xr.Dataset:
     ds.coords["floor"] = ("building", np.array([BUILDINGS[b] for b in buildings], dtype=object),
                           {"long_name": "floor carrying the contents"})
     d4 = ("building", "isolator", "a_p", "mu_k")
-    ds["u_max"] = (d4, pi1 * length, {"long_name": "peak sliding displacement of the contents", "units": "m"})
-    ds["pi1"] = (d4, pi1, pi_attrs("pi1"))
+    beyond = "NaN where the triple friction pendulum reached its displacement capacity (capacity_reached)"
+    ds["u_max"] = (d4, pi1 * length, {"long_name": "peak sliding displacement of the contents", "units": "m",
+                                      "comment": beyond})
+    ds["pi1"] = (d4, pi1, {**pi_attrs("pi1"), "comment": beyond})
     ds["pi2"] = (("a_p", "mu_k"), mu[None, :] * G / a_p[:, None], pi_attrs("pi2"))
     ds["settled"] = (d4, settled.astype(np.int8), {"long_name": "response settled", **one,
                                                     "flag_values": np.array([0, 1], np.int8),
                                                     "flag_meanings": "not_settled settled"})
-    for name, (dims, codes, attrs) in encode_facets(batch.facets, d4, shape).items():
+    for name, (dims, codes, attrs) in encode_facets(facets, d4, shape).items():
         ds[name] = (dims, codes, attrs)
+    ds["peak_stage"] = (d4, stage, {
+        "long_name": "highest regime of the triple friction pendulum (Fenz and Constantinou's I..V)", **one,
+        "flag_values": np.array(list(STAGE_FLAGS), np.int8), "flag_meanings": " ".join(STAGE_FLAGS.values()),
+        "comment": "held: the bearing never slid; V where capacity_reached (the capacity ends regime V); "
+                   "not_triple_pendulum for the other isolators"})
+    ds["capacity_reached"] = (d4, capacity.astype(np.int8), {
+        "long_name": "the triple friction pendulum reached its displacement capacity (isoslide.solver.CapacityError)",
+        **one, "flag_values": np.array([0, 1], np.int8), "flag_meanings": "within_capacity capacity_reached",
+        "comment": "pi1 and u_max are NaN where 1: the model of rigid restrainers does not go past the capacity"})
     d3 = ("building", "isolator", "a_p")
     probe = (f"contents at the largest mu_k; history steps <= {PROBE_STEP:g} T_p, at most {PROBE_HORIZON:g} "
              "isolation periods after the pulse")
+    probe_nan = probe + "; NaN where that history reached the triple friction pendulum's capacity"
     ds["pfa"] = (d3, peaks[..., 0], {"long_name": "peak absolute acceleration of the contents' floor",
-                                     "units": "m s-2", "comment": probe})
+                                     "units": "m s-2", "comment": probe_nan})
     ds["bearing_disp"] = (d3, peaks[..., 1], {"long_name": "peak isolator displacement", "units": "m",
-                                              "comment": probe})
+                                              "comment": probe_nan})
     ds["bearing_slid"] = (d3, peaks[..., 2].astype(np.int8),
                           {"long_name": "the bearing slid (a lead-rubber bearing: yielded)", **one,
                            "flag_values": np.array([0, 1], np.int8), "flag_meanings": "held slid",
                            "comment": probe})
     D = float(des["D"])
     rows = {"T_b": [], "Q_over_W": [], "mu_slow": [], "rate": [], "D_y": [], "R": [], "T_eff": [], "beta_eff": []}
-    for iso in isolators.values():
+    for name, iso in isolators.items():
         W = iso["M_b"] * G
         k_d = iso["M_b"] * (2.0 * math.pi / iso["T_b"]) ** 2
-        K, beta = _design.effective_bilinear(k_d, iso["Q_d"], D, iso["D_y"])
+        if name == TRIPLE:
+            K, beta = triple.effective(D)
+        else:
+            K, beta = _design.effective_bilinear(k_d, iso["Q_d"], D, iso["D_y"])
         for k, v in (("T_b", iso["T_b"]), ("Q_over_W", iso["Q_d"] / W), ("mu_slow", iso.get("Q_slow", iso["Q_d"]) / W),
                      ("rate", iso.get("rate", 0.0)), ("D_y", iso["D_y"]), ("R", W / k_d),
                      ("T_eff", _design.effective_period(iso["M_b"], K)), ("beta_eff", beta)):
@@ -810,11 +931,24 @@ def bearing_study(settings: dict, solve_many=None) -> xr.Dataset:
             "beta_eff": ("effective damping at D (code linearisation, mu_fast)", "1")}
     for k, v in rows.items():
         ds[k] = ("isolator", np.asarray(v), {"long_name": meta[k][0], "units": meta[k][1]})
+    ds["R"].attrs["comment"] = "the triple friction pendulum's: L2 + L3, the radius of regime III"
+    ds["Q_over_W"].attrs["comment"] = "the triple friction pendulum's: mu2 (constant friction)"
+    bounds = triple.boundaries()
+    ds.coords["regime"] = ("regime", np.arange(1, len(REGIMES) + 1, dtype=np.int8),
+                           {"long_name": "regime of the triple friction pendulum", **one,
+                            "flag_values": np.arange(1, len(REGIMES) + 1, dtype=np.int8),
+                            "flag_meanings": " ".join(REGIMES)})
+    ds["tfp_regime_start"] = ("regime", np.asarray(bounds.u[:len(REGIMES)], dtype=float),
+                              {"long_name": "displacement where each regime of the triple friction pendulum starts "
+                                            "on its backbone", "units": "m",
+                               "comment": "regimes of zero length start where the next one does"})
     ds.attrs.update({"D": D, "T_eff_target": float(des["T_eff"]), "beta_eff_target": float(des["beta_eff"]),
                      "D_y_bilinear": float(des["D_y"]), "T_p": T_p, "pulse": pulse, "M_b": NOMINAL_MASS,
                      "pi8": pi8, "mu_slow_ratio": sec["mu_slow_ratio"], "rate": sec["rate"],
                      "pi11_flexible": sec["pi11"], "pi12_flexible": sec["pi12"], "pi13_flexible": sec["pi13"],
-                     "probe_step": PROBE_STEP, "probe_horizon": PROBE_HORIZON, "rtol": "default" if rtol is None else float(rtol)})
+                     "probe_step": PROBE_STEP, "probe_horizon": PROBE_HORIZON, "rtol": "default" if rtol is None else float(rtol),
+                     "tfp_L": np.asarray(triple.L, dtype=float), "tfp_mu": np.asarray(triple.mu, dtype=float),
+                     "tfp_d": np.asarray(triple.d, dtype=float), "tfp_capacity": float(triple.capacity)})
     return ds
 
 
@@ -825,7 +959,8 @@ def bearings_dataset(settings: dict) -> xr.Dataset:
     sub = bearing_settings(settings)
     ds.attrs = global_attrs(
         title="isoslide: contents on isolated floors from service-level shaking to beyond the design, under a "
-              "lead-rubber bearing and friction pendulums of constant and speed-dependent friction",
+              "lead-rubber bearing, friction pendulums of constant and speed-dependent friction and a triple "
+              "friction pendulum",
         history=(f"isoslide.studies.isolation_study.bearing_study: {ds.sizes['building']} buildings x "
                  f"{ds.sizes['isolator']} isolators x {ds.sizes['a_p']} a_p x {ds.sizes['mu_k']} mu_k, isolators by "
                  "isoslide.studies.design (ASCE 7 / AASHTO linearisation); no timestamps are stored"),
@@ -909,7 +1044,9 @@ def bearing_onsets(ds: xr.Dataset) -> list:
         Per building and isolator: ``(building, isolator, first a_p at which the bearing slid or
         yielded, peak floor acceleration at the smallest a_p [m/s^2], first a_p at which the
         bearing reaches D, its displacement at the largest a_p [m], first a_p at which the contents
-        slide per mu_k (tuple))``; NaN where it never happens on the grid.
+        slide per mu_k (tuple), first a_p at which the bearing reached its displacement capacity)``;
+        NaN where it never happens on the grid (the displacement at the largest ``a_p`` too, where
+        the capacity was reached there).
     """
     D = float(ds.attrs["D"])
     a_p = ds["a_p"].values
@@ -923,9 +1060,91 @@ def bearing_onsets(ds: xr.Dataset) -> list:
         for iso in ds["isolator"].values:
             sub = ds.sel(building=b, isolator=iso)
             disp = sub["bearing_disp"].values
+            cap = (sub["capacity_reached"] > 0).any("mu_k").values if "capacity_reached" in sub else np.zeros(a_p.size)
             rows.append((str(b), str(iso), first(sub["bearing_slid"].values > 0), float(sub["pfa"].values[0]),
                          first(disp >= D), float(disp[-1]),
-                         tuple(first(sub["u_max"].sel(mu_k=m).values > 0) for m in ds["mu_k"].values)))
+                         tuple(first(sub["u_max"].sel(mu_k=m).values > 0) for m in ds["mu_k"].values), first(cap)))
+    return rows
+
+
+def triple_regimes(ds: xr.Dataset) -> list:
+    """The triple friction pendulum's regime over the intensity, per building.
+
+    The regime at each ``a_p`` is the highest over the ``mu_k`` (the contents barely move the
+    bearing: Pi8 is small).
+
+    Returns
+    -------
+    list of tuple
+        Per building: ``(building, runs, first a_p of the capacity (NaN: never on the grid))``, the
+        runs ``(regime, first a_p, last a_p, peak bearing displacement at the last a_p [m])`` of
+        consecutive ``a_p`` in one regime below the capacity, ``regime`` one of ``"held"``,
+        :data:`REGIMES`.
+    """
+    a_p = ds["a_p"].values
+    rows = []
+    for b in ds["building"].values:
+        sub = ds.sel(building=b, isolator=TRIPLE)
+        stage = sub["peak_stage"].max("mu_k").values
+        cap = (sub["capacity_reached"] > 0).any("mu_k").values
+        disp = sub["bearing_disp"].values
+        runs, k = [], 0
+        within = np.flatnonzero(~cap)
+        while k < within.size:
+            j = k
+            while j + 1 < within.size and within[j + 1] == within[j] + 1 and stage[within[j + 1]] == stage[within[k]]:
+                j += 1
+            runs.append((STAGE_FLAGS[int(stage[within[k]])], float(a_p[within[k]]), float(a_p[within[j]]),
+                         float(disp[within[j]])))
+            k = j + 1
+        rows.append((str(b), runs, float(a_p[np.flatnonzero(cap)[0]]) if cap.any() else math.nan))
+    return rows
+
+
+def triple_against(ds: xr.Dataset, other: str, tolerance: float = SPEED_TOLERANCE) -> list:
+    """The triple friction pendulum's contents and floor against those of another isolator.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :func:`bearing_study` (``isolation_bearings.nc``).
+    other : str
+        An isolator of ``ds`` (``"friction_pendulum"``, ``"lead_rubber"``, ...).
+    tolerance : float
+        Relative difference of ``u_max`` counted as "the same".
+
+    Returns
+    -------
+    list of tuple
+        Per building, over the ``(a_p, mu_k)`` within the triple pendulum's capacity where either
+        isolator's contents slide: ``(building, other, points, more, less, same, smallest ratio,
+        median ratio, largest ratio, smallest floor ratio, its a_p, largest floor ratio, its a_p)``; ``more``,
+        ``less``, ``same``: how many points the triple pendulum's contents slide more, less or the
+        same (within ``tolerance``), the ratio ``u_max triple / u_max other`` (finite ones; NaN if
+        none), the floor ratio that of the peak floor accelerations over the ``a_p`` within the
+        capacity.
+    """
+    rows = []
+    a_p = ds["a_p"].values
+    for b in ds["building"].values:
+        sub = ds.sel(building=b)
+        ut, uo = sub["u_max"].sel(isolator=TRIPLE).values, sub["u_max"].sel(isolator=other).values
+        within = sub["capacity_reached"].sel(isolator=TRIPLE).values == 0
+        verdicts = [_speed_verdict(float(o), float(t), tolerance)
+                    for o, t, w in zip(uo.ravel(), ut.ravel(), within.ravel(), strict=True) if w]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(within & (uo > 0), ut / np.where(uo > 0, uo, 1.0), np.nan)
+        finite = ratio[np.isfinite(ratio)]
+        pt, po = sub["pfa"].sel(isolator=TRIPLE).values, sub["pfa"].sel(isolator=other).values
+        fr = np.where(np.isfinite(pt), pt / po, np.nan)
+        floor = (math.nan,) * 4                  # past the capacity at every a_p
+        if np.isfinite(fr).any():
+            k_lo, k_hi = int(np.nanargmin(fr)), int(np.nanargmax(fr))
+            floor = (float(fr[k_lo]), float(a_p[k_lo]), float(fr[k_hi]), float(a_p[k_hi]))
+        ratios = ((float(finite.min()), float(np.median(finite)), float(finite.max())) if finite.size
+                  else (math.nan,) * 3)
+        rows.append((str(b), str(other), sum(v != "none" for v in verdicts), verdicts.count("more"),
+                     verdicts.count("less"), verdicts.count("same"), *ratios, *floor))
     return rows
 
 
@@ -1016,8 +1235,16 @@ def bearing_findings(ds: xr.Dataset) -> list:
         for r in (r for r in onsets if r[0] == str(b)):
             reach = f"reaches D at a_p = {r[4]:g} m/s²" if np.isfinite(r[4]) else "stays below D"
             slide = ", ".join(f"{_ap(a)} (μ_k = {float(m):g})" for a, m in zip(r[6], ds["mu_k"].values, strict=True))
-            parts.append(f"{names[r[1]]} {reach}, {r[5]:.3f} m = {r[5] / D:.2f} D at the largest a_p; its contents "
-                         f"start sliding at {slide}")
+            if np.isfinite(r[5]):
+                far = f"{r[5]:.3f} m = {r[5] / D:.2f} D at the largest a_p"
+            else:
+                disp = ds["bearing_disp"].sel(building=b, isolator=r[1]).values
+                k = np.flatnonzero(np.isfinite(disp))
+                far = (f"reaches its displacement capacity {ds.attrs['tfp_capacity']:.3f} m = "
+                       f"{ds.attrs['tfp_capacity'] / D:.2f} D at a_p = {r[7]:g} m/s²"
+                       + (f" ({disp[k[-1]]:.3f} m = {disp[k[-1]] / D:.2f} D at a_p = {ds['a_p'].values[k[-1]]:g} m/s²)"
+                          if k.size else ""))
+            parts.append(f"{names[r[1]]} {reach}, {far}; its contents start sliding at {slide}")
         lines.append(f"{BUILDING_TEXT.get(str(b), str(b)).capitalize()}: " + "; ".join(parts))
     out.append((f"From service level to beyond the design displacement D = {D:g} m", ". ".join(lines) + "."))
 
@@ -1031,9 +1258,74 @@ def bearing_findings(ds: xr.Dataset) -> list:
         tally = ", ".join(f"{names[str(iso)]} {int(np.sum(least[i] & slides))}"
                           for i, iso in enumerate(ds["isolator"].values))
         top = sub.isel(a_p=-1, mu_k=0)
+        at_top = ", ".join(f"{names[str(i)]} {float(top.sel(isolator=i)) * 100:.1f} cm"
+                           if np.isfinite(float(top.sel(isolator=i))) else f"{names[str(i)]} past its capacity"
+                           for i in ds["isolator"].values)
         counts.append(f"{BUILDING_TEXT.get(str(b), str(b))}: of the {n} (a_p, μ_k) points where any contents slide, the "
-                      f"smallest u_max (ties counted for each) is under the {tally}; at the largest a_p and μ_k = {float(ds['mu_k'][0]):g} "
-                      + ", ".join(f"{names[str(i)]} {float(top.sel(isolator=i)) * 100:.1f} cm"
-                                  for i in ds["isolator"].values))
-    out.append(("Which bearing lets the contents slide least", "; ".join(counts).capitalize() + "."))
+                      f"smallest u_max (ties counted for each) is under the {tally}; at the largest a_p and μ_k = "
+                      f"{float(ds['mu_k'][0]):g} {at_top}")
+    capped = int((ds["capacity_reached"] > 0).sum()) if "capacity_reached" in ds else 0
+    out.append(("Which bearing lets the contents slide least", "; ".join(counts).capitalize() + "."
+                + (f" The {capped} points past the triple friction pendulum's capacity count for no bearing."
+                   if capped else "")))
+    if TRIPLE in ds["isolator"].values:
+        out.append(_triple_finding(ds))
     return out
+
+
+def _triple_finding(ds: xr.Dataset) -> tuple:
+    """The bearing study's finding on the triple friction pendulum: ``(title, text with its numbers)``."""
+    D = float(ds.attrs["D"])
+    (L1, L2, _L3), (m1, m2, m3), (d1, d2, _d3) = (np.asarray(ds.attrs[k], dtype=float)
+                                                  for k in ("tfp_L", "tfp_mu", "tfp_d"))
+    start = ds["tfp_regime_start"].values
+    cap = float(ds.attrs["tfp_capacity"])
+    head = (f"The triple friction pendulum (L1 = {L1:.3f} m, L2 = L3 = {L2:.3f} m, μ1 = {m1:.4f}, μ2 = {m2:.4f}, "
+            f"μ3 = {m3:.4f}, d1 = {d1:.3f} m, d2 = d3 = {d2:.3f} m; constant friction: friction rising with speed is "
+            f"modelled for the single pendulum only) shares T_eff = {float(ds['T_eff'].sel(isolator=TRIPLE)):.3f} s "
+            f"and β_eff = {float(ds['beta_eff'].sel(isolator=TRIPLE)):.3f} with the other bearings at D = {D:g} m, "
+            f"where it is in regime III; its inner slider breaks away at μ1 g = {m1 * G:.3f} m/s² of floor "
+            f"acceleration, against μ g = {float(ds['Q_over_W'].sel(isolator='friction_pendulum')) * G:.3f} m/s² for "
+            f"the single pendulum; regime II starts at {start[1] * 100:.1f} cm, III at {start[2] * 100:.1f} cm, IV "
+            f"(stiffening) at {start[3] / D:.2f} D, V at {start[4] / D:.2f} D, and its capacity is {cap:.3f} m = "
+            f"{cap / D:.2f} D.")
+    lines = []
+    regimes = {r[0]: r for r in triple_regimes(ds)}
+    against = {(r[0], r[1]): r for other in ("friction_pendulum", "lead_rubber") for r in triple_against(ds, other)}
+    a_p = ds["a_p"].values
+    for b in ds["building"].values:
+        _, runs, cap_from = regimes[str(b)]
+        seq = ", ".join(f"{name} at {_span(lo, hi)} ({disp / D:.2f} D)" for name, lo, hi, disp in runs)
+        capacity = (f"; past its capacity from a_p = {cap_from:g} m/s² (Π₁ NaN there: the model stops at the "
+                    "restrainer)" if np.isfinite(cap_from) else "; within its capacity at every a_p")
+        pfa = ds["pfa"].sel(building=b)
+        k0 = 0
+        service = (f"at a_p = {a_p[k0]:g} m/s² the floor peaks at {float(pfa.sel(isolator=TRIPLE)[k0]) / G:.4f} g on "
+                   f"it, {float(pfa.sel(isolator='friction_pendulum')[k0]) / G:.4f} g on the single pendulum and "
+                   f"{float(pfa.sel(isolator='lead_rubber')[k0]) / G:.4f} g on the lead-rubber bearing")
+        comp = []
+        for other in ("friction_pendulum", "lead_rubber"):
+            _, _, n, more, less, same, rmin, rmed, rmax, flo, alo, fhi, ahi = against[(str(b), other)]
+            ratio = f", u_max ratio median {rmed:.2f} ({rmin:.2f} to {rmax:.2f})" if np.isfinite(rmin) else ""
+            comp.append(f"against the {BEARING_LABELS[other]}, of the {n} (a_p, μ_k) points within its capacity where "
+                        f"either's contents slide, the triple pendulum's slide more at {more}, less at {less}, the "
+                        f"same at {same}{ratio}; its floor peaks at {flo:.2f}× (a_p = {alo:g} m/s²) to {fhi:.2f}× "
+                        f"(a_p = {ahi:g} m/s²) that one's")
+        last = runs[-1] if runs else None
+        strongest = ""
+        if last is not None and last[0] not in ("held", "I"):
+            u = ds["u_max"].sel(building=b, a_p=last[2])
+            mus = ", ".join(f"{float(m):g}" for m in ds["mu_k"].values)
+            strongest = (f"; at a_p = {last[2]:g} m/s² (regime {last[0]}, the largest a_p within its capacity) its "
+                         f"contents slide {', '.join(f'{v * 100:.2f}' for v in u.sel(isolator=TRIPLE).values)} cm, "
+                         f"against {', '.join(f'{v * 100:.2f}' for v in u.sel(isolator='friction_pendulum').values)} cm "
+                         f"on the single pendulum and "
+                         f"{', '.join(f'{v * 100:.2f}' for v in u.sel(isolator='lead_rubber').values)} cm on the "
+                         f"lead-rubber bearing (μ_k = {mus}), its floor peaking at "
+                         f"{float(pfa.sel(isolator=TRIPLE, a_p=last[2])) / G:.3f} g against "
+                         f"{float(pfa.sel(isolator='friction_pendulum', a_p=last[2])) / G:.3f} g and "
+                         f"{float(pfa.sel(isolator='lead_rubber', a_p=last[2])) / G:.3f} g")
+        lines.append(f"{BUILDING_TEXT.get(str(b), str(b)).capitalize()}: its regimes {seq}{capacity}; {service}; "
+                     + "; ".join(comp) + strongest)
+    return ("The triple friction pendulum: its regimes over the intensity, and its contents against the single "
+            "pendulum's and the lead-rubber bearing's", head + " " + ". ".join(lines) + ".")
