@@ -3,7 +3,8 @@
 # iso_flex_base, iso_flex_roof) are ordinary studies: solved and merged by the rules of sweep.smk.
 # Here: where the rigid-superstructure reduction holds, the comparison of isolation systems of equal
 # effective period and damping, those bearings over the pulse's intensity (a friction pendulum with
-# friction rising with speed among them), their figures; reports/isolation.html is the `report` rule's.
+# friction rising with speed and a triple friction pendulum among them), their figures;
+# reports/isolation.html is the `report` rule's.
 
 
 rule isolation_rigid:

@@ -1,5 +1,6 @@
-"""Rule isolation_bearings: a lead-rubber bearing and friction pendulums of constant and speed-dependent
-friction, designed alike, over a pulse's intensity (isoslide.studies.isolation_study.bearings_dataset)."""
+"""Rule isolation_bearings: a lead-rubber bearing, friction pendulums of constant and speed-dependent
+friction and a triple friction pendulum, designed alike, over a pulse's intensity
+(isoslide.studies.isolation_study.bearings_dataset)."""
 
 from isoslide.budget import compile_solve_write
 from isoslide.datasets import write_netcdf
