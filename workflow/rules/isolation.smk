@@ -64,8 +64,10 @@ rule isolation_bearings:
         "results/benchmarks/isolation_bearings/isolation_bearings.tsv"
     threads: 1
     resources:
-        mem_mb=700,  # measured: max_rss 301 MB
-        runtime=2,  # minutes; measured: 9.0 s (default config, 2 cores under load; solving 1.5 s of it)
+        mem_mb=700,  # measured: max_rss 306 MB (403 MB compiling the kernel)
+        runtime=2,  # minutes; measured: 11.7-15.5 s with the triple pendulum (default config, 2 cores, load 4.4;
+        #             solving 3.0-4.0 s of it), 8.4-16.3 s without it (solving 2.0-3.8 s); compiling a kernel the
+        #             cache lacks adds about 2.5 min
     conda:
         "../envs/isoslide.yaml"
     script:
@@ -87,7 +89,8 @@ rule isolation_figure:
     threads: 1
     resources:
         mem_mb=600,  # measured: max_rss 296 MB
-        runtime=6,  # minutes; measured: 31.2 s drawing, 11.0 s of it the bearing study's figure (default config, 2 cores, load 3)
+        runtime=6,  # minutes; measured: 31.2 s drawing, 11.0 s of it the bearing study's figure (default config, 2 cores, load 3);
+        #             that figure with the triple pendulum 9-14 s, 6-8 s without it (load 3.5)
     conda:
         "../envs/isoslide.yaml"
     script:

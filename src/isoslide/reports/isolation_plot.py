@@ -234,7 +234,7 @@ def intensity(datasets):
         ax.plot(a_p, y, color=colors[st["color"]], ls=st["ls"], marker=st["marker"], ms=3.0, lw=1.0,
                 label=st["label"], **kw)
 
-    tcolor = colors[BEARING_STYLES[TRIPLE]["color"]]
+    tcolor = tuple(0.55 * c for c in colors[BEARING_STYLES[TRIPLE]["color"]][:3])   # darker: legible numerals
     for r, b in enumerate(buildings):
         sub = ds.sel(building=b)
         where = "slab (rigid)" if str(b) == "rigid" else "roof (flexible)"
@@ -288,7 +288,8 @@ def intensity(datasets):
             ax.axhline(1.0, color="0.6", lw=0.8, ls=":")
             ax.set_ylabel(ylabel)
             ax.set_title(title, fontsize=7)
-            ax.legend(fontsize=5.5, loc="best")
+            if ax is bottom[2]:                 # the triple pendulum's panel: the same lines
+                ax.legend(fontsize=5.5, loc="best")
         for ax in bottom[len(ratio_panels) + 2:]:
             ax.set_visible(False)
         for ax in (*top[:mus.size], *bottom[:len(ratio_panels) + 2]):
