@@ -39,3 +39,33 @@ def test_kernel_target_report_gives_each_targets_median_ratio_to_host_tuned_and_
     assert summ["a"]["host_us"] == pytest.approx(3e6)            # median of the points' medians 2 and 4
     assert summ["a"]["pi1_rel_diff"] == pytest.approx(1e-12)
     assert "portable / host over the classes: median 1.125" in out.getvalue()
+
+
+@pytest.mark.skipif(not opensees_available(), reason="OpenSees not installed (pip install -e .[peers])")
+def test_a_triple_pendulum_runs_on_opensees_element_with_its_own_pairs():
+    """The triple pendulum's class takes TFP_PAIRS (coarsest first) and OpenSees's TripleFrictionPendulum peer."""
+    from isoslide.accuracy.scenes import BUILDING_POINTS, BUILDINGS, TFP_PENDULUM
+
+    scene = Scene(**BUILDING_POINTS[2], **BUILDINGS[TFP_PENDULUM])
+    row = opensees_cost.compare(scene, tolerance=1.0, horizon=2.0, repeats=1)
+    assert (row["dtau"], row["stick"], row["reached"]) == (*opensees_cost.TFP_PAIRS[0], True)
+    assert 0.0 < row["opensees_error"] < 0.2 and row["isoslide_error"] < 1e-5
+
+
+def test_opensees_report_ends_with_the_triple_pendulums_aims():
+    """Against OpenSees (a lower bound when the tolerance was not reached) and against the constant pendulum."""
+    from isoslide.accuracy.scenes import PENDULUM, TFP_PENDULUM
+
+    def row(iso_s, os_s, reached):
+        return {"isoslide_s": iso_s, "opensees_s": os_s, "reached": reached, "dtau": 1e-3, "isoslide_error": 1e-9,
+                "opensees_error": 5e-4 if reached else 2e-3}
+
+    res = {PENDULUM: [row(1e-3, 4.0, True)] * 2, TFP_PENDULUM: [row(1.5e-3, 15.0, True), row(1.5e-3, 15.0, False)]}
+    out = io.StringIO()
+    summ = opensees_cost.report(res, file=out)
+    text = out.getvalue()
+    assert summ[TFP_PENDULUM]["ratio"] == pytest.approx(1e4) and not summ[TFP_PENDULUM]["reached"]
+    assert summ[TFP_PENDULUM]["pendulum_ratio"] == pytest.approx(1.5)
+    assert "at least 20x faster than OpenSees's TripleFrictionPendulum at 0.001 in Pi1 -> MET" in text
+    assert "a lower bound: OpenSees did not reach the tolerance" in text
+    assert f"at most 2x its cost on the constant-friction pendulum ({PENDULUM}) -> MET (ratio 1.50" in text

@@ -11,8 +11,12 @@ the median of :func:`isoslide.solve` at its default accuracy (which stops once t
 provably settled, where OpenSees runs to its horizon). The buildings are those of the buildings
 section of the bench (:data:`~isoslide.accuracy.scenes.BUILDINGS`), on :data:`POINTS`; a friction
 pendulum whose friction rises with speed runs as OpenSees's ``flatSliderBearing`` with ``VelDependent``
-friction (:mod:`isoslide.peers.opensees_bearing_rate`), its yield displacement the pair's stick
-displacement.
+friction (:mod:`isoslide.peers.opensees_bearing_rate`), and a triple friction pendulum as OpenSees's
+``TripleFrictionPendulum`` element (:func:`isoslide.peers.opensees_tfp.solve_opensees_tfp`), each
+with its yield displacement the pair's stick displacement.  The triple pendulum runs on its own pairs
+(:data:`TFP_PAIRS`), and the table ends with its two aims, measured in the same run: isoslide at least
+:data:`TARGET_TFP_SPEEDUP` times faster than OpenSees on it, and isoslide's cost on it at most
+:data:`~isoslide.accuracy.scenes.TARGET_TFP_RATIO` times its cost on the constant-friction pendulum.
 
 ``python -m isoslide.bench --opensees`` prints the table (a few minutes; needs ``pip install -e
 .[peers]``).
@@ -27,15 +31,26 @@ import numpy as np
 from ..model.parts import building_of
 from ..peers import opensees_available, solve_opensees
 from ..peers.opensees_bearing_rate import solve_opensees_bearing_rate
+from ..peers.opensees_tfp import solve_opensees_tfp
 from ..scene import Scene
 from ..solver import solve
 from ..studies.opensees_convergence import DEFAULT_HORIZON, DEFAULT_PAIRS, target_pi1
-from .scenes import BUILDING_POINTS, BUILDINGS
+from .scenes import BUILDING_POINTS, BUILDINGS, PENDULUM, TARGET_TFP_RATIO, TFP_PENDULUM
 
 TOLERANCE = 1e-3
 """Relative error of ``Pi1`` at which OpenSees's cost is taken."""
 POINTS = BUILDING_POINTS[2:4]
 """Pi points of the comparison (two of the buildings section's: ``pi2 = 0.1`` at ``pi3 = 2`` and 3)."""
+TARGET_TFP_SPEEDUP = 20.0
+"""Aim: on the triple friction pendulum isoslide is at least this many times faster than OpenSees's
+``TripleFrictionPendulum`` element at the same accuracy (the OpenSees / isoslide ratio)."""
+TFP_PAIRS = ((1e-2, 1e-4), (3e-3, 1e-5), (1e-3, 1e-6), (1e-3, 1e-7), (1e-3, 1e-8))
+"""``(dtau, uy)`` pairs of the triple pendulum: :data:`DEFAULT_PAIRS` with ``dtau`` held at ``1e-3``
+once ``uy <= 1e-6``.  The element's error is set by ``uy`` (the step's part measured 4e-4 relative in
+:mod:`isoslide.peers.opensees_tfp`), and with ``uy = 1e-8`` its own iterations slow down at small
+steps: on :data:`POINTS` at ``pi3 = 3``, 13 s at ``dtau = 1e-3`` and 197 s at ``3e-4`` for errors of
+2.5e-3 and 1.8e-3 (at ``pi3 = 2``: 13 s and 12 s, 5.3e-4 and 4.7e-4; 87 s at ``dtau = 1e-4``).  So
+these pairs reach the tolerance at a lower cost to OpenSees than :data:`DEFAULT_PAIRS`, or come as close."""
 
 
 def _timed(fn, repeats: int) -> tuple:
@@ -47,9 +62,21 @@ def _timed(fn, repeats: int) -> tuple:
     return float(np.median(times)), out
 
 
-def compare(scene: Scene, pairs=DEFAULT_PAIRS, tolerance: float = TOLERANCE, horizon: float = DEFAULT_HORIZON,
+def _opensees_run(scene: Scene, dtau: float, stick: float, tau_max: float):
+    """OpenSees's model of the scene's building class at one pair (the module docstring says which)."""
+    if scene.isolator == "tfp":                           # the TripleFrictionPendulum element
+        return solve_opensees_tfp(scene, uy=stick, dtau=dtau, tau_max=tau_max)
+    if building_of(scene).isolator.speed_dependent:      # flatSliderBearing, VelDependent, beside a spring
+        return solve_opensees_bearing_rate(scene, uy=stick, dtau=dtau, tau_max=tau_max)
+    return solve_opensees(scene, tau_max=tau_max, dtau=dtau, stick_displacement=stick)
+
+
+def compare(scene: Scene, pairs=None, tolerance: float = TOLERANCE, horizon: float = DEFAULT_HORIZON,
             repeats: int = 5) -> dict:
     """The cost of isoslide and of OpenSees on one scene, OpenSees at the coarsest pair within ``tolerance``.
+
+    ``pairs`` of ``(dtau, stick displacement)``: None takes :data:`TFP_PAIRS` for a triple friction
+    pendulum, else :data:`~isoslide.studies.opensees_convergence.DEFAULT_PAIRS`.
 
     Returns
     -------
@@ -62,13 +89,11 @@ def compare(scene: Scene, pairs=DEFAULT_PAIRS, tolerance: float = TOLERANCE, hor
     _, exact = target_pi1(scene, "exact", tau_max)
     iso_s, sol = _timed(lambda: solve(scene), repeats)
     row = {"exact": exact, "isoslide_s": iso_s, "isoslide_error": abs(sol.pi1 - exact) / exact}
-    speed = building_of(scene).isolator.speed_dependent
+    if pairs is None:
+        pairs = TFP_PAIRS if scene.isolator == "tfp" else DEFAULT_PAIRS
     for dtau, stick in sorted(pairs, reverse=True):
         t0 = time.perf_counter()
-        if speed:   # a flatSliderBearing with VelDependent friction beside the pendulum's spring
-            r = solve_opensees_bearing_rate(scene, uy=stick, dtau=dtau, tau_max=tau_max)
-        else:
-            r = solve_opensees(scene, tau_max=tau_max, dtau=dtau, stick_displacement=stick)
+        r = _opensees_run(scene, dtau, stick, tau_max)
         seconds = time.perf_counter() - t0
         err = abs(r.pi1 - exact) / exact
         row.update(dtau=dtau, stick=stick, opensees_error=err, opensees_steps=r.n_steps, opensees_s=seconds,
@@ -91,7 +116,8 @@ def report(res: dict, file=sys.stdout) -> dict:
     """Print each class's costs and the ratio OpenSees / isoslide (median over the points); returns them."""
     p = lambda *a: print(*a, file=file)  # noqa: E731
     p(f"OpenSees against isoslide: OpenSees at the coarsest (dtau, stick displacement) of {len(DEFAULT_PAIRS)} "
-      f"pairs within {TOLERANCE:g} of Pi1 (isoslide at rtol 1e-9), isoslide at its default rtol; "
+      f"pairs (the triple pendulum: of its {len(TFP_PAIRS)}) within {TOLERANCE:g} of Pi1 (isoslide at rtol "
+      f"1e-9), isoslide at its default rtol; "
       f"medians over {len(next(iter(res.values())))} Pi points")
     hdr = (f"{'building':48s} {'isoslide ms':>11s} {'iso err':>8s} {'dtau':>7s} {'OpenSees s':>10s} "
            f"{'OS err':>8s} {'OpenSees/isoslide':>18s}")
@@ -111,4 +137,28 @@ def report(res: dict, file=sys.stdout) -> dict:
           f"{s['opensees_error']:8.1e} {ratio:18.0f}{'' if reached else '  (tolerance not reached)'}")
     p(f"OpenSees / isoslide over the classes: smallest {min(v['ratio'] for v in summ.values()):.0f}x, "
       f"median {np.median([v['ratio'] for v in summ.values()]):.0f}x")
+    if TFP_PENDULUM in summ:
+        _tfp_aims(p, summ)
     return summ
+
+
+def _tfp_aims(p, summ: dict) -> None:
+    """Print the triple friction pendulum's aims: against OpenSees's element, and against the constant pendulum.
+
+    When OpenSees does not reach the tolerance at its finest pair, the ratio at that pair is a lower
+    bound of the ratio at the tolerance (a finer pair costs more), and the line says so.  The second
+    aim, when :data:`~isoslide.accuracy.scenes.PENDULUM` ran too, is the ratio of isoslide's median
+    costs per scene on the two (stored as ``pendulum_ratio``).
+    """
+    s = summ[TFP_PENDULUM]
+    met = s["ratio"] >= TARGET_TFP_SPEEDUP
+    p(f"aim: on the triple friction pendulum isoslide at least {TARGET_TFP_SPEEDUP:g}x faster than OpenSees's "
+      f"TripleFrictionPendulum at {TOLERANCE:g} in Pi1 -> {'MET' if met else 'NOT MET'} (median ratio "
+      f"{s['ratio']:.0f}x{'' if s['reached'] else ', a lower bound: OpenSees did not reach the tolerance'})")
+    if PENDULUM not in summ:
+        return
+    ratio = s["isoslide_ms"] / summ[PENDULUM]["isoslide_ms"]
+    s["pendulum_ratio"] = ratio
+    p(f"aim: isoslide on the triple friction pendulum at most {TARGET_TFP_RATIO:g}x its cost on the "
+      f"constant-friction pendulum ({PENDULUM}) -> {'MET' if ratio <= TARGET_TFP_RATIO else 'NOT MET'} "
+      f"(ratio {ratio:.2f} of the medians above)")

@@ -220,6 +220,8 @@ BUILDINGS = {
     "paper model (linear isolator, rigid)": {},
     "friction pendulum (pi9 = 0.05)": dict(pi9=0.05),
     "speed-dependent pendulum (pi9 0.1, pi22 0.5)": dict(pi9=0.1, pi22=0.5, pi23=20.0),
+    "triple friction pendulum (pi9 0.05, pi24 0.1)": dict(pi9=0.05, pi24=0.1, pi25=0.5, pi26=0.5, pi27=2.0,
+                                                          pi28=0.05, pi29=0.1, pi30=0.2),
     "lead-rubber bearing (pi9 = 0.05, pi10 = 0.005)": dict(pi9=0.05, pi10=0.005),
     "flexible superstructure, contents on the base": dict(pi11=0.6, pi12=0.2, pi13=0.02),
     "flexible superstructure, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, floor="roof"),
@@ -230,8 +232,17 @@ BUILDINGS = {
 """Buildings timed side by side on :data:`BUILDING_POINTS` (keyword arguments of :class:`isoslide.Scene`).
 
 The speed-dependent friction pendulum breaks away at the constant one's strength (``Pi9 Pi22 = 0.05``)
-and slides against up to twice it (``Pi23 = 20``)."""
+and slides against up to twice it (``Pi23 = 20``).  The triple friction pendulum has the constant one's
+period of regime III (``Pi3``, radius ``L2 + L3``) and its friction on the outer surface 1 (``mu2``,
+``Pi9 = 0.05``), ``L1 = 0.1 (L2 + L3)``, ``L2 = L3`` and ``mu1 : mu2 : mu3 = 0.5 : 1 : 2``; on these points
+its bearing reaches regime III (at ``Pi3 = 2`` it is the bearing of the scene ``"III"`` of
+:data:`isoslide.peers.opensees_tfp.BUILDING_SCENES`)."""
 SPEED_PENDULUM = "speed-dependent pendulum (pi9 0.1, pi22 0.5)"
 """Row of the friction pendulum whose friction rises with speed, timed against :data:`PENDULUM`."""
+TFP_PENDULUM = "triple friction pendulum (pi9 0.05, pi24 0.1)"
+"""Row of the triple friction pendulum, timed against :data:`PENDULUM` (and OpenSees's
+``TripleFrictionPendulum`` element in :mod:`isoslide.accuracy.opensees_cost`)."""
+TARGET_TFP_RATIO = 2.0
+"""Aim: isoslide's cost on the triple friction pendulum at most this many times its cost on :data:`PENDULUM`."""
 PENDULUM = "friction pendulum (pi9 = 0.05)"
 """Row of the constant-friction pendulum."""
