@@ -21,6 +21,8 @@ from hypothesis import strategies as st
 
 from isoslide import Scene, StepBudgetError, solve
 from isoslide.accuracy import DOMAIN
+from isoslide.accuracy.domain import TFP_BASE
+from isoslide.groups import TFP_NAMES
 from isoslide.pulses import PULSE_NAMES, sampled
 from isoslide.scene import G_STANDARD, PI_RANGES
 from isoslide.solver import DEFAULT_HORIZON, peak_stuck_demand, solve_many
@@ -116,6 +118,8 @@ def test_domain_is_inside_the_scene_ranges():
             kw[k] = v
             if k == "pi17":
                 kw["pulse_z"] = "ricker"                  # pi17 scales a vertical pulse
+            if k in TFP_NAMES:                            # the triple pendulum's groups shape a sliding bearing
+                kw.update({**TFP_BASE, "pi3": 1.0, k: v})
             assert getattr(Scene(**kw), k) == v
 
 

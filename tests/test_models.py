@@ -67,6 +67,8 @@ def building_scene(name: str) -> isoslide.Scene:
         kw.update(pi9=0.05)
     elif parts[0] == "sliding-bearing-speed":
         kw.update(pi9=0.1, pi22=0.5, pi23=20.0)
+    elif parts[0] == "triple-friction-pendulum":
+        kw.update(pi9=0.05, pi24=0.1, pi25=0.5, pi26=0.5, pi27=2.0, pi28=0.05, pi29=0.1, pi30=0.2)
     elif parts[0] == "fixed-base":
         kw.update(pi3=0.0)
     if "flexible" in parts:

@@ -8,7 +8,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from ..groups import INPUT_NAMES
+from ..groups import INPUT_NAMES, TFP_NAMES
 from ..scene import Scene
 from ..solver import solve
 from ..solver import warm_up
@@ -36,6 +36,15 @@ DOMAIN = {
                         "friction)"),
     "pi23": (0.0, 1e4, "0 (constant friction at breakaway) to 1e4 (the friction at speed as soon as the slab "
                        "moves)"),
+    "pi24": (0.0, 0.5, "0 (a single friction pendulum) to 0.5 (inner surfaces of a quarter of the outer ones' "
+                       "sum of radii each)"),
+    "pi25": (0.45, 0.8, "0.45 (outer surfaces nearly alike) to 0.8 (a lower outer surface four times the upper's "
+                        "radius)"),
+    "pi26": (0.1, 1.0, "0.1 (inner surfaces of a tenth of the lower outer friction) to 1 (equal)"),
+    "pi27": (1.0, 4.0, "1 (outer frictions equal) to 4 (the upper four times the lower)"),
+    "pi28": (0.02, 0.5, "inner limits from 0.02 to 0.5 a_p T_p^2"),
+    "pi29": (0.005, 0.09, "lower outer limit from 0.005 to 0.09 a_p T_p^2"),
+    "pi30": (0.06, 0.5, "upper outer limit from 0.06 to 0.5 a_p T_p^2"),
 }
 """The domain over which isoslide is tested (``tests/test_extremes.py``) and mapped
 (:func:`domain_map`): (low, high, meaning).  The valid range of each group in
@@ -46,20 +55,26 @@ MAP_BASE = {"pi2": 0.1, "pi3": 1.0, "pi4": 0.1, "pi5": 0.7, "pi6": 1000.0, "pi7"
 """Base scene of the 1-D sweeps of :func:`domain_map` (Stribeck friction, resonance; the paper's
 model: ``pi11`` is read only with a flexible superstructure)."""
 
+TFP_BASE = {"pi9": 0.1, "pi24": 0.1, "pi25": 0.5, "pi26": 0.5, "pi27": 2.0, "pi28": 0.1, "pi29": 0.05, "pi30": 0.1}
+"""A triple friction pendulum beside :data:`MAP_BASE` (``Pi3 = 1``) for which every value of
+:data:`DOMAIN` of one of its groups, the others kept, is a bearing of regimes I to V in order."""
+
 MAP_COMPANIONS = {"pi10": {"pi9": 0.1}, "pi11": {"pi12": 0.2, "pi13": 0.02},
                   "pi22": {"pi9": 0.1, "pi23": 20.0}, "pi23": {"pi9": 0.1, "pi22": 0.5},
+                  **{g: TFP_BASE for g in TFP_NAMES},
                   "pi12": {"pi13": 0.02}, "pi13": {"pi12": 0.2}, "pi17": {"pulse_z": "ricker"},
                   **{g: {"pulse_y": "antisymmetric_ricker", "pi14": 0.7} for g in ("pi14", "pi15", "pi16")}}
 """Groups (and the vertical pulse) set beside a swept one so that it acts: a bearing for ``pi10``,
 a flexible superstructure for ``pi11`` and ``pi13``, a vertical Ricker pulse for ``pi17``, a sliding
-bearing whose friction rises with speed for ``pi22`` and ``pi23``, a transverse
-antisymmetric Ricker pulse (the contents slide in the plane) for ``pi14`` to ``pi16``."""
+bearing whose friction rises with speed for ``pi22`` and ``pi23``, a triple friction pendulum
+(:data:`TFP_BASE`) for ``pi24`` to ``pi30``, a transverse antisymmetric Ricker pulse (the contents
+slide in the plane) for ``pi14`` to ``pi16``."""
 
 
 def map_values(group: str, npts: int = 9) -> np.ndarray:
     """Values of ``group`` swept by :func:`domain_map` across :data:`DOMAIN` (zero included)."""
     lo, hi, _ = DOMAIN[group]
-    if group in ("pi5", "pi22"):
+    if group in ("pi5", "pi22", "pi25", "pi26", "pi27"):
         return np.linspace(lo, hi, npts)
     if group == "pi4":
         return np.concatenate([[0.0], np.logspace(-3, 1, npts - 1)])
