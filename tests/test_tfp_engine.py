@@ -16,6 +16,7 @@ from isoslide.engine import building_kernel as bk
 from isoslide.model import tfp as closed
 from isoslide.model.parts import building_of
 from isoslide.peers.reference_tfp import TFPBuilding, run_tfp
+from isoslide.pulses import accel_at, get_pulse, sampled
 from isoslide.scene import tfp_bearing
 from isoslide.solver import CapacityError
 
@@ -258,3 +259,26 @@ def test_scene_refuses_a_triple_pendulum_it_cannot_represent(kw, match):
 def test_a_triple_pendulum_in_the_plane_is_refused_by_name():
     with pytest.raises(ValueError, match="triple friction pendulum .* not modelled yet"):
         solve(Scene(**BASE, pulse_y="antisymmetric_ricker", pi14=0.8))
+
+
+def test_batches_carry_the_peak_regime():
+    """``solve_many`` gives each scene's peak regime, as ``solve`` does (0 for other isolators)."""
+    scenes = [Scene(**BASE), Scene(**NARROW, pulse="rectangular"), Scene(pi2=0.3, pi3=2.0, pi9=0.05)]
+    batch = isoslide.solve_many(scenes)
+    assert batch.peak_stage.tolist() == [solve(sc).peak_stage for sc in scenes]
+    assert batch.peak_stage[-1] == 0 and batch.peak_stage[0] == 3
+
+
+def test_a_recorded_ground_motion_runs_on_the_triple_pendulum():
+    """A sampled record (linear between samples) drives the triple pendulum like an analytic pulse does.
+
+    The Ricker pulse sampled finely enough gives the analytic answer to the sampling's accuracy.
+    """
+    ricker = get_pulse("ricker")
+    tau = np.linspace(ricker.tau_start, ricker.tau_end, 8001)
+    record = sampled(np.array([accel_at(ricker.code, ricker.param_array, t) for t in tau]), tau[1] - tau[0],
+                     tau0=ricker.tau_start)
+    a = solve(Scene(**BASE))
+    b = solve(Scene(**{**BASE, "pulse": record}))
+    assert b.model.startswith("triple-friction-pendulum")
+    assert b.pi1 == pytest.approx(a.pi1, rel=1e-4)

@@ -164,6 +164,7 @@ class Batch:
     n_events: np.ndarray
     facets: np.ndarray | None = None
     peak_angle: np.ndarray | None = None
+    peak_stage: np.ndarray | None = None
 
     def __len__(self):
         return self.pi1.shape[0]
@@ -850,6 +851,9 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
     Returns
     -------
     Batch
+        With each scene's ``peak_stage`` (a triple pendulum's highest regime, 0 otherwise); a
+        triple pendulum past its displacement capacity raises :class:`CapacityError`, as
+        :func:`solve` does.
     """
     scenes = list(scenes)
     n = len(scenes)
@@ -864,6 +868,7 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
     nsteps = np.zeros(n, dtype=np.int64)
     nev = np.zeros(n, dtype=np.int64)
     angle = np.full(n, np.nan)
+    stage = np.zeros(n, dtype=np.int8)
     demand: dict = {}
     progress = Progress(log, "solve_many", n)
     for i, sc in enumerate(scenes):
@@ -888,9 +893,10 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
         models[i], tend[i], nsteps[i], nev[i] = s.model, s.tau_end, s.n_steps, s.n_events
         facets[i] = s.facets
         angle[i] = s.peak_angle
+        stage[i] = s.peak_stage
     progress.finish(n)
     return Batch(pi1=pi1, pi1_residual=res, tau_peak=tpk, settled=settled, model=models.astype(str),
-                 tau_end=tend, n_steps=nsteps, n_events=nev, facets=facets, peak_angle=angle)
+                 tau_end=tend, n_steps=nsteps, n_events=nev, facets=facets, peak_angle=angle, peak_stage=stage)
 
 
 def warm_up(records: bool = False, building: bool = False) -> None:
