@@ -311,6 +311,27 @@ SUBSTEPS, SUBSTEP_LEVELS = 10, 2
 linearly), at most ``SUBSTEP_LEVELS`` times over."""
 
 
+def refuse_unmodelled_contents_and_motion(scene: Scene, peer: str, vertical: str) -> None:
+    """``ValueError`` naming the group for what a one-component OpenSees peer of a rigid building does not model.
+
+    Contents whose friction depends on speed (``Pi7 > 0``, or Stribeck ``Pi5 < 1`` with ``Pi6 > 0``),
+    vertical ground motion (the peer's ``vertical`` normal force) and ground motion off the
+    building's x axis; ``peer`` names the peer in the message.
+    """
+    if scene.pi7 != 0.0:
+        raise ValueError(f"pi7 = {scene.pi7!r} (viscous contact) is not modelled by the {peer}; allowed: pi7 = 0 "
+                         "(Coulomb friction of the contents)")
+    if scene.pi5 != 1.0 and scene.pi6 != 0.0:
+        raise ValueError(f"pi6 = {scene.pi6!r} with pi5 = {scene.pi5!r} (Stribeck friction of the contents) is not "
+                         f"modelled by the {peer}; allowed: pi5 = 1 or pi6 = 0 (Coulomb)")
+    if scene.vertical:
+        raise ValueError(f"pi17 = {scene.pi17!r} (vertical ground motion) is not modelled by the {peer} ({vertical}); "
+                         "allowed: pi17 = 0")
+    if not scene.in_line:
+        raise ValueError(f"pulse_y / angle (ground motion off the building's x axis) is not modelled by the {peer}; "
+                         "allowed: the main pulse alone, angle = 0")
+
+
 def _hold_static_load(ops, what: str) -> None:
     """Apply the loads of the current patterns in one static step and hold them constant from time 0.
 

@@ -79,6 +79,7 @@ import numpy as np
 from ..scene import Scene
 from ..store.history import History, phase_of
 from .opensees import (BLOCK, GROUND, SLAB, _at_limit, _hold_static_load, _newmark_analysis, _opensees, _positive,
+                       refuse_unmodelled_contents_and_motion,
                        _step, opensees_available, opensees_model)
 from .result import PeerResult
 
@@ -158,18 +159,7 @@ def _check_scene(scene: Scene) -> None:
     if scene.pi3 == 0.0 or scene.pi9 == 0.0 or scene.pi10 != 0.0:
         raise ValueError(f"pi3 = {scene.pi3!r}, pi9 = {scene.pi9!r}, pi10 = {scene.pi10!r} is not a sliding "
                          "bearing; allowed: pi3 > 0, pi9 > 0, pi10 = 0")
-    if scene.pi7 != 0.0:
-        raise ValueError(f"pi7 = {scene.pi7!r} (viscous contact) is not modelled by the OpenSees bearing-rate "
-                         "peer; allowed: pi7 = 0 (Coulomb friction of the contents)")
-    if scene.pi5 != 1.0 and scene.pi6 != 0.0:
-        raise ValueError(f"pi6 = {scene.pi6!r} with pi5 = {scene.pi5!r} (Stribeck friction of the contents) is not "
-                         "modelled by the OpenSees bearing-rate peer; allowed: pi5 = 1 or pi6 = 0 (Coulomb)")
-    if scene.vertical:
-        raise ValueError(f"pi17 = {scene.pi17!r} (vertical ground motion) is not modelled by the OpenSees "
-                         "bearing-rate peer (constant normal force); allowed: pi17 = 0")
-    if not scene.in_line:
-        raise ValueError("pulse_y / angle (ground motion off the building's x axis) is not modelled by the "
-                         "OpenSees bearing-rate peer; allowed: the main pulse alone, angle = 0")
+    refuse_unmodelled_contents_and_motion(scene, "OpenSees bearing-rate peer", "constant normal force")
 
 
 def bearing_rate_model(scene: Scene, uy: float, stick_displacement: float | None = None) -> BearingRateModel:

@@ -115,6 +115,7 @@ from ..model import tfp
 from ..model.tfp import TripleFrictionPendulum
 from ..scene import Scene, tfp_bearing
 from .opensees import (BLOCK, GROUND, SLAB, _hold_static_load, _newmark_analysis, _opensees, _step,
+                       refuse_unmodelled_contents_and_motion,
                        opensees_available, opensees_model)
 from .reference_tfp import TFPBuilding, run_tfp
 from .result import PeerResult
@@ -629,16 +630,7 @@ def _check_building_scene(scene: Scene) -> None:
     if scene.pi12 > 0.0:
         raise ValueError(f"pi12 = {scene.pi12!r} (a flexible superstructure) is not modelled by the OpenSees "
                          "triple pendulum peer; allowed: pi12 = 0 (rigid superstructure)")
-    if not scene.rate_independent:
-        raise ValueError(f"pi5 = {scene.pi5!r}, pi6 = {scene.pi6!r}, pi7 = {scene.pi7!r} (friction of the contents "
-                         "that depends on speed) is not modelled by the OpenSees triple pendulum peer; allowed: "
-                         "pi7 = 0 and pi5 = 1 or pi6 = 0 (Coulomb)")
-    if scene.vertical:
-        raise ValueError(f"pi17 = {scene.pi17!r} (vertical ground motion) is not modelled by the OpenSees triple "
-                         "pendulum peer (constant vertical load); allowed: pi17 = 0")
-    if not scene.in_line:
-        raise ValueError("pulse_y / angle (ground motion off the building's x axis) is not modelled by the OpenSees "
-                         "triple pendulum peer; allowed: the main pulse alone, angle = 0")
+    refuse_unmodelled_contents_and_motion(scene, "OpenSees triple pendulum peer", "constant vertical load")
 
 
 def building_model(scene: Scene, uy: float, stick_displacement: float | None = None) -> BuildingModel:
