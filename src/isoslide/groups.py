@@ -29,13 +29,13 @@ Pi16   t_y / T_p            transverse pulse time shift                 -1e4 <= 
 Pi17   a_pz / g             vertical ground acceleration over gravity   0 <= Pi17 <= 1e3
 Pi22   mu_slow / mu_fast    bearing breakaway-to-fast friction ratio    0 < Pi22 <= 1
 Pi23   a a_p T_p            bearing friction rate group                 0 <= Pi23 <= 1e12
-Pi24   L1 / (L2 + L3)       triple pendulum's inner radius ratio        0 <= Pi24 <= 1e3
-Pi25   L2 / (L2 + L3)       triple pendulum's lower outer radius share  0 < Pi25 < 1
-Pi26   mu1 / mu2            triple pendulum's inner friction ratio      0 < Pi26 <= 1
-Pi27   mu3 / mu2            triple pendulum's upper friction ratio      1 <= Pi27 <= 1e3
-Pi28   d1 / (a_p T_p^2)     triple pendulum's inner limit               0 <= Pi28 <= 1e6
-Pi29   d2 / (a_p T_p^2)     triple pendulum's lower outer limit         0 <= Pi29 <= 1e6
-Pi30   d3 / (a_p T_p^2)     triple pendulum's upper outer limit         0 <= Pi30 <= 1e6
+Pi24   L1 / (L2 + L3)       inner radius ratio of a triple pendulum     0 <= Pi24 <= 1e3
+Pi25   L2 / (L2 + L3)       lower radius share of a triple pendulum     0 < Pi25 < 1
+Pi26   mu1 / mu2            inner friction ratio of a triple pendulum   0 < Pi26 <= 1
+Pi27   mu3 / mu2            upper friction ratio of a triple pendulum   1 <= Pi27 <= 1e3
+Pi28   d1 / (a_p T_p^2)     inner limit of a triple pendulum            0 <= Pi28 <= 1e6
+Pi29   d2 / (a_p T_p^2)     lower outer limit of a triple pendulum      0 <= Pi29 <= 1e6
+Pi30   d3 / (a_p T_p^2)     upper outer limit of a triple pendulum      0 <= Pi30 <= 1e6
 =====  ===================  ==========================================  ================
 
 ``M_b = m_b + m_st`` is the whole isolated mass (base slab and superstructure,
@@ -224,30 +224,30 @@ INPUTS = (
           comment="rate a (s/m) of the sliding bearing's friction law mu(v) = mu_fast - (mu_fast - mu_slow) "
                   "exp(-a |v|) times the pulse's velocity scale a_p T_p; 0 = mu_slow at every speed (constant "
                   "friction Pi9 Pi22); read only with a sliding bearing (Pi9 > 0, Pi10 = 0)"),
-    Group("pi24", "L1 / (L2 + L3)", "triple pendulum's inner radius ratio", r"\Pi_{24}", r"L_1/(L_2 + L_3)",
+    Group("pi24", "L1 / (L2 + L3)", "inner radius ratio of a triple pendulum", r"\Pi_{24}", r"L_1/(L_2 + L_3)",
           "Π₂₄", hi=1e3, default=0.0,
           comment="effective radius of each inner surface of a triple friction pendulum over the sum of the outer "
                   "ones' (Pi3 = 2 pi sqrt((L2 + L3)/g)/T_p); 0 = a single friction pendulum; read only with a "
                   "sliding bearing (Pi9 > 0, Pi10 = 0)"),
-    Group("pi25", "L2 / (L2 + L3)", "triple pendulum's lower outer radius share", r"\Pi_{25}", r"L_2/(L_2 + L_3)",
+    Group("pi25", "L2 / (L2 + L3)", "lower radius share of a triple pendulum", r"\Pi_{25}", r"L_2/(L_2 + L_3)",
           "Π₂₅", lo_in=False, hi=1.0, hi_in=False, default=0.5,
           comment="share of the lower outer surface (surface 1) in L2 + L3; read only with Pi24 > 0"),
-    Group("pi26", "mu1 / mu2", "triple pendulum's inner friction ratio", r"\Pi_{26}", r"\mu_1/\mu_2", "Π₂₆",
+    Group("pi26", "mu1 / mu2", "inner friction ratio of a triple pendulum", r"\Pi_{26}", r"\mu_1/\mu_2", "Π₂₆",
           lo_in=False, hi=1.0, default=1.0,
           comment="friction coefficient of the inner surfaces over the lower outer surface's (Pi9 = mu2 g/a_p); "
                   "read only with Pi24 > 0"),
-    Group("pi27", "mu3 / mu2", "triple pendulum's upper friction ratio", r"\Pi_{27}", r"\mu_3/\mu_2", "Π₂₇",
+    Group("pi27", "mu3 / mu2", "upper friction ratio of a triple pendulum", r"\Pi_{27}", r"\mu_3/\mu_2", "Π₂₇",
           lo=1.0, hi=1e3, default=1.0,
           comment="friction coefficient of the upper outer surface (surface 4) over the lower one's; read only "
                   "with Pi24 > 0"),
-    Group("pi28", "d1 / (a_p T_p^2)", "triple pendulum's inner limit", r"\Pi_{28}", r"d_1/(a_p T_p^2)", "Π₂₈",
+    Group("pi28", "d1 / (a_p T_p^2)", "inner limit of a triple pendulum", r"\Pi_{28}", r"d_1/(a_p T_p^2)", "Π₂₈",
           hi=1e6, default=0.0,
           comment="displacement limit of each inner surface (OpenSees's d1) over the pulse length scale; > 0 "
                   "with Pi24 > 0"),
-    Group("pi29", "d2 / (a_p T_p^2)", "triple pendulum's lower outer limit", r"\Pi_{29}", r"d_2/(a_p T_p^2)",
+    Group("pi29", "d2 / (a_p T_p^2)", "lower outer limit of a triple pendulum", r"\Pi_{29}", r"d_2/(a_p T_p^2)",
           "Π₂₉", hi=1e6, default=0.0,
           comment="displacement limit of the lower outer surface (OpenSees's d2); > 0 with Pi24 > 0"),
-    Group("pi30", "d3 / (a_p T_p^2)", "triple pendulum's upper outer limit", r"\Pi_{30}", r"d_3/(a_p T_p^2)",
+    Group("pi30", "d3 / (a_p T_p^2)", "upper outer limit of a triple pendulum", r"\Pi_{30}", r"d_3/(a_p T_p^2)",
           "Π₃₀", hi=1e6, default=0.0,
           comment="displacement limit of the upper outer surface (OpenSees's d3); > 0 with Pi24 > 0"),
 )
