@@ -36,7 +36,8 @@ def test_defaults_filled_and_beta_turned_into_pi6():
     assert spec["beta"] == [10.0, 1000.0]
     assert spec["fixed"] == {"pi5": 0.5, "pi3": 0.0, "pi4": 0.1, "pi7": 0.0, "pi8": 1e-5,
                              "pi9": 0.0, "pi10": 0.0, "pi11": 0.0, "pi12": 0.0, "pi13": 0.0, "pi14": 1.0,
-                             "pi15": 1.0, "pi16": 0.0, "pi17": 0.0, "pi22": 1.0, "pi23": 0.0}
+                             "pi15": 1.0, "pi16": 0.0, "pi17": 0.0, "pi22": 1.0, "pi23": 0.0, "pi24": 0.0,
+                             "pi25": 0.5, "pi26": 1.0, "pi27": 1.0, "pi28": 0.0, "pi29": 0.0, "pi30": 0.0}
     assert spec["pulse"] == "ricker"
 
 
