@@ -233,7 +233,7 @@ def test_two_surfaces_of_one_chain_slide_at_once():
     assert lower >= 5 and upper >= 5
     constant = _run(slow=None).vertices["sliding"]
     assert not np.any((constant[:, 0] != 0) & (constant[:, 1] != 0))
-    fine = _run(rtol=1e-9, atol=1e-11)
+    fine = _run(rtol=1e-10, atol=1e-12)
     assert fine.n_events == run.n_events
     assert fine.pi1 == pytest.approx(run.pi1, rel=1e-9)
     assert fine.x_peak == pytest.approx(run.x_peak, rel=1e-9)

@@ -143,12 +143,14 @@ then integrated too; it is released on the law at ``a |v| = A_UNPIN = 24``, and 
 whose speed so found falls below that starts on the law there.
 
 *Events.*  A sliding surface's speed returning to zero (its reaction back to its slow level; the last
-one's is the slab stopping), a stuck surface's ``|q|`` reaching its slow level (at a restrainer, only
-inward: the surface leaving it), a sliding surface reaching its restrainer, a surface's ``a |v|``
-crossing ``A_PIN`` or ``A_UNPIN``, the slab stopping, the held bearing breaking away (the band
-``[F_lo, F_hi]`` of the constant bearing with the breakaway strengths ``Q_slow``), the contents'
-transitions and the pulse's breakpoints.  Radau's event times are refined: the step is integrated to
-the event again from its start and the time corrected by Newton's rule on the event's function.
+one's is the slab stopping), a stuck surface's ``|q|`` passing its slow level (by ``1e-10`` of ``Q_fast
+- Q_slow``; one resting on its level, as an inner surface does while its outer one is pinned, must
+move on by as much: the round-off of its reaction is no event; at a restrainer only inward, the
+surface leaving it), a sliding surface reaching its restrainer, a surface's ``a |v|`` crossing
+``A_PIN`` or ``A_UNPIN``, the held bearing breaking away (the band ``[F_lo, F_hi]`` of the constant
+bearing with the breakaway strengths ``Q_slow``), the contents' transitions and the pulse's
+breakpoints.  Radau's event times are refined: the step is integrated to the event again from its
+start and the time corrected by Newton's rule on the event's function.
 
 *Which surfaces slide* (:meth:`_RateBearing.prepare`, :meth:`_RateBearing.resolve`).  The slab moving,
 ``F`` is the root above, found by :func:`scipy.optimize.brentq` on the shift of the force, with the
@@ -166,18 +168,22 @@ stopping).  The held band can be empty (an inner surface displaced beyond ``L1 (
 mu_slow2)`` from its outer one, which the fast friction allows): a slab turning then finds the surfaces
 sliding both ways, and a slab at rest finding it so raises ``RuntimeError``.  A surface within its slow
 and fast levels creeps at the law's small speed, which can decay without ever reaching zero; a run
-whose slab so creeps ends at the horizon unsettled.  Stages: by the outer surfaces, 1 (I) neither
-sliding nor surface 4 at its restrainer, 2 (II) surface 1 sliding and 4 free, 3 (III) both sliding, 4
-(IV) surface 1 at its restrainer and 4 sliding, 5 (V) both at their restrainers; -1 otherwise.
+whose slab so creeps ends at the horizon unsettled.  The stage follows the outer surfaces 1 and 4
+(each sliding, at its restrainer, or free): free and free, or at its restrainer and free, 1 (I);
+sliding and free 2 (II); sliding and sliding 3 (III); at its restrainer and sliding 4 (IV); both at
+their restrainers 5 (V); any other pair -1.  ``vertices["sliding"]`` records each surface's direction.
 
 *Energy.*  The friction works ``int q_i v_i dtau`` and the plate-rotation work are integrated states;
 a restrainer reached is snapped to (its surface's displacement set to ``+-d_i``), which the balance
 sees at the tolerance's level.
 
 *As the law flattens.*  ``Pi1`` tends to the constant bearing's of ``mu`` as ``rate`` grows, but not
-at first order: after each break from rest or turn a surface creeps on its law for a time near ``a
-L (Q_fast - Q_slow)/W``, and the error behaves as ``(A ln(rate) + B)/rate`` once that time is short
-against the motion's; it tends to it at first order as ``mu_slow -> mu``.
+at first order: a surface whose reaction lies between its slow and fast levels creeps on its law, and
+would reach its slow level only after a time near ``a L (Q_fast - Q_slow)/W``; once that time is long
+against the motion's, the error behaves as ``(A ln(rate) + B)/rate`` (measured in a scene that stays
+in regime I; in scenes through regime II, where an inner surface rests on its level, the approach is
+slower still over the rates that take reasonable time).  As ``mu_slow -> mu`` at a fixed rate it tends
+to it at first order.
 
 Units: as above; energies in ``M_b a_p**2 T_p**2``.
 """
@@ -607,8 +613,10 @@ def run_tfp(building: TFPBuilding, rtol: float | None = None, atol: float | None
     rtol, atol : float or None
         Tolerances of ``solve_ivp`` (DOP853, and Radau for the stiff phases of a friction rising with
         speed); ``atol`` in the state's units.  None: ``1e-12`` and ``1e-15`` for constant friction,
-        :data:`RATE_RTOL` and :data:`RATE_ATOL` (``1e-8``, ``1e-10``) for a friction rising with speed
-        (Radau's error stays well below them: about ``1e-12`` relative in ``Pi1``).
+        :data:`RATE_RTOL` and :data:`RATE_ATOL` (``1e-9``, ``1e-11``; DOP853 a thousandfold tighter)
+        for a friction rising with speed, about ``1e-11`` relative in ``Pi1``.  Radau's error estimate
+        filters the stiff split of the speeds: at ``rtol = 1e-8`` it can step over the growth of that
+        split as the surfaces slow down (an error near ``1e-6``).
     tau_max : float or None
         Horizon, units ``T_p``; default :func:`default_horizon`.
     history : bool
@@ -914,15 +922,17 @@ plate-rotation work (15)."""
 
 _N_RATE = 16
 
-RATE_RTOL, RATE_ATOL = 1e-8, 1e-10
-"""Default tolerances of a bearing whose friction rises with speed (Radau and DOP853 phases)."""
+RATE_RTOL, RATE_ATOL = 1e-9, 1e-11
+"""Default ``rtol`` and ``atol`` of a bearing whose friction rises with speed: Radau's (the stiff phases);
+DOP853's (a single sliding surface, the held bearing) are a thousandfold tighter."""
 
 _V_TINY = 1e-12
 """Speed (units ``a_p T_p``) below which a surface counts as stopped when the slab stops."""
 
 A_PIN, A_UNPIN = 25.0, 24.0
-"""``a |v|`` above which a sliding surface is pinned at ``Q_fast`` and below which it is released: its
-gap ``(Q_fast - Q_slow) exp(-a |v|)`` is then below the double's resolution of ``Q_fast``."""
+"""``a |v|`` above which a sliding surface is pinned at ``Q_fast`` and below which it is released on its
+law: the gap ``(Q_fast - Q_slow) exp(-a |v|)`` so dropped, ``1.4e-11 (Q_fast - Q_slow)`` at most, is
+the peer's only approximation of the path."""
 
 _EXP_MAX = 600.0
 """Cap of ``a |v|`` in the gaps of the choice of modes (``exp(-600)`` is still a double); the speeds of
@@ -990,7 +1000,10 @@ class _RateBearing(_Bearing):
     # -- the law ------------------------------------------------------------------------------
 
     def gap(self, i: int, sv: float) -> float:
-        """``Q_fast - s q`` of surface ``i`` sliding with ``s v = sv``: ``(Q_fast - Q_slow) exp(-a sv)``."""
+        """``Q_fast - s q`` of surface ``i`` sliding with ``s v = sv``: ``(Q_fast - Q_slow) exp(-a sv)``.
+
+        Units ``M_b a_p``; ``a sv`` capped at :data:`_EXP_MAX`.
+        """
         return self.dq[i] * math.exp(-min(self.a[i] * sv, _EXP_MAX))
 
     def speed(self, i: int, g: float) -> float:
@@ -1045,7 +1058,8 @@ class _RateBearing(_Bearing):
         ``Gm = Q_fast + q`` at zero force shift (from the speeds of the surfaces sliding before, else from
         ``F`` and ``u``), the restrainers, and the force shift where the surfaces' speeds, each by its law
         with true stick below the slow level and none outward at a restrainer, add up to ``|x'|`` (the
-        edge ``F_hi`` for ``x' = 0``).  Returns None when every surface is at its restrainer forward.
+        edge ``F_hi`` for ``x' = 0``; no shift while a surface of ``pinned`` can still move: it holds the
+        force at its fast level).  Returns None when every surface is at its restrainer forward.
         """
         sg = float(sigma)
         ut, Ft, vt, xdt = sg * u, sg * F, sg * v, sg * xd
@@ -1087,14 +1101,14 @@ class _RateBearing(_Bearing):
                 st = int(sg) * int(s[i])
                 G = Gp[i] if st > 0 else Gm[i]
                 d_lo = min(d_lo, st * (G - self.gap(i, st * xdt / len(prev))))
-            d_hi = d_lo
+            # and beyond: phi >= x' (phi grows without bound towards the least fast level)
             d_max = min(Gp[i] for i in able)
-            d_b = min(Gp[i] - self.gap(i, xdt) for i in able)
+            d_up = min(Gp[i] - self.gap(i, xdt) for i in able)
             for _ in range(200):
-                if phi(d_b) >= xdt or d_b >= d_max:
+                if phi(d_up) >= xdt or d_up >= d_max:
                     break
-                d_b = 0.5 * (d_b + d_max)
-            delta = _root(lambda dl: phi(dl) - xdt, d_hi, d_b)
+                d_up = 0.5 * (d_up + d_max)
+            delta = _root(lambda dl: phi(dl) - xdt, d_lo, d_up)
         else:
             delta = d_hi
         strict, ties = [], []
@@ -1172,7 +1186,8 @@ class _RateBearing(_Bearing):
                 return _RateMode(S=S, s=s, v=sg * vt, F=F)
         return None
 
-    def stage(self, S, u) -> int:  # noqa: D102 - documented in the module docstring
+    def stage(self, S, u) -> int:
+        """The regime of the sliding set ``S`` by the outer surfaces' states (module docstring)."""
         if not S:
             return 0
 
@@ -1204,10 +1219,12 @@ def _motion(p: float, xd: float, bm: int, F: float, cm: int, m: float, c: float,
 class _RatePhase:
     """One phase of the speed-dependent bearing: the sliding set ``S`` (directions ``s``) fixed.
 
-    The state holds ``x`` and the speeds of the sliding surfaces on their laws; a surface whose
-    ``a |v|`` passed :data:`A_PIN` is pinned at ``Q_fast`` (its gap below the double's resolution) and
-    its speed follows from the others', and the slab's speed ``x'`` is then a state too.  The sliding
-    surfaces' displacements and the force follow from :meth:`_RateBearing.system` (module docstring).
+    The state holds ``x`` and the speeds of the sliding surfaces on their laws; a surface of ``pinned``
+    (its ``a |v|`` past :data:`A_PIN`) is held at ``Q_fast`` and its speed follows from the others', and
+    the slab's speed ``x'`` is then a state too.  The sliding surfaces' displacements and the force
+    follow from :meth:`_RateBearing.system` (module docstring).  ``bm``, ``cm``: the slab's and the
+    contents' modes; ``m, c, kin``: ``Pi8``, the damper and ``Pi2``; ``p_of(t)``: the ground's
+    acceleration.
     """
 
     def __init__(self, B: _RateBearing, S, s, ub, pinned, bm: int, cm: int, m: float, c: float, kin: float,
@@ -1766,10 +1783,16 @@ def _run_rate(building: TFPBuilding, rtol: float, atol: float, tau_max, history:
             specs.append((_stop_event(cm, UD, t0, y[UD], udd0), "contents_stop",
                           lambda t, yy, cm=cm: cm * yy[UD], (lambda r, cm=cm: cm * r[7]) if bm else None))
         events = []
-        for fn, _kind, raw, _ in specs:
+        for fn, kind_, raw, _ in specs:
             if fn is None:
                 g0 = raw(t0, y)
-                off = min(0.0, g0)
+                if isinstance(kind_, tuple) and kind_[0] == "limit":
+                    # a held surface passing its slow level by 1e-10 of the slow-fast span; one resting on its
+                    # level (an inner surface while its outer one is pinned) must move on by as much (the
+                    # round-off of its reaction is no event)
+                    off = (0.0 if g0 > 0.0 else g0) - 1e-10 * B.dq[kind_[1]]
+                else:
+                    off = min(0.0, g0)
                 fn = (lambda t, yy, raw=raw, off=off: raw(t, yy) - off)
             fn.terminal, fn.direction = True, -1.0
             events.append(fn)
