@@ -1586,7 +1586,7 @@ def _run_rate(building: TFPBuilding, rtol: float, atol: float, tau_max, history:
             if not pinned:
                 St = [i for i in S]
                 st = [sg * int(sb[i]) for i in St]
-                G = [B.gap(i, sg * int(sb[i]) * sg * float(y[V0 + i])) for i in St]
+                G = [B.gap(i, int(sb[i]) * float(y[V0 + i])) for i in St]
                 _, vS = B.split(St, st, G, sg * xd)
                 for i, vk in zip(St, vS, strict=True):
                     y[V0 + i] = sg * vk
