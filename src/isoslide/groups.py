@@ -27,6 +27,10 @@ Pi14   a_py / a_p           transverse-to-main pulse amplitude ratio    0 <= Pi1
 Pi15   T_py / T_p           transverse-to-main pulse period ratio       0 < Pi15 <= 1e4
 Pi16   t_y / T_p            transverse pulse time shift                 -1e4 <= Pi16 <= 1e4
 Pi17   a_pz / g             vertical ground acceleration over gravity   0 <= Pi17 <= 1e3
+Pi18   b / h                aspect ratio of a rocking block             0 < Pi18 <= 1e3
+Pi19   p T_p                block frequency parameter over the pulse    0 < Pi19 <= 1e6
+Pi20   e                    restitution of a rocking block at impact    0 < Pi20 <= 1
+Pi21   a_p / (g tan alpha)  pulse amplitude over the uplift acceleration  0 < Pi21 <= 1e6
 Pi22   mu_slow / mu_fast    bearing breakaway-to-fast friction ratio    0 < Pi22 <= 1
 Pi23   a a_p T_p            bearing friction rate group                 0 <= Pi23 <= 1e12
 Pi24   L1 / (L2 + L3)       inner radius ratio of a triple pendulum     0 <= Pi24 <= 1e3
@@ -53,8 +57,11 @@ make a sliding bearing a triple friction pendulum (``Pi24 > 0``; OpenSees's
 lower and upper outer surfaces', ``mu1 <= mu2 <= mu3`` and ``d1, d2, d3`` their friction and
 displacement limits); with them ``Pi3 = 2 pi sqrt((L2 + L3)/g) / T_p`` is the period of its outer
 surfaces sliding together (regime III) and ``Pi9 = mu2 g / a_p`` (the bearing's weight ``M_b g``), so
-that equal frictions give the single pendulum of radius ``L2 + L3``.  The numbers Pi18 to Pi21 are
-kept for the rocking block's groups.
+that equal frictions give the single pendulum of radius ``L2 + L3``.  Pi18 to Pi21 (:data:`ROCKING`)
+make the contents a rigid rectangular block that can rock (half-width ``b``, half-height ``h``,
+``alpha = atan(b/h)``, ``R = sqrt(b^2 + h^2)``, ``p = sqrt(3 g / (4 R))``): ``Pi18 = b/h``, ``Pi19 = p
+T_p``, ``Pi20 = e`` the restitution of its angular velocity at impact and ``Pi21 = a_p/(g tan
+alpha)``; each is optional (``None``: contents that only slide, the paper's model).
 
 Scene validation, dataset attributes, figure labels, the similarity check's
 definitions, study dimension names and the command-line help are all derived
@@ -253,7 +260,31 @@ INPUTS = (
 )
 """The input groups, in the order of :class:`isoslide.Scene`'s arguments."""
 
-GROUPS = {g.name: g for g in (RESULT, *INPUTS)}
+ROCKING = (
+    Group("pi18", "b / h", "aspect ratio of a rocking block", r"\Pi_{18}", r"b/h", "Π₁₈",
+          lo_in=False, hi=1e3,
+          comment="half-width over half-height of the contents as a rigid rectangular block, tan(alpha); the "
+                  "block rocks about a bottom corner once the floor tips it; absent (None) = contents that "
+                  "only slide"),
+    Group("pi19", "p T_p", "block frequency parameter over the pulse", r"\Pi_{19}", r"p\,T_p", "Π₁₉",
+          lo_in=False, hi=1e6,
+          comment="p = sqrt(3 g / (4 R)) (rad/s), R = sqrt(b^2 + h^2) the corner-to-centre distance, times T_p; "
+                  "given with Pi18"),
+    Group("pi20", "e", "restitution of a rocking block at impact", r"\Pi_{20}", r"e", "Π₂₀",
+          lo_in=False, hi=1.0,
+          comment="ratio of the angular velocity after an impact to before it; absent (None) = Housner's "
+                  "1 - 3/2 sin^2(alpha); allowed 0 < Pi20 <= that value; read only with Pi18"),
+    Group("pi21", "a_p / (g tan alpha)", "pulse amplitude over the uplift acceleration", r"\Pi_{21}",
+          r"a_p/(g \tan\alpha)", "Π₂₁", lo_in=False, hi=1e6,
+          comment="the rocking literature's intensity group; with it g / a_p = 1/(Pi18 Pi21) and mu_s / tan(alpha) "
+                  "= Pi2 Pi21 / Pi5; given with Pi18"),
+)
+"""The rocking block's groups, each optional (``None``: contents that only slide)."""
+
+ROCKING_NAMES = tuple(g.name for g in ROCKING)
+"""Names of the rocking block's groups (``("pi18", ..., "pi21")``)."""
+
+GROUPS = {g.name: g for g in (RESULT, *INPUTS, *ROCKING)}
 """Every group by name, the result first."""
 
 INPUT_NAMES = tuple(g.name for g in INPUTS)

@@ -31,9 +31,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .pulses import Pulse, get_pulse
-from .groups import INPUT_NAMES, INPUTS, TFP_NAMES
+from .groups import INPUT_NAMES, INPUTS, ROCKING_NAMES, TFP_NAMES, group
 from .model.shear_building import fundamental_period
 from .groups import defaults as _group_defaults
+from .model.rocking import housner_restitution
 from .model.tfp import TripleFrictionPendulum
 from .model.validation import check_range
 
@@ -169,6 +170,14 @@ class Scene:
         ``Pi28, Pi29, Pi30 = d1, d2, d3 / (a_p T_p^2)`` (> 0), in OpenSees's notation
         (:func:`triple_friction_pendulum`), with ``Pi3 = 2 pi sqrt((L2 + L3)/g)/T_p`` and ``Pi9 = mu2
         g/a_p``.  Its surfaces' friction is constant (``Pi22 = 1`` or ``Pi23 = 0``).
+    pi18, pi19, pi20, pi21 : float or None, default None
+        Contents that can rock: a rigid rectangular block of half-width ``b`` and half-height ``h``
+        (``alpha = atan(b/h)``, ``R = sqrt(b^2 + h^2)``, ``p = sqrt(3 g / (4 R))``), rocking in the
+        vertical plane of the building's x axis (:mod:`isoslide.model.rocking`): ``Pi18 = b/h``,
+        ``Pi19 = p T_p``, ``Pi20 = e`` the restitution of its angular velocity at impact (``None``:
+        Housner's ``1 - 3/2 sin^2(alpha)``; allowed ``0 < e <=`` that) and ``Pi21 = a_p / (g tan
+        alpha)``, so that ``g / a_p = 1/(Pi18 Pi21)``.  ``Pi18 = None``: contents that only slide
+        (the paper's model); with ``Pi18``, ``Pi19`` and ``Pi21`` are needed.
     angle : float, default 0
         Angle (radians, counter-clockwise) from the building's x axis to the excitation's x axis:
         the horizontal ground acceleration in the building's axes is the excitation's rotated by
@@ -213,6 +222,10 @@ class Scene:
     pi28: float = _DEFAULTS["pi28"]
     pi29: float = _DEFAULTS["pi29"]
     pi30: float = _DEFAULTS["pi30"]
+    pi18: float | None = None
+    pi19: float | None = None
+    pi20: float | None = None
+    pi21: float | None = None
     angle: float = 0.0
     scale: PhysicalScale | None = field(default=None, compare=False)
 
@@ -245,13 +258,14 @@ class Scene:
             _check_contact(self.pi17, self.pulse_z)
         if self.pi24 > 0.0:
             _check_tfp(self)
+        _check_rocking(self)
 
     @classmethod
     def from_physical(cls, a_p, T_p, M_b, T_b, xi_b, m_ec, mu_s, mu_k, beta=0.0, gamma=0.0,
                       g=G_STANDARD, pulse="ricker", Q_d=0.0, D_y=0.0, m_st=0.0, T_s=0.0, xi_s=0.0,
                       floor="base", storeys=1, floor_masses=None, storey_stiffnesses=None, a_pz=0.0,
                       pulse_z=None, pulse_y=None, a_py=None, T_py=None, t_y=0.0, angle=0.0, Q_slow=None,
-                      rate=0.0, tfp=None) -> "Scene":
+                      rate=0.0, tfp=None, b=None, h=None, restitution=None) -> "Scene":
         """Build a scene from physical parameters in SI units.
 
         Parameters
@@ -326,6 +340,12 @@ class Scene:
             A triple friction pendulum (:func:`triple_friction_pendulum`): ``(L1/(L2 + L3), L2/(L2 +
             L3), mu1/mu2, mu3/mu2, d1, d2, d3)`` (limits in m), with ``T_b = 2 pi sqrt((L2 + L3)/g)``
             and ``Q_d = mu2 M_b g``; ``None``: a single friction pendulum.
+        b, h : float, optional
+            Half-width and half-height of the contents as a rigid rectangular block that can rock in
+            the vertical plane of x, m (> 0, given together); ``None``: contents that only slide.
+        restitution : float, optional
+            The block's coefficient of restitution ``e`` of the angular velocity at impact (``None``:
+            Housner's ``1 - 3/2 sin^2(alpha)``).
         """
         v = {"a_p": a_p, "T_p": T_p, "M_b": M_b, "T_b": T_b, "xi_b": xi_b, "m_ec": m_ec, "mu_s": mu_s,
              "mu_k": mu_k, "beta": beta, "gamma": gamma, "g": g, "Q_d": Q_d, "D_y": D_y, "T_s": T_s,
@@ -368,6 +388,16 @@ class Scene:
                                  "mu1/mu2, mu3/mu2, d1, d2, d3), as triple_friction_pendulum returns")
             length = a_p * T_p**2
             shape = dict(zip(TFP_NAMES, (*tfp[:4], *(d / length for d in tfp[4:])), strict=True))
+        if (b is None) != (h is None):
+            raise ValueError(f"b = {b!r}, h = {h!r}; allowed: both (a block that can rock, m) or neither")
+        if b is not None:
+            b = check_range("b", b, 0.0, math.inf, False, False)
+            h = check_range("h", h, 0.0, math.inf, False, False)
+            shape.update(pi18=b / h, pi19=math.sqrt(3.0 * g / (4.0 * math.hypot(b, h))) * T_p, pi20=restitution,
+                         pi21=a_p / (g * b / h))
+        elif restitution is not None:
+            raise ValueError(f"restitution = {restitution!r} is given without b and h; allowed: a restitution with "
+                             "a block that can rock (b, h)")
         return cls(
             pi2=mu_k * g / a_p, pi3=T_b / T_p, pi4=xi_b, pi5=mu_k / mu_s,
             pi6=beta * a_p * T_p, pi7=gamma * g * T_p, pi8=m_ec / M_b,
@@ -386,6 +416,19 @@ class Scene:
     def static_level(self) -> float:
         """``mu_s g / a_p = Pi2 / Pi5``: floor acceleration (units of a_p) that breaks stick."""
         return self.pi2 / self.pi5
+
+    @property
+    def rocks(self) -> bool:
+        """True when the contents are a block that can rock (``Pi18`` given)."""
+        return self.pi18 is not None
+
+    @property
+    def restitution(self) -> float | None:
+        """The rocking block's restitution ``e``: ``Pi20``, or Housner's ``1 - 3/2 sin^2(alpha)`` (``None``
+        without a rocking block)."""
+        if not self.rocks:
+            return None
+        return self.pi20 if self.pi20 is not None else max(housner_restitution(math.atan(self.pi18)), 0.0)
 
     @property
     def fixed_base(self) -> bool:
@@ -539,6 +582,33 @@ def _check_contact(pi17: float, pulse_z: Pulse) -> None:
                      f"over its static value, 1 + pi17 p_z(tau), reaches 0 at tau = {hi:.6g} (its least value "
                      f"{n[i]:.6g} at tau = {taus[i]:.6g}); allowed: 1 + pi17 p_z(tau) > 0 at every tau, "
                      f"pi17 < {pi17 / (1.0 - n[i]):.6g} for this pulse")
+
+
+def _check_rocking(scene) -> None:
+    """Check the rocking block's groups (``ValueError`` naming the group, its value and the rule)."""
+    if scene.pi18 is None:
+        for name in ROCKING_NAMES[1:]:
+            if getattr(scene, name) is not None:
+                raise ValueError(f"{name} = {getattr(scene, name)!r} is given without pi18; allowed: {name} = None "
+                                 "for contents that only slide, or pi18 = b/h with pi19 and pi21")
+        return
+    for name in ROCKING_NAMES:
+        value = getattr(scene, name)
+        if value is None:
+            if name == "pi20":
+                continue
+            raise ValueError(f"{name} = None with pi18 = {scene.pi18!r}; allowed: a rocking block needs pi19 = p T_p "
+                             "and pi21 = a_p/(g tan alpha)")
+        object.__setattr__(scene, name, group(name).check(value))
+    if scene.pi20 is not None:
+        e_h = housner_restitution(math.atan(scene.pi18))
+        object.__setattr__(scene, "pi20", check_range("pi20", scene.pi20, 0.0, e_h, False, True))
+    if scene.pulse_y is not None or scene.angle != 0.0:
+        raise ValueError(f"a rocking block (pi18 = {scene.pi18!r}) with pulse_y = "
+                         f"{None if scene.pulse_y is None else scene.pulse_y.name!r}, angle = {scene.angle!r}; "
+                         "allowed: one horizontal component along the building's x axis (pulse_y = None, angle = 0): "
+                         "the block rocks in the vertical plane of x, and rocking under two horizontal components is "
+                         "not modelled")
 
 
 def tfp_bearing(scene) -> TripleFrictionPendulum:
