@@ -169,7 +169,8 @@ from .result import PeerResult, counted
 from .stick_slip import X, XD, XS, StateIndex, bearing_event, choose_modes, farther, phase_modes, sign
 
 __all__ = ["LEDGER_NAMES", "Building", "BuildingRun", "building_of", "default_horizon", "energies",
-           "excitation_breakpoints", "excitation_end", "run_building", "shear_building", "solve_reference_building"]
+           "excitation_breakpoints", "excitation_end", "run_building", "shear_building", "solve_reference_building",
+           "structure_forces"]
 
 LEDGER_NAMES = ("work", "viscous", "isolator", "friction")
 """Ledger integrals appended to the state when requested: input work, viscous, isolator
@@ -429,6 +430,47 @@ def excitation_breakpoints(scene: Scene) -> np.ndarray:
     return b
 
 
+def structure_forces(B: Building, y, si: int, nz: float = 1.0) -> tuple:
+    """The forces that the building's state alone sets, whatever the contents do.
+
+    Parameters
+    ----------
+    B : Building
+    y : sequence
+        State (module docstring); only the slab's, the floors' and the isolator's entries are read.
+    si : int
+        Isolator mode, as in :func:`_dynamics`.
+    nz : float
+        Normal-force factor ``n(tau)`` (dimensionless, > 0).
+
+    Returns
+    -------
+    (F, fh, kd, f, S) : tuple
+        ``F = kd x + cb x' + fh`` the isolator's force on the slab (units ``M_b a_p``), ``fh`` its
+        hysteretic or friction part (a held bearing's is what it must supply, not this), ``kd`` its
+        restoring stiffness (``kd n`` for a sliding bearing; units ``M_b/T_p**2``), ``f = Ks xs + Cs xs'``
+        the storeys' forces on their floors (an array, None when rigid) and ``S = sum_j f_j`` (0 when
+        rigid).
+    """
+    n = B.n
+    xd = y[XD]
+    f = None
+    if n:
+        f = B.Ks @ y[XS:XS + n] + B.Cs @ y[B.XSD:B.XSD + n]
+        S = float(f.sum())
+    else:
+        S = 0.0
+    if B.kind == "bilinear":
+        fh = y[B.FH]
+    elif B.kind == "sliding":
+        fh = si * B.level(si * xd) * nz      # si xd = |x'| while sliding (continued past a stop)
+    else:
+        fh = 0.0
+    kd = B.kd * nz if B.kind == "sliding" else B.kd     # a friction pendulum's W x / R
+    F = kd * y[X] + B.cb * xd + fh
+    return F, fh, kd, f, S
+
+
 def _dynamics(B: Building, p: float, y, sb: int, si: int, nz: float = 1.0):
     """Accelerations and forces in the mode ``(sb, si)``.
 
@@ -457,19 +499,7 @@ def _dynamics(B: Building, p: float, y, sb: int, si: int, nz: float = 1.0):
     held = B.holds and si == 0
     n = B.n
     x, xd, ud = y[X], y[XD], y[B.UD]
-    if n:
-        f = B.Ks @ y[XS:XS + n] + B.Cs @ y[B.XSD:B.XSD + n]
-        S = float(f.sum())
-    else:
-        S = 0.0
-    if B.kind == "bilinear":
-        fh = y[B.FH]
-    elif B.kind == "sliding":
-        fh = si * B.level(si * xd) * nz      # si xd = |x'| while sliding (continued past a stop)
-    else:
-        fh = 0.0
-    kd = B.kd * nz if B.kind == "sliding" else B.kd     # a friction pendulum's W x / R
-    F = kd * x + B.cb * xd + fh
+    F, fh, kd, f, S = structure_forces(B, y, si, nz)
     m = B.m
     k = B.floor
     if sb != 0:
