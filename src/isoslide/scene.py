@@ -431,6 +431,18 @@ class Scene:
         return self.pi20 if self.pi20 is not None else max(housner_restitution(math.atan(self.pi18)), 0.0)
 
     @property
+    def tips(self) -> bool:
+        """True when the contents are a block that tips before it can slide: ``mu_s > tan(alpha)``, i.e.
+        ``Pi2 Pi21 / Pi5 > 1``.
+
+        With ``mu_s <= tan(alpha)`` a block never rocks (Shenton 1996): from rest it slides once
+        ``|A_F| > mu_s (g + a_v)``, no later than it could tip (``|A_F| > (g + a_v) tan(alpha)``), and a
+        flat block sliding with friction ``mu_k <= tan(alpha)`` keeps the resultant of its normal force
+        on its base whatever the floor does.  The sliding model is then the whole answer.
+        """
+        return self.rocks and self.pi2 * self.pi21 / self.pi5 > 1.0
+
+    @property
     def fixed_base(self) -> bool:
         """True for ``Pi3 = 0``: the floor moves with the ground."""
         return self.pi3 == 0.0
@@ -479,10 +491,10 @@ class Scene:
         """True when the scene is the paper's model (Fig. 1-b).
 
         A linear isolator (``Pi9 = 0``), a rigid superstructure (``Pi12 = 0``), no vertical ground
-        motion and the main pulse alone along the building's x axis (:attr:`in_line`); the
-        contents' floor then makes no difference.
+        motion, the main pulse alone along the building's x axis (:attr:`in_line`) and contents that
+        only slide (not :attr:`tips`); the contents' floor then makes no difference.
         """
-        return self.pi9 == 0.0 and self.pi12 == 0.0 and not self.vertical and self.in_line
+        return self.pi9 == 0.0 and self.pi12 == 0.0 and not self.vertical and self.in_line and not self.tips
 
     @property
     def span(self) -> tuple:
@@ -603,6 +615,10 @@ def _check_rocking(scene) -> None:
     if scene.pi20 is not None:
         e_h = housner_restitution(math.atan(scene.pi18))
         object.__setattr__(scene, "pi20", check_range("pi20", scene.pi20, 0.0, e_h, False, True))
+    if scene.pi6 > 0.0 or scene.pi7 > 0.0:
+        raise ValueError(f"pi6 = {scene.pi6!r}, pi7 = {scene.pi7!r} with a rocking block (pi18 = {scene.pi18!r}); "
+                         "allowed: pi6 = pi7 = 0: a block that can rock has Coulomb friction, mu_s at rest and "
+                         "while it slides")
     if scene.pulse_y is not None or scene.angle != 0.0:
         raise ValueError(f"a rocking block (pi18 = {scene.pi18!r}) with pulse_y = "
                          f"{None if scene.pulse_y is None else scene.pulse_y.name!r}, angle = {scene.angle!r}; "

@@ -126,7 +126,7 @@ def reduction(scene: Scene) -> tuple[str, Scene | None]:
     iso, contents = parts.isolator, parts.contents
     if scene.paper_model:
         return "paper", replace(scene, **paper_keys)
-    if scene.vertical:       # the reductions below hold for constant friction limits only
+    if scene.vertical or contents.tips:   # the reductions below hold for a sliding block with constant limits only
         return "general", None
     if iso.kind == "fixed" and contents.floor == 0:
         return "fixed-base", replace(scene, **paper_keys)
@@ -205,12 +205,25 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     P[bk.P_KIND] = float(KINDS[iso.kind])
     P[bk.P_FLEX] = 1.0 if flex else 0.0
     P[bk.P_ZOFF] = bk.n_parameters(n, 0, n_t)
+    if contents.tips:
+        g = contents.gravity
+        P[bk.P_ROCK] = contents.aspect
+        P[bk.P_RG] = g
+        P[bk.P_RR] = contents.radius
+        P[bk.P_RK] = 0.75 / contents.radius
+        P[bk.P_RE] = contents.restitution
+        P[bk.P_REPS] = CASCADE_END * math.atan(contents.aspect)
+        P[bk.P_RMUS] = contents.static / g
+        P[bk.P_RMUK] = contents.static / g
     if scene.vertical:
         P[bk.P_ZAMP] = scene.pi17
         P[bk.P_ZCODE] = scene.pulse_z.code
         P[bk.n_parameters(n, 0, n_t):] = zparams
     return P
 
+
+CASCADE_END = 1e-3
+"""A rocking block whose impacts provably keep it within this fraction of ``alpha`` comes to rest."""
 
 KINDS = {"linear": bk.KIND_LINEAR, "bilinear": bk.KIND_BILINEAR, "sliding": bk.KIND_SLIDING, "fixed": bk.KIND_FIXED,
          "tfp": bk.KIND_TFP}

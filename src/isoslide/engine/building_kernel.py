@@ -82,8 +82,9 @@ Y_X, Y_XD, Y_XS = range(3)
 """Fixed state indices: slab displacement and velocity, the first floor's displacement."""
 
 (P_MB, P_MST, P_M, P_KD, P_CB, P_KS, P_CS, P_Q, P_KE, P_THR, P_PI2, P_PI6, P_PI7, P_COULOMB, P_ROOF,
- P_KIND, P_FLEX, P_N, P_FLOOR, P_ZAMP, P_ZCODE, P_QS, P_QA, P_ZOFF, P_TFP, P_FHI, P_FLO, P_XNEXT) = range(28)
-P_ARRAYS = 28
+ P_KIND, P_FLEX, P_N, P_FLOOR, P_ZAMP, P_ZCODE, P_QS, P_QA, P_ZOFF, P_TFP, P_FHI, P_FLO, P_XNEXT,
+ P_ROCK, P_RG, P_RK, P_RR, P_RE, P_REPS, P_RMUS, P_RMUK) = range(36)
+P_ARRAYS = 36
 """Start of the arrays in the model parameters: floor masses ``(n,)``, then ``Ks`` and ``Cs``
 ``(n, n)`` row by row, then a triple friction pendulum's surfaces (:data:`TFP_SIZE` values from
 ``P_TFP``; ``P_TFP = 0`` for any other isolator), then the vertical pulse's parameters (from
@@ -94,7 +95,12 @@ vertical amplitude ``Pi17`` (0: no vertical motion) and ``P_ZCODE`` the vertical
 ``P_QA`` the rate ``Pi23`` of that rise (0: constant).  ``P_KE`` is a bilinear bearing's elastic
 stiffness; for a triple friction pendulum :func:`run` keeps, in its own copy of ``P``, the tangent
 stiffness of the surfaces sliding (``P_KE``), the band ``[P_FLO, P_FHI]`` of the force that holds
-the slab still and the displacement ``P_XNEXT`` at which the sliding surfaces change."""
+the slab still and the displacement ``P_XNEXT`` at which the sliding surfaces change.  A block that can rock
+(:mod:`isoslide.model.rocking`) has ``P_ROCK = tan(alpha) = Pi18`` (0: contents that only slide),
+``P_RG = g/a_p``, ``P_RK = 3/(4 R)`` and ``P_RR = R`` (``R`` in units ``a_p T_p^2``), the restitution
+``P_RE``, the cascade's end angle ``P_REPS`` (rad) and its static and kinetic friction coefficients
+``P_RMUS``, ``P_RMUK``; when it tips before it can slide (``mu_s > tan(alpha)``) :func:`run` sets,
+in its own copy, ``P_THR`` to the uplift level ``g tan(alpha) / a_p``."""
 
 TFP_SIZE = 12
 """Values of a triple friction pendulum in the model parameters: per surface (1 to 4, bottom to
@@ -109,7 +115,7 @@ def n_parameters(n: int, n_z: int = 0, n_t: int = 0) -> int:
 
 def state_size(n: int) -> int:
     """Length of the state vector of a building of ``n`` floors."""
-    return 2 * n + 5
+    return 2 * n + 7
 
 
 def history_width(n: int) -> int:
@@ -121,16 +127,27 @@ KIND_LINEAR, KIND_BILINEAR, KIND_SLIDING, KIND_FIXED, KIND_TFP = range(5)
 friction pendulum."""
 
 INT_RESULTS = ("steps", "events", "settled", "slipped", "hist", "iso_events", "iso_moved", "rejected", "stage_max",
-               "capacity")
-"""The integer results of :func:`run`, in order (their indices are ``R_*``)."""
+               "capacity", "overturned", "modes", "contact", "impacts")
+"""The integer results of :func:`run`, in order (their indices are ``R_*``).  ``modes`` is the set of
+the block's modes visited (bit ``1 << k`` for :data:`BLOCK_MODES` ``[k]``), ``contact`` a loss of the
+block's contact (:data:`CONTACT_LOSSES`; 0: none) and ``impacts`` the rocking block's impacts."""
 (R_STEPS, R_EVENTS, R_SETTLED, R_SLIPPED, R_HIST, R_ISO_EVENTS, R_ISO_MOVED, R_REJECTED, R_STAGE_MAX,
- R_CAPACITY) = range(10)
+ R_CAPACITY, R_OVERTURNED, R_MODES, R_CONTACT, R_IMPACTS) = range(14)
 N_R = len(INT_RESULTS)
-FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "xmax", "vmax", "upeak")
-"""The float results of :func:`run`, in order (their indices are ``F_*``)."""
-F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX, F_UPEAK = range(7)
+FLOAT_RESULTS = ("umax", "tpeak", "ures", "tend", "xmax", "vmax", "upeak", "thmax", "tcontact")
+"""The float results of :func:`run`, in order (their indices are ``F_*``): ``thmax`` the block's peak
+``|theta|`` (rad), ``tcontact`` the time of a loss of contact."""
+F_UMAX, F_TPEAK, F_URES, F_TEND, F_XMAX, F_VMAX, F_UPEAK, F_THMAX, F_TCONTACT = range(9)
 N_F = len(FLOAT_RESULTS)
-# history columns: [tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im, stage] (see history_columns)
+BLOCK_MODES = ("rest", "slide", "rock", "slide-rock")
+"""The block's modes, in the order of the bits of the ``modes`` result."""
+
+CONTACT_LOSSES = ("", "flight", "impact", "indeterminate")
+"""Losses of the rocking block's contact (the ``contact`` result): none, the vertical contact force
+would turn negative below the tipping angle, an impact with no consistent impulse, the slide-rock
+equations without a consistent solution (Painleve)."""
+
+# history columns: [tau, x, x', xs_1..n, xs_1'..n', theta, theta', u, u', fh, bm, im, stage] (see history_columns)
 H_TAU, H_X, H_XD, H_XS = range(4)
 
 
@@ -138,16 +155,19 @@ def history_columns(n: int) -> dict:
     """Column of each quantity in a history row of a building of ``n`` floors.
 
     ``xs`` and ``xsd`` are the first columns of the floors' displacements and velocities (``n``
-    each); ``fh`` is the isolator's hysteretic force (the holding force of a held slab), ``phase``
-    and ``iso_phase`` the block's and the isolator's modes, ``stage`` a triple friction pendulum's
+    each); ``theta``, ``thetad`` the rocking block's tilt (rad) and its rate; ``fh`` is the
+    isolator's hysteretic force (the holding force of a held slab), ``phase`` and ``iso_phase`` the
+    block's (:func:`block_mode`) and the isolator's modes, ``stage`` a triple friction pendulum's
     regime (:func:`tfp_stage`; 0 for any other isolator).
     """
     ny = state_size(n)
-    return {"tau": H_TAU, "x": H_X, "xd": H_XD, "xs": H_XS, "xsd": H_XS + n, "u": 3 + 2 * n,
-            "ud": 4 + 2 * n, "fh": ny, "phase": ny + 1, "iso_phase": ny + 2, "stage": ny + 3}
+    return {"tau": H_TAU, "x": H_X, "xd": H_XD, "xs": H_XS, "xsd": H_XS + n, "theta": 3 + 2 * n,
+            "thetad": 4 + 2 * n, "u": 5 + 2 * n, "ud": 6 + 2 * n, "fh": ny, "phase": ny + 1, "iso_phase": ny + 2,
+            "stage": ny + 3}
 
 # event kinds
-EV_BLOCK, EV_BEAR, EV_YIELD, EV_BSPEED, EV_ISPEED, EV_BPEAK, EV_IPEAK, EV_XD, EV_TFP = range(9)
+EV_BLOCK, EV_BEAR, EV_YIELD, EV_BSPEED, EV_ISPEED, EV_BPEAK, EV_IPEAK, EV_XD, EV_TFP, EV_IMPACT, EV_OVER, EV_PIVOT, \
+    EV_APEX = range(13)
 
 
 _stribeck = njit(cache=True)(stribeck)
@@ -443,17 +463,86 @@ def _base_shear(zp, zv, P):
     return acc
 
 
+@njit(cache=True, inline="always")
+def corner(bm):
+    """The rocking block's pivot corner ``s`` (+-1) in the block mode ``bm``; 0 while it is flat.
+
+    A block mode is ``bm = sigma + 4 s``: ``sigma`` (:func:`base_slide`) the sliding direction of
+    its base (0 stuck) and ``s`` the corner it rocks on (0 flat), so ``0`` is rest, ``+-1`` a slide,
+    ``+-4`` rocking and the others slide-rock.
+    """
+    return 1.0 if bm > 1.5 else (-1.0 if bm < -1.5 else 0.0)
+
+
+@njit(cache=True, inline="always")
+def base_slide(bm):
+    """The sliding direction ``sigma`` of the block's base (its pivot while it rocks) in the mode ``bm``."""
+    return bm - 4.0 * corner(bm)
+
+
+@njit(cache=True)
+def block_mode(bm):
+    """Index in :data:`BLOCK_MODES` of the block mode ``bm``."""
+    if corner(bm) == 0.0:
+        return 0 if bm == 0.0 else 1
+    return 2 if base_slide(bm) == 0.0 else 3
+
+
+@njit(cache=True, inline="always")
+def _tilt(bm, y, P):
+    """``(s, psi, psi', d)``: the pivot corner, the tilt on it and its rate, ``d = alpha - psi``."""
+    n = int(P[P_N])
+    s = corner(bm)
+    psi = s * y[Y_XS + 2 * n]
+    return s, psi, s * y[Y_XS + 2 * n + 1], math.atan(P[P_ROCK]) - psi
+
+
+@njit(cache=True)
+def _block_load(bm, nz, y, P):
+    """How the block of mode ``bm`` loads its floor: ``(a1, f, ac)``.
+
+    The floor receives ``f - m a1 A_F`` from the block (``A_F`` its absolute acceleration, units of
+    a_p): a block at rest adds its mass (``a1 = 1``), a sliding one its friction ``f``; a rocking one
+    pushes with ``-m H``, linear in ``A_F`` (``H = A_F (1 - 3/4 cos^2 d) - 3/4 s Gam sin d cos d + s R
+    sin d psi'^2`` per unit mass, ``Gam = g nz``); a slide-rocking one with ``-m H = m mu_k V sigma``,
+    explicit, ``ac`` being then the absolute acceleration of its sliding corner (Shenton and Jones
+    1991; :mod:`isoslide.peers.slide_rock`); a sliding one's ``ac`` is its friction per unit mass.
+    """
+    m = P[P_M]
+    c = corner(bm)
+    if c == 0.0:
+        if bm == 0.0:
+            return 1.0, 0.0, 0.0
+        ph, _ = friction(y[y.shape[0] - 2], P)
+        ph *= nz
+        return 0.0, m * bm * ph, bm * ph
+    s, psi, psd, d = _tilt(bm, y, P)
+    gam = P[P_RG] * nz
+    sd = math.sin(d)
+    cd = math.cos(d)
+    R = P[P_RR]
+    sig = base_slide(bm)
+    if sig == 0.0:
+        return 1.0 - 0.75 * cd * cd, -m * (-0.75 * s * gam * sd * cd + s * R * sd * psd * psd), 0.0
+    mu = P[P_RMUK]
+    cc = s * cd + mu * sig * sd
+    ac = (0.75 * cc * gam * sd - R * psd * psd * (s * sd - mu * sig * cd) - mu * sig * gam) / (1.0 - 0.75 * cc * s * cd)
+    psdd = -P[P_RK] * (gam * sd + s * ac * cd)
+    V = gam + R * (sd * psdd - cd * psd * psd)
+    return 0.0, m * mu * V * sig, ac
+
+
 @njit(cache=True)
 def _accels(bm, im, p, nz, y, P, A):
-    """Accelerations of a mode: ``(Ab, A_F, u'', fh, R)``; the floors' into ``A``.
+    """Accelerations of a mode: ``(Ab, A_F, u'', fh, R, theta'')``; the floors' into ``A``.
 
     ``Ab`` absolute slab acceleration, ``A[j]`` floor ``j + 1``'s absolute acceleration, ``A_F``
     the contents' floor's, ``u''`` the block's relative acceleration, ``fh`` the hysteretic isolator
-    force (for a held slab, the force that holds it) and ``R`` the friction force of the block on
-    its floor; ``nz`` is the normal-force factor (:func:`normal`).
+    force (for a held slab, the force that holds it), ``R`` the force of the block on its floor
+    (:func:`_block_load`) and ``theta''`` the rocking block's angular acceleration; ``nz`` is the
+    normal-force factor (:func:`normal`).
     """
     n = int(P[P_N])
-    ny = y.shape[0]
     m = P[P_M]
     mb = P[P_MB]
     roof = P[P_ROOF] != 0.0
@@ -461,11 +550,7 @@ def _accels(bm, im, p, nz, y, P, A):
     fl = int(P[P_FLOOR]) - 1
     zp = y[Y_XS:Y_XS + n]
     zv = y[Y_XS + n:Y_XS + 2 * n]
-    ph = 0.0
-    if bm != 0.0:
-        ph, _ = friction(y[ny - 2], P)
-        ph *= nz
-    rs = m * bm * ph
+    a1, f, ac = _block_load(bm, nz, y, P)
     S = 0.0
     for j in range(n):
         if flex:
@@ -473,7 +558,7 @@ def _accels(bm, im, p, nz, y, P, A):
             S += G
             mj = P[P_ARRAYS + j]
             if roof and j == fl:
-                A[j] = -G / (mj + m) if bm == 0.0 else (-G + rs) / mj
+                A[j] = (-G + f) / (mj + m * a1)
             else:
                 A[j] = -G / mj
     if _held(im, P):
@@ -485,16 +570,37 @@ def _accels(bm, im, p, nz, y, P, A):
         if roof:
             Ab = (-F + S) / mb
         else:
-            Ab = (-F + S) / (mb + m) if bm == 0.0 else (-F + S + rs) / mb
+            Ab = (-F + S + f) / (mb + m * a1)
     if not flex:
         for j in range(n):
             A[j] = Ab
     AF = A[fl] if roof else Ab
-    R = rs if bm != 0.0 else -m * AF
+    R = f - m * a1 * AF
     if _held(im, P):
         fh = -mb * p - _stiffness(nz, P) * y[Y_X] + S + (0.0 if roof else R)
-    udd = 0.0 if bm == 0.0 else -AF - bm * ph
-    return Ab, AF, udd, fh, R
+    c = corner(bm)
+    if c == 0.0:
+        udd = 0.0 if bm == 0.0 else -AF - ac
+        return Ab, AF, udd, fh, R, 0.0
+    s, psi, psd, d = _tilt(bm, y, P)
+    a = AF if base_slide(bm) == 0.0 else ac
+    psdd = -P[P_RK] * (P[P_RG] * nz * math.sin(d) + s * a * math.cos(d))
+    return Ab, AF, a - AF, fh, R, s * psdd
+
+
+@njit(cache=True)
+def contact(bm, nz, y, AF, ac, P):
+    """The rocking block's contact force per unit mass ``(H, V)`` at its pivot (units of a_p).
+
+    ``AF`` the floor's absolute acceleration, ``ac`` the pivot's (``AF`` while it sticks).
+    """
+    s, psi, psd, d = _tilt(bm, y, P)
+    gam = P[P_RG] * nz
+    sd = math.sin(d)
+    cd = math.cos(d)
+    R = P[P_RR]
+    psdd = -P[P_RK] * (gam * sd + s * ac * cd)
+    return ac + s * R * (cd * psdd + sd * psd * psd), gam + R * (sd * psdd - cd * psd * psd)
 
 
 @njit(cache=True)
@@ -505,7 +611,7 @@ def deriv(bm, im, tau, y, P, code, params, out):
     p = accel_at(code, params, tau)
     nz, _ = normal(tau, P)
     A = out[Y_XS + n:Y_XS + 2 * n]
-    Ab, AF, udd, fh, R = _accels(bm, im, p, nz, y, P, A)
+    Ab, AF, udd, fh, R, thdd = _accels(bm, im, p, nz, y, P, A)
     if _held(im, P):
         out[Y_X] = 0.0
         out[Y_XD] = 0.0
@@ -515,6 +621,8 @@ def deriv(bm, im, tau, y, P, code, params, out):
     for j in range(n):
         out[Y_XS + j] = y[Y_XS + n + j]
         out[Y_XS + n + j] = A[j] - Ab
+    out[Y_XS + 2 * n] = y[Y_XS + 2 * n + 1]
+    out[Y_XS + 2 * n + 1] = thdd
     out[ny - 3] = y[ny - 2]
     out[ny - 2] = udd
     kind = P[P_KIND]
@@ -563,6 +671,9 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     EV_BPEAK, EV_IPEAK: the rates of EV_BLOCK and EV_BEAR (derivative not given: NaN).
     EV_XD     ``sig x'`` (the rate of an elastic bilinear bearing's ``sig fh``, over ``ke``)
     EV_TFP    ``im (x - P_XNEXT)``: a moving triple pendulum's sliding surfaces change
+    EV_IMPACT ``psi`` (the rocking block reaches the floor)   EV_OVER ``pi/2 - psi`` (it overturns)
+    EV_PIVOT  ``mu_s V - |H|`` (the rocking block's pivot slips; rate not given: NaN)
+    EV_APEX   ``psi'`` (the tilt's extremes)
     """
     n = int(P[P_N])
     ny = y.shape[0]
@@ -574,7 +685,22 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     if kind == EV_TFP:
         return im * (y[Y_X] - P[P_XNEXT]), im * y[Y_XD]
     if kind == EV_BSPEED:
-        return bm * y[ud], bm * work[ud]
+        sl = base_slide(bm)
+        return sl * y[ud], sl * work[ud]
+    if kind == EV_IMPACT or kind == EV_OVER or kind == EV_APEX:
+        s = corner(bm)
+        th = Y_XS + 2 * n
+        if kind == EV_IMPACT:
+            return s * y[th], s * work[th]
+        if kind == EV_OVER:
+            return 0.5 * math.pi - s * y[th], -s * work[th]
+        return s * y[th + 1], s * work[th + 1]
+    if kind == EV_PIVOT:
+        nz, _ = normal(tau, P)
+        A = np.empty(n)
+        AF = _accels(bm, im, accel_at(code, params, tau), nz, y, P, A)[1]
+        H, V = contact(bm, nz, y, AF, AF, P)
+        return P[P_RMUS] * V - abs(H), math.nan
     if kind == EV_ISPEED:
         return im * y[Y_XD], im * work[Y_XD]
     if kind == EV_YIELD:
@@ -793,7 +919,7 @@ def _consistent(b, i, free_b, free_i, p, nz, y, P, A):
         # a triple pendulum starts sliding at its band's edge
         y = y.copy()
         y[y.shape[0] - 1] = P[P_FHI] if i > 0.0 else P[P_FLO]
-    Ab, AF, udd, fh, R = _accels(b, i, p, nz, y, P, A)
+    Ab, AF, udd, fh, R, thdd = _accels(b, i, p, nz, y, P, A)
     if free_b:
         if b == 0.0:
             if abs(AF) > P[P_THR] * nz:
@@ -1039,8 +1165,84 @@ def _tfp_enter(im, y, P, u0, r, x0):
 
 
 @njit(cache=True)
+def _rock_start(s, im, tau, y, P, code, params):
+    """Mode of a block that tips onto its corner ``s`` at ``tau``: rock, or slide-rock when friction cannot hold
+    the pivot at once (Shenton 1996), sliding against the friction it needs."""
+    nz, _ = normal(tau, P)
+    A = np.empty(int(P[P_N]))
+    bm = 4.0 * s
+    AF = _accels(bm, im, accel_at(code, params, tau), nz, y, P, A)[1]
+    H, V = contact(bm, nz, y, AF, AF, P)
+    if abs(H) <= P[P_RMUS] * V:
+        return bm
+    return bm + (-1.0 if H > 0.0 else 1.0)
+
+
+@njit(cache=True)
+def _impact(bm, im, tau, y, P, code, params):
+    """The rocking block's impact at ``theta = 0``: its new mode, with ``theta'`` and ``u'`` set in ``y``.
+
+    The other corner ``s' = -s`` strikes and becomes the pivot; the angular momentum about it is
+    kept, ``theta'+ = e theta'- - kappa (u'+ - u'-)`` with ``kappa = 3 h/(4 R^2)``, and the impulse
+    obeys Coulomb's law: the new pivot sticks (``u'+ = 0``) when that needs ``|J_x| <= mu_s J_y``,
+    else it slides with ``J_x = -mu_k sigma J_y`` (:mod:`isoslide.peers.slide_rock`).  The floors'
+    velocities are kept (an approximation of order ``Pi8``).  A block that provably cannot tilt
+    past ``P_REPS`` again with the floor's present demand comes to rest (or slides flat, with the
+    horizontal velocity of its centre of mass).  Returns NaN when no impulse is consistent.
+    """
+    n = int(P[P_N])
+    th = Y_XS + 2 * n
+    ud = y.shape[0] - 2
+    s = corner(bm)
+    s2 = -s
+    alpha = math.atan(P[P_ROCK])
+    R = P[P_RR]
+    b = R * math.sin(alpha)
+    h = R * math.cos(alpha)
+    kap = 0.75 * h / (R * R)
+    e = P[P_RE]
+    tdm = y[th + 1]
+    udm = y[ud] if base_slide(bm) != 0.0 else 0.0
+    y[th] = 0.0
+    tdp = e * tdm + kap * udm
+    jx = h * tdp - udm - h * tdm
+    jy = -s * b * (tdp + tdm)
+    nz, _ = normal(tau, P)
+    p = accel_at(code, params, tau)
+    A = np.empty(n)
+    eps = P[P_REPS]
+    if abs(jx) <= P[P_RMUS] * jy:
+        y[th + 1] = tdp
+        y[ud] = 0.0
+        AF0 = _accels(0.0, im, p, nz, y, P, A)[1]
+        D = P[P_RK] * (P[P_RG] * nz * math.sin(alpha - eps) - abs(AF0) * math.cos(alpha - eps))
+        if D > 0.0 and tdp * tdp <= 2.0 * D * eps:
+            y[th + 1] = 0.0
+            return 0.0
+        return 4.0 * s2
+    sg = 1.0 if jx < 0.0 else -1.0
+    mu = P[P_RMUK]
+    a0 = h * e * tdm + h * kap * udm - udm - h * tdm
+    b0 = -s * b * ((1.0 + e) * tdm + kap * udm)
+    up = -(a0 + mu * sg * b0) / (1.0 - h * kap + mu * sg * s * b * kap)
+    tdp = e * tdm - kap * (up - udm)
+    if not (up * sg > 0.0 and -s * b * (tdp + tdm) >= 0.0 and s2 * tdp > 0.0):
+        return math.nan
+    y[th + 1] = 0.0
+    y[ud] = up
+    bm2 = 4.0 * s2 + sg
+    d = -s2 * _accels(bm2, im, p, nz, y, P, A)[5]
+    if d > 0.0 and tdp * tdp <= 2.0 * d * eps:
+        v = up + h * tdp
+        y[ud] = v
+        return 0.0 if v == 0.0 else (1.0 if v > 0.0 else -1.0)
+    y[th + 1] = tdp
+    return bm2
+
+
+@njit(cache=True)
 def _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params):
-    """Append ``[tau, x, x', xs.., xs'.., u, u', fh, bm, im, stage]`` to the history while it has room."""
+    """Append ``[tau, x, x', xs.., xs'.., theta, theta', u, u', fh, bm, im, stage]`` to the history while it has room."""
     if nh < hist_cap:
         ny = y.shape[0]
         hist[nh, H_TAU] = tau
@@ -1081,13 +1283,18 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         Rows ``[tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im]`` (:func:`history_columns`).
     """
     P = P.copy()    # a triple pendulum keeps its present band, stiffness and next change here
+    rock = P[P_ROCK] > 0.0
+    rock_first = rock and P[P_RMUS] > P[P_ROCK]    # the block tips before it can slide
+    if rock_first:
+        P[P_THR] = P[P_RG] * P[P_ROCK]
     thr = P[P_THR]
     q = P[P_Q]
     qs = P[P_QS]
     kind = P[P_KIND]
     tfp = kind == KIND_TFP
     nfl = int(P[P_N])
-    ny = 2 * nfl + 5
+    ny = 2 * nfl + 7
+    Y_TH = Y_XS + 2 * nfl
     Y_U = ny - 3
     Y_UD = ny - 2
     Y_FH = ny - 1
@@ -1137,6 +1344,14 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     tfp_im = 0.0
     stage_max = 0
     capacity = False
+    r_just = False     # a rocking phase began at theta = 0 at the accepted point
+    thmax = 0.0
+    overturned = False
+    modes = 1
+    loss = 0
+    tloss = math.nan
+    impacts = 0
+    alpha = math.atan(P[P_ROCK])
     if tfp:
         tx0, stage, capacity = _tfp_enter(0.0, y, P, tu0, tr, tx0)
     while True:
@@ -1148,17 +1363,22 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             stage_max = max(stage_max, stage)
             if capacity:
                 break
+        modes |= 1 << block_mode(bm)
         # --- mode checks at the accepted point (round-off past a limit) ---------
         p_now = accel_at(code, params, tau)
         if bm == 0.0 or (_sticks(P) and im == 0.0):
             nz_now, _ = normal(tau, P)
-            Ab, AF, udd, fh, R = _accels(bm, im, p_now, nz_now, y, P, A)
+            Ab, AF, udd, fh, R, thdd = _accels(bm, im, p_now, nz_now, y, P, A)
             free_b = bm == 0.0 and abs(AF) > thr * nz_now
             free_i = _sticks(P) and im == 0.0 and _excess(fh, nz_now, P) > 0.0
             if free_b or free_i:
                 nb_, ni_ = _select_modes(bm, im, free_b, free_i, tau, y, P, code, params)
+                if rock_first and free_b and nb_ != 0.0:
+                    nb_ = _rock_start(nb_, ni_, tau, y, P, code, params)
+                    r_just = True
                 if nb_ != bm:
-                    bm, b_just, slipped = nb_, True, True
+                    bm, b_just = nb_, True
+                    slipped = slipped or base_slide(bm) != 0.0
                     events += 1
                 if ni_ != im:
                     im, i_just, moved = ni_, True, True
@@ -1195,7 +1415,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         # after the pulse, steps are held to h_max_free while a demand is watched for its limit
         # (a stuck block, a held or elastic bearing); a sliding block and a linear, sliding or
         # yielding isolator have only speed events, found by sign, as during the pulse
-        watch = bm == 0.0 or ((_sticks(P) or kind == KIND_BILINEAR) and im == 0.0)
+        watch = bm == 0.0 or bm == 4.0 or bm == -4.0 or ((_sticks(P) or kind == KIND_BILINEAR) and im == 0.0)
         hmax = h_max_pulse if tau < tau_end or not watch else h_max_free
         h = min(h, hmax)
         target = _step_target(breakpoints, ib, tau_stop)
@@ -1229,11 +1449,24 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 EV_BLOCK, EV_BPEAK, thr, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
                 ye, yb, work, cnt, best, best_sig, hbest, herr_best)
         else:
-            found, hs, herr = _speed_candidate(EV_BSPEED, bm, im, tau, y, y1, h, t_end_step, b_just, check, P, code,
-                                               params, atol, rtol, K, ye, work, cnt)
-            if found and hs < hbest:
-                best, hbest, herr_best = EV_BSPEED, hs, herr
-                copy_state(yb, ye)
+            if base_slide(bm) != 0.0:
+                found, hs, herr = _speed_candidate(EV_BSPEED, bm, im, tau, y, y1, h, t_end_step, b_just, check, P,
+                                                   code, params, atol, rtol, K, ye, work, cnt)
+                if found and hs < hbest:
+                    best, hbest, herr_best = EV_BSPEED, hs, herr
+                    copy_state(yb, ye)
+            if corner(bm) != 0.0:
+                # the rocking block: impact, overturning and (below the tipping angle) its pivot slipping
+                pivot = base_slide(bm) == 0.0 and corner(bm) * max(y[Y_TH], y1[Y_TH]) < alpha
+                for ev in (EV_IMPACT, EV_OVER, EV_PIVOT):
+                    if ev == EV_PIVOT and not pivot:
+                        continue
+                    found, hs, herr = _speed_candidate(ev, bm, im, tau, y, y1, h, t_end_step,
+                                                       r_just if ev == EV_IMPACT else b_just, check, P, code, params,
+                                                       atol, rtol, K, ye, work, cnt)
+                    if found and hs < hbest:
+                        best, hbest, herr_best = ev, hs, herr
+                        copy_state(yb, ye)
         if _sticks(P) and im == 0.0:
             best, best_sig, hbest, herr_best = _earliest_demand_event(
                 EV_BEAR, EV_IPEAK, qs, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
@@ -1290,9 +1523,37 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             tau = tau + hbest
             copy_state(y, yb)
             xmax = max(xmax, abs(y[Y_X]))
+            thmax = max(thmax, abs(y[Y_TH]))
             short = check
             if best == EV_BLOCK:
-                bm, b_just, slipped = -best_sig, True, True
+                if rock_first:
+                    bm, b_just, r_just = _rock_start(-best_sig, im, tau, y, P, code, params), True, True
+                    slipped = slipped or base_slide(bm) != 0.0
+                else:
+                    bm, b_just, slipped = -best_sig, True, True
+                events += 1
+            elif best == EV_IMPACT:
+                impacts += 1
+                events += 1
+                nb_ = _impact(bm, im, tau, y, P, code, params)
+                if nb_ != nb_:
+                    loss, tloss = 2, tau
+                    nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
+                    break
+                bm, b_just, r_just = nb_, True, True
+                slipped = slipped or base_slide(bm) != 0.0
+                short = True
+            elif best == EV_OVER:
+                overturned = True
+                y[Y_TH] = corner(bm) * 0.5 * math.pi
+                thmax = 0.5 * math.pi
+                nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
+                break
+            elif best == EV_PIVOT:
+                nz_now, _ = normal(tau, P)
+                AF = _accels(bm, im, accel_at(code, params, tau), nz_now, y, P, A)[1]
+                H, V = contact(bm, nz_now, y, AF, AF, P)
+                bm, b_just, slipped = bm + (-1.0 if H > 0.0 else 1.0), True, True
                 events += 1
             elif best == EV_BEAR:
                 im, i_just, moved = best_sig, True, True
@@ -1303,6 +1564,14 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 y[Y_FH] = best_sig * q
                 i_just = False
                 iso_events += 1
+            elif best == EV_BSPEED and corner(bm) != 0.0:
+                # a slide-rocking block's pivot stops: it rocks on if friction holds it, else slides back
+                y[Y_UD] = 0.0
+                events += 1
+                if abs(y[Y_U]) > umax:
+                    umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
+                bm = _rock_start(corner(bm), im, tau, y, P, code, params)
+                b_just = base_slide(bm) != 0.0
             elif best == EV_BSPEED:
                 y[Y_UD] = 0.0
                 events += 1
@@ -1310,6 +1579,9 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
                 free_i = _sticks(P) and im == 0.0
                 bm, ni_ = _select_modes(bm, im, True, free_i, tau, y, P, code, params)
+                if rock_first and bm != 0.0:
+                    bm = _rock_start(bm, ni_, tau, y, P, code, params)
+                    r_just = True
                 b_just = bm != 0.0
                 if ni_ != im:
                     im, i_just, moved = ni_, True, True
@@ -1332,13 +1604,18 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 if _sticks(P):
                     free_b = bm == 0.0
                     nb_, im = _select_modes(bm, im, free_b, True, tau, y, P, code, params)
+                    if rock_first and free_b and nb_ != 0.0:
+                        nb_ = _rock_start(nb_, im, tau, y, P, code, params)
+                        r_just = True
                     i_just = im != 0.0
                     if nb_ != bm:
-                        bm, b_just, slipped = nb_, True, True
+                        bm, b_just = nb_, True
+                        slipped = slipped or base_slide(bm) != 0.0
                         events += 1
                 else:
                     # a yielding bilinear bearing unloads unless x' only touches zero
-                    Ab, AF, udd, fh, R = _accels(bm, im, accel_at(code, params, tau), normal(tau, P)[0], y, P, A)
+                    Ab, AF, udd, fh, R, thdd = _accels(bm, im, accel_at(code, params, tau), normal(tau, P)[0], y, P,
+                                                       A)
                     if im * (Ab - accel_at(code, params, tau)) > 0.0:
                         i_just = True
                     else:
@@ -1346,6 +1623,26 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             h = h_restart if short else max(h_restart, 0.5 * hlast)
             nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
             continue
+        if corner(bm) != 0.0:
+            r_just = False
+            # the tilt's peak inside the step: where psi' = 0
+            s_ = corner(bm)
+            g0 = s_ * y[Y_TH + 1]
+            g1 = s_ * y1[Y_TH + 1]
+            if g0 > 0.0 and g1 < 0.0:
+                locate(EV_APEX, 0.0, bm, im, tau, y, 0.0, g0, h, g1, -1.0, False, P, code, params, atol, rtol,
+                       K, ye, work, cnt)
+                thmax = max(thmax, abs(ye[Y_TH]))
+            if s_ * y1[Y_TH] < alpha:
+                nz_now, _ = normal(t_end_step, P)
+                a_ = _accels(bm, im, accel_at(code, params, t_end_step), nz_now, y1, P, A)
+                H, V = contact(bm, nz_now, y1, a_[1], a_[1] + a_[2], P)
+                if V < 0.0:
+                    loss, tloss = 1, tnew
+                    copy_state(y, y1)
+                    tau = tnew
+                    nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
+                    break
         if bm != 0.0:
             b_just = False
             if abs(y1[Y_UD]) > vmax:
@@ -1355,7 +1652,8 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         # --- accept -----------------------------------------------------------------
         tau = tnew
         copy_state(y, y1)
-        if bm == 0.0:
+        thmax = max(thmax, abs(y[Y_TH]))
+        if base_slide(bm) == 0.0:
             y[Y_UD] = 0.0
         if _held(im, P):
             y[Y_XD] = 0.0
@@ -1363,11 +1661,12 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         hlast = h
         h = hnext
         nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
-    if not settled and bm != 0.0 and abs(y[Y_U]) > umax:
+    if not settled and base_slide(bm) != 0.0 and abs(y[Y_U]) > umax:
         umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
     ints = np.array([steps + cnt[0], events, 1 if settled else 0, 1 if slipped else 0, nh, iso_events,
-                     1 if moved else 0, rejected, stage_max, 1 if capacity else 0], dtype=np.int64)
-    floats = np.array([umax, tpeak, y[Y_U], tau, xmax, vmax, upeak])
+                     1 if moved else 0, rejected, stage_max, 1 if capacity else 0, 1 if overturned else 0, modes, loss,
+                     impacts], dtype=np.int64)
+    floats = np.array([umax, tpeak, y[Y_U], tau, xmax, vmax, upeak, thmax, tloss])
     return ints, floats, hist[:nh]
 
 

@@ -239,6 +239,15 @@ class Contents:
         Friction levels ``Pi2 = mu_k g / a_p`` and ``Pi2 / Pi5 = mu_s g / a_p``.
     sharpness, viscous : float
         ``Pi6 = beta a_p T_p`` and ``Pi7 = gamma g T_p``.
+    aspect : float
+        ``Pi18 = b/h = tan(alpha)`` of a block that tips before it can slide (:attr:`isoslide.Scene.tips`;
+        0: contents that only slide, including a block that never rocks).
+    frequency : float
+        ``Pi19 = p T_p`` of a block that can rock.
+    restitution : float
+        Its coefficient of restitution ``e`` at impact.
+    gravity : float
+        ``g / a_p = 1/(Pi18 Pi21)`` (0 without a rocking block).
     """
 
     floor: int
@@ -247,6 +256,20 @@ class Contents:
     static: float
     sharpness: float = 0.0
     viscous: float = 0.0
+    aspect: float = 0.0
+    frequency: float = 0.0
+    restitution: float = 0.0
+    gravity: float = 0.0
+
+    @property
+    def tips(self) -> bool:
+        """True for a block that tips before it can slide (:attr:`isoslide.Scene.tips`)."""
+        return self.aspect > 0.0
+
+    @property
+    def radius(self) -> float:
+        """``R = 3 g / (4 p^2)`` of a block that can rock, units ``a_p T_p^2`` (0 without one)."""
+        return 0.75 * self.gravity / self.frequency**2 if self.aspect > 0.0 else 0.0
 
     @property
     def rate_independent(self) -> bool:
@@ -287,8 +310,12 @@ def building_of(scene) -> Building:
     flexible = scene.pi12 > 0.0
     sup = Superstructure(scene.pi11, scene.pi12, scene.pi13, scene.storeys, scene.floor_masses,
                          scene.storey_stiffnesses) if flexible else Superstructure()
+    rocking = {}
+    if scene.tips:
+        rocking = dict(aspect=scene.pi18, frequency=scene.pi19, restitution=scene.restitution,
+                       gravity=1.0 / (scene.pi18 * scene.pi21))
     contents = Contents(floor=scene.floor_index if flexible else 0, mass=scene.pi8, kinetic=scene.pi2,
-                        static=scene.pi2 / scene.pi5, sharpness=scene.pi6, viscous=scene.pi7)
+                        static=scene.pi2 / scene.pi5, sharpness=scene.pi6, viscous=scene.pi7, **rocking)
     return Building(iso, sup, contents)
 
 
