@@ -76,6 +76,7 @@ FACETS = {
     "solver": ("exact",) + PEER_LABELS,
     "vertical": ("none", "normal-force"),
     "contact": ("line", "plane"),
+    "contents": ("sliding", "rocking"),
 }
 """The independent properties of the model that ran, and the values each can take.
 
@@ -90,7 +91,9 @@ slips, a bilinear bearing that never yields, or a floor demand below the stick l
 ``demand-bound``, answered ``Pi1 = 0`` without integrating); ``propagation``: integrated, the
 exact piecewise propagation of a sampled record, or none; ``solver``: the exact solver or a peer;
 ``vertical``: vertical ground motion acting through the normal forces, or none; ``contact``: the
-contents slide on a line (the 1-D model, along the excitation's direction) or in the plane.
+contents slide on a line (the 1-D model, along the excitation's direction) or in the plane;
+``contents``: contents that only slide, or a block that can rock (it tips before it slides,
+:attr:`isoslide.Scene.tips`), whose modes :attr:`isoslide.Solution.modes` lists.
 The position of a value is its code in the dataset flag variable ``model_<facet>``; values are
 only ever appended."""
 
@@ -246,6 +249,11 @@ PLANAR_LABELS = tuple(f"{n}+planar{v}" for v in ("", "+vertical")
 vertical motion: a fixed base, a linear isolator or a sliding bearing, its friction constant or rising
 with speed (:data:`PLANAR_ISOLATORS`)."""
 MODEL_LABELS = MODEL_LABELS + PLANAR_LABELS
+ROCKING_LABELS = tuple(f"{n}+rocking{v}" for v in ("", "+vertical")
+                       for n in _exact_labels() + _building_labels(("base", "roof", "intermediate"))
+                       if "static-kinetic" not in n and "stribeck" not in n and "piecewise" not in n)
+"""Labels of contents that can rock (Coulomb friction, in line, with and without vertical motion)."""
+MODEL_LABELS = MODEL_LABELS + ROCKING_LABELS
 """Every label :func:`isoslide.solve` can produce."""
 
 
@@ -267,6 +275,7 @@ class Facets:
     solver: str = "exact"
     vertical: str = "none"
     contact: str = "line"
+    contents: str = "sliding"
 
     def __post_init__(self):
         for name, allowed in FACETS.items():
@@ -288,6 +297,8 @@ class Facets:
             return f"{replace(self, vertical='none').label(slid)}+vertical"
         if self.contact != "line":
             return f"{replace(self, contact='line').label(slid)}+planar"
+        if self.contents != "sliding":
+            return f"{replace(self, contents='sliding').label(slid)}+rocking"
         oneway = self.coupling == "one-way"
         fixed = self.isolator == "fixed-base"
         piecewise = self.propagation == "piecewise"

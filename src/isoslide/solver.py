@@ -95,6 +95,20 @@ class CapacityError(RuntimeError):
     """A triple friction pendulum reached its displacement capacity: the model does not go past it."""
 
 
+class ContactError(RuntimeError):
+    """A rocking block would lose its contact with the floor in a way the model does not follow."""
+
+
+CONTACT_TEXT = {
+    "flight": "the rocking block would leave the floor (its vertical contact force turns negative below the "
+              "tipping angle; flight is not modelled)",
+    "impact": "the rocking block's impact has no impulse consistent with Coulomb friction and a non-bouncing "
+              "contact",
+    "indeterminate": "the slide-rocking block's equations have no consistent solution (Painleve's paradox)",
+}
+"""What each loss of contact (:data:`isoslide.engine.building_kernel.CONTACT_LOSSES`) means."""
+
+
 @dataclass(frozen=True)
 class Solution:
     """Result of :func:`solve`.
@@ -131,6 +145,15 @@ class Solution:
         The highest regime a triple friction pendulum reached (Fenz and Constantinou's I..V as
         1..5, :data:`isoslide.model.tfp.STAGE_NAMES`); 0 when it never slid, and for every other
         isolator.
+    theta_max : float
+        A rocking block's peak ``|theta|`` (rad; ``pi/2`` when it overturned); 0 for contents that only
+        slide.
+    overturned : bool
+        The rocking block overturned (``|theta|`` reached ``pi/2``; the response stops there).
+    modes : tuple of str
+        The contents' modes visited, in the order of
+        :data:`isoslide.engine.building_kernel.BLOCK_MODES` (``"rest"``, ``"slide"``, ``"rock"``,
+        ``"slide-rock"``).
     """
 
     pi1: float
@@ -148,6 +171,9 @@ class Solution:
     facets: Facets | None = None
     peak_angle: float = math.nan
     peak_stage: int = 0
+    theta_max: float = 0.0
+    overturned: bool = False
+    modes: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -165,6 +191,8 @@ class Batch:
     facets: np.ndarray | None = None
     peak_angle: np.ndarray | None = None
     peak_stage: np.ndarray | None = None
+    theta_max: np.ndarray | None = None
+    overturned: np.ndarray | None = None
 
     def __len__(self):
         return self.pi1.shape[0]
@@ -588,6 +616,9 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
         raise CapacityError(f"the triple friction pendulum reaches its displacement capacity (an inner surface on "
                             f"its restrainer) at tau = {out.floats['tend']:.6g} for {scene}; the model of rigid "
                             "restrainers does not go past it")
+    if out.ints["contact"]:
+        raise ContactError(CONTACT_TEXT[building_kernel.CONTACT_LOSSES[out.ints["contact"]]]
+                           + f" at tau = {out.floats['tcontact']:.6g} for {scene}")
     facets = scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0)
     sol = dataclasses.replace(_solution(scene, out, facets), peak_stage=out.ints["stage_max"])
     if history:
@@ -764,7 +795,9 @@ def _building_history(h: np.ndarray, scene: Scene) -> History:
                    xsd=part("xsd") if scene.flexible else None,
                    fh=h[:, c["fh"]].copy() if scene.pi9 > 0.0 else None,
                    iso_phase=h[:, c["iso_phase"]].astype(np.int8) if scene.pi9 > 0.0 else None,
-                   stage=h[:, c["stage"]].astype(np.int8) if scene.isolator == "tfp" else None)
+                   stage=h[:, c["stage"]].astype(np.int8) if scene.isolator == "tfp" else None,
+                   theta=h[:, c["theta"]].copy() if scene.tips else None,
+                   thetad=h[:, c["thetad"]].copy() if scene.tips else None)
 
 
 def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "integrated",
@@ -786,7 +819,8 @@ def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "
                   superstructure="flexible" if parts.superstructure.flexible else "rigid",
                   floor="base" if k == 0 else ("roof" if k == top else "intermediate"),
                   friction=friction, coupling="one-way" if oneway else "two-way", propagation=propagation,
-                  solver=solver, vertical="normal-force" if scene.vertical else "none")
+                  solver=solver, vertical="normal-force" if scene.vertical else "none",
+                  contents="rocking" if scene.tips else "sliding")
 
 
 def _solution(scene, run: Run, facets: Facets, hist=None) -> Solution:
@@ -801,10 +835,16 @@ def _solution(scene, run: Run, facets: Facets, hist=None) -> Solution:
         angle = run.floats["angle"]
     else:
         angle = 0.0 if run.floats["upeak"] > 0.0 else math.pi
+    if "modes" in run.ints:
+        visited = run.ints["modes"]
+        modes = tuple(m for k, m in enumerate(building_kernel.BLOCK_MODES) if visited >> k & 1)
+    else:
+        modes = building_kernel.BLOCK_MODES[:2] if pi1 > 0.0 else building_kernel.BLOCK_MODES[:1]
     return Solution(pi1=pi1, u_max=pi1 * L, pi1_residual=res, u_residual=res * L, tau_peak=tpk,
                     t_peak=tpk * Tp, settled=bool(run.ints["settled"]), model=facets.label(pi1 > 0.0),
                     tau_end=run.floats["tend"], n_steps=run.ints["steps"], n_events=run.ints["events"],
-                    history=hist, facets=facets, peak_angle=angle)
+                    history=hist, facets=facets, peak_angle=angle, theta_max=run.floats.get("thmax", 0.0),
+                    overturned=bool(run.ints.get("overturned", 0)), modes=modes)
 
 
 def _from_peer(scene: Scene, res: PeerResult) -> Solution:
@@ -869,6 +909,8 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
     nev = np.zeros(n, dtype=np.int64)
     angle = np.full(n, np.nan)
     stage = np.zeros(n, dtype=np.int8)
+    theta = np.zeros(n)
+    over = np.zeros(n, dtype=bool)
     demand: dict = {}
     progress = Progress(log, "solve_many", n)
     for i, sc in enumerate(scenes):
@@ -894,9 +936,11 @@ def solve_many(scenes, rtol: float | None = None, horizon: float = DEFAULT_HORIZ
         facets[i] = s.facets
         angle[i] = s.peak_angle
         stage[i] = s.peak_stage
+        theta[i], over[i] = s.theta_max, s.overturned
     progress.finish(n)
     return Batch(pi1=pi1, pi1_residual=res, tau_peak=tpk, settled=settled, model=models.astype(str),
-                 tau_end=tend, n_steps=nsteps, n_events=nev, facets=facets, peak_angle=angle, peak_stage=stage)
+                 tau_end=tend, n_steps=nsteps, n_events=nev, facets=facets, peak_angle=angle, peak_stage=stage,
+                 theta_max=theta, overturned=over)
 
 
 def warm_up(records: bool = False, building: bool = False) -> None:

@@ -22,7 +22,9 @@ class History:
     u, ud : ndarray
         Sliding displacement relative to the floor (``a_p T_p^2``) and velocity (``a_p T_p``).
     phase : ndarray of int8
-        0 while stuck, +1 / -1 while sliding in the positive / negative direction.
+        0 while stuck, +1 / -1 while sliding in the positive / negative direction; a block that can
+        rock adds 4 times the corner it rocks on (+4 / -4 rocking, the others slide-rock;
+        :func:`isoslide.engine.building_kernel.corner`).
     xs, xsd : ndarray or None
         Superstructure displacement relative to the slab (``a_p T_p^2``) and velocity
         (``a_p T_p``); ``None`` for the paper's model (rigid superstructure).  One column per
@@ -38,6 +40,9 @@ class History:
         A triple friction pendulum's regime (0 held, 1..5 Fenz and Constantinou's I..V, -1 another
         set of sliding surfaces; :func:`isoslide.engine.building_kernel.tfp_stage`); ``None`` for
         any other isolator.
+    theta, thetad : ndarray or None
+        A rocking block's tilt (rad; positive on the corner at ``+b``) and its rate (rad per ``T_p``);
+        ``None`` for contents that only slide.
     """
 
     tau: np.ndarray
@@ -51,6 +56,8 @@ class History:
     fh: np.ndarray | None = None
     iso_phase: np.ndarray | None = None
     stage: np.ndarray | None = None
+    theta: np.ndarray | None = None
+    thetad: np.ndarray | None = None
 
 
 def phase_of(sliding, ud) -> np.ndarray:
