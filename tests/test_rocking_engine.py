@@ -1,0 +1,195 @@
+"""The compiled engine's rocking block (Pi18..Pi21) against the independent peers and closed forms.
+
+On a fixed base the floor is the ground, so the engine's two-way model must give the one-way peers'
+answer (:mod:`isoslide.peers.rocking`, :mod:`isoslide.peers.slide_rock`) whatever ``Pi8``.  Units:
+the peers run in SI with ``T_p = 1 s``, ``g`` standard, ``a_p = Pi21 g tan(alpha)`` and ``R = 3 g /
+(4 Pi19^2)``.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+import isoslide
+from isoslide.engine import building_kernel as bk
+from isoslide.model.rocking import G_STANDARD, Block, housner_restitution, rectangular_overturn_ratio
+from isoslide.peers.rocking import solve_rocking
+from isoslide.peers.slide_rock import solve_block
+
+G = G_STANDARD
+
+
+def _floor(scene):
+    """The ground acceleration (m/s^2) of a scene run with ``T_p = 1 s``, and its breakpoints (s)."""
+    a_p = scene.pi21 * G * scene.pi18
+    pulse = scene.pulse
+
+    def A_F(t):
+        return a_p * float(pulse.accel(np.array([t]))[0])
+
+    return A_F, list(getattr(pulse, "breakpoints", ()) or ())
+
+
+def _block(scene):
+    return Block.from_slenderness(math.atan(scene.pi18), 0.75 * G / scene.pi19**2, scene.pi20)
+
+
+# (pi18, pi19, pi21, pulse): rocking that dies out, and overturning, on Ricker and rectangular pulses
+ROCKING = [(0.2, 8.0, 1.1, "ricker"), (0.2, 4.0, 1.3, "ricker"), (0.15, 3.0, 1.6, "ricker"),
+           (0.25, 6.0, 1.05, "ricker"), (0.2, 8.0, 1.5, "ricker"), (0.1, 10.0, 2.0, "ricker"),
+           (0.2, 5.0, 1.2, "rectangular"), (0.2, 5.0, 1.6, "rectangular"), (0.1, 2.0, 1.9, "rectangular")]
+
+
+@pytest.mark.parametrize("pi18, pi19, pi21, pulse", ROCKING)
+def test_fixed_base_rocking_matches_the_rock_only_peer(pi18, pi19, pi21, pulse):
+    """With friction that always holds the pivot, theta_max, the overturning flag and its time agree to 1e-6."""
+    scene = isoslide.Scene(pi2=50.0, pi3=0.0, pi8=0.3, pi18=pi18, pi19=pi19, pi21=pi21, pulse=pulse)
+    sol = isoslide.solve(scene, rtol=1e-8)
+    A_F, bps = _floor(scene)
+    ref = solve_rocking(_block(scene), A_F, t_end=max(sol.tau_end, scene.pulse.tau_end) + 1.0,
+                        t0=scene.pulse.tau_start, t_quiet=scene.pulse.tau_end, breakpoints=bps, rtol=1e-12, atol=1e-14)
+    assert sol.overturned == ref.overturned
+    assert sol.theta_max == pytest.approx(ref.theta_max, rel=1e-6)
+    assert sol.pi1 == 0.0 and "rock" in sol.modes and "slide-rock" not in sol.modes
+    if sol.overturned:
+        assert sol.tau_end == pytest.approx(ref.t_overturn, abs=1e-6)
+        assert sol.theta_max == 0.5 * math.pi
+    else:
+        assert sol.settled
+
+
+# (pi2, pi18, pi19, pi21, pulse): mu_s = Pi2 Pi21 tan(alpha) just above tan(alpha): the pivot slips
+SLIDE_ROCK = [(0.9, 0.2, 6.0, 1.25, "ricker"), (0.85, 0.2, 6.0, 1.4, "ricker"), (0.8, 0.3, 4.0, 1.5, "rectangular"),
+              (0.95, 0.2, 8.0, 2.0, "ricker")]
+
+
+@pytest.mark.parametrize("pi2, pi18, pi19, pi21, pulse", SLIDE_ROCK)
+def test_fixed_base_slide_rock_matches_the_slide_rock_peer(pi2, pi18, pi19, pi21, pulse):
+    """Slide-rock, sliding impacts and rock again: Pi1, theta_max and the overturning flag agree to 1e-6."""
+    scene = isoslide.Scene(pi2=pi2, pi3=0.0, pi8=0.3, pi18=pi18, pi19=pi19, pi21=pi21, pulse=pulse)
+    assert scene.tips
+    sol = isoslide.solve(scene, rtol=1e-8)
+    A_F, bps = _floor(scene)
+    mu = pi2 * pi21 * pi18       # mu_s = Pi2 / (Pi5 g/a_p); a rocking block slides at mu_s
+    a_p = pi21 * G * pi18
+    ref = solve_block(_block(scene), A_F, t_end=max(sol.tau_end, scene.pulse.tau_end) + 1.0, mu_s=mu, mu_k=mu,
+                      t0=scene.pulse.tau_start, t_quiet=scene.pulse.tau_end, breakpoints=bps, rtol=1e-12,
+                      atol=1e-14)
+    assert sol.overturned == ref.overturned
+    assert sol.theta_max == pytest.approx(ref.theta_max, rel=1e-6)
+    assert sol.pi1 == pytest.approx(ref.u_max / a_p, rel=1e-6, abs=1e-12)
+    assert {name for _, name, _ in ref.modes} - {"overturned"} <= set(sol.modes)
+
+
+@pytest.mark.parametrize("building", [{}, {"pi3": 2.0, "pi4": 0.1}, {"pi3": 2.0, "pi9": 0.1},
+                                      {"pi3": 2.5, "pi12": 0.3, "pi11": 0.5, "pi13": 0.05, "storeys": 3,
+                                       "floor": "roof"}])
+def test_a_block_that_cannot_tip_gives_the_sliding_answer_bit_for_bit(building):
+    """mu_s <= tan(alpha): the sliding model runs and gives the same numbers as contents that only slide."""
+    base = isoslide.Scene(pi2=0.3, pi3=building.pop("pi3", 0.0), pi8=0.2, **building)
+    tall = dataclasses.replace(base, pi18=0.5, pi19=6.0, pi21=1.5)       # mu_s = 0.3 * 1.5 * 0.5 < 0.5
+    assert not tall.tips
+    a, b = isoslide.solve(base), isoslide.solve(tall)
+    assert a.pi1 > 0.0
+    assert (a.pi1, a.pi1_residual, a.tau_end, a.n_steps) == (b.pi1, b.pi1_residual, b.tau_end, b.n_steps)
+    assert a.model == b.model and b.facets.contents == "sliding"
+    assert b.theta_max == 0.0 and not b.overturned and b.modes == ("rest", "slide")
+
+
+def test_a_floor_below_the_uplift_level_leaves_the_block_at_rest():
+    """An isolated floor that never reaches g tan(alpha): no transition, theta_max 0, the mode rest alone."""
+    scene = isoslide.Scene(pi2=2.0, pi3=3.0, pi4=0.1, pi8=0.01, pi18=0.2, pi19=8.0, pi21=1.2)
+    sol = isoslide.solve(scene)
+    assert (sol.theta_max, sol.overturned, sol.modes, sol.n_events) == (0.0, False, ("rest",), 0)
+    assert sol.facets.contents == "rocking" and sol.model.endswith("+rocking")
+
+
+def test_uplift_starts_when_the_ground_first_reaches_g_tan_alpha():
+    """On a fixed base the block leaves rest where the Ricker pulse first reaches 1/Pi21 in magnitude (1e-9)."""
+    scene = isoslide.Scene(pi2=50.0, pi3=0.0, pi18=0.2, pi19=8.0, pi21=1.2)
+    sol = isoslide.solve(scene, history=True)
+    h = sol.history
+    first = int(np.argmax(h.phase != 0))
+    assert abs(int(h.phase[first])) == 4                         # rocking, on the corner opposite the floor
+    p = scene.pulse
+
+    def excess(t):
+        return abs(float(p.accel(np.array([t]))[0])) - 1.0 / scene.pi21
+
+    ts = np.linspace(p.tau_start, p.tau_end, 4001)
+    i = int(np.argmax([excess(t) > 0.0 for t in ts]))
+    onset = brentq(excess, ts[i - 1], ts[i], xtol=1e-15)
+    assert h.tau[first] == pytest.approx(onset, abs=1e-9)
+    assert np.sign(h.phase[first]) == -np.sign(p.accel(np.array([onset]))[0])
+
+
+@pytest.mark.parametrize("p_td", [1.0, 3.0])
+def test_a_slender_block_overturns_just_above_the_linearised_threshold_of_a_rectangular_pulse(p_td):
+    """alpha = 0.02: 1 % above Housner-Makris' threshold overturns, 1 % below does not (the error is O(alpha^2))."""
+    beta = rectangular_overturn_ratio(p_td)
+    out = []
+    for f in (0.99, 1.01):
+        scene = isoslide.Scene(pi2=1e3, pi3=0.0, pi18=math.tan(0.02), pi19=p_td, pi21=beta * f / (math.tan(0.02) / 0.02),
+                               pulse="rectangular")
+        out.append(isoslide.solve(scene).overturned)
+    assert out == [False, True]
+
+
+def test_two_way_coupling_changes_the_floor_of_a_heavy_block():
+    """A block of Pi8 = 0.5 on a long-period isolated slab slows it: the light block overturns, the heavy one not."""
+    light = isoslide.Scene(pi2=50.0, pi3=3.0, pi4=0.1, pi8=1e-9, pi18=0.2, pi19=6.0, pi21=8.0)
+    heavy = dataclasses.replace(light, pi8=0.5)
+    a, b = isoslide.solve(light), isoslide.solve(heavy)
+    assert a.overturned and a.theta_max == 0.5 * math.pi
+    assert not b.overturned and 0.0 < b.theta_max < math.atan(0.2)
+    assert b.modes == ("rest", "rock") and b.facets.coupling == "two-way"
+
+
+def test_history_carries_theta_and_the_rocking_modes():
+    scene = isoslide.Scene(pi2=50.0, pi3=0.0, pi18=0.2, pi19=4.0, pi21=1.3)
+    sol = isoslide.solve(scene, history=True)
+    h = sol.history
+    assert h.theta is not None and h.thetad is not None
+    assert np.max(np.abs(h.theta)) <= sol.theta_max + 1e-15
+    rocking = np.abs(h.phase) == 4
+    assert np.all(np.sign(h.theta[rocking & (h.theta != 0.0)]) == np.sign(h.phase[rocking & (h.theta != 0.0)]))
+    assert np.all(h.theta[h.phase == 0] == 0.0)
+
+
+def test_every_block_mode_and_contact_loss_has_a_name():
+    assert bk.BLOCK_MODES == ("rest", "slide", "rock", "slide-rock")
+    assert [bk.block_mode(m) for m in (0.0, 1.0, -1.0, 4.0, -4.0, 5.0, 3.0, -3.0, -5.0)] == [0, 1, 1, 2, 2, 3, 3, 3, 3]
+    assert set(isoslide.solver.CONTACT_TEXT) == set(bk.CONTACT_LOSSES[1:])
+
+
+@pytest.mark.parametrize("kwargs, pattern", [
+    ({"pi18": 0.2, "pi19": 5.0}, r"pi21 = None with pi18 = 0\.2"),
+    ({"pi19": 5.0}, r"pi19 = 5\.0 is given without pi18"),
+    ({"pi18": -0.2, "pi19": 5.0, "pi21": 1.0}, r"pi18 = -0\.2 is out of range; allowed range: 0 < value <= 1000"),
+    ({"pi18": 0.2, "pi19": 5.0, "pi21": 1.0, "pi20": 0.99}, r"pi20 = 0\.99 is out of range; allowed range: 0 < value"),
+    ({"pi18": 0.2, "pi19": 5.0, "pi21": 1.0, "pi6": 3.0}, r"pi6 = 3\.0, pi7 = 0\.0 with a rocking block"),
+    ({"pi18": 0.2, "pi19": 5.0, "pi21": 1.0, "pulse_y": "ricker"}, r"rocking under two horizontal components"),
+    ({"pi18": 0.2, "pi19": 5.0, "pi21": 1.0, "angle": 0.3}, r"angle = 0\.3"),
+])
+def test_bad_rocking_input_names_the_parameter_value_and_range(kwargs, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        isoslide.Scene(pi2=0.3, pi3=2.0, **kwargs)
+
+
+def test_from_physical_makes_the_rocking_groups_and_checks_the_block():
+    s = isoslide.Scene.from_physical(a_p=3.0, T_p=1.2, M_b=1e5, T_b=2.5, xi_b=0.1, m_ec=200.0, mu_s=0.5, mu_k=0.4,
+                                     b=0.3, h=0.9)
+    R = math.hypot(0.3, 0.9)
+    assert s.pi18 == pytest.approx(1 / 3, rel=1e-15)
+    assert s.pi19 == pytest.approx(math.sqrt(3 * G / (4 * R)) * 1.2, rel=1e-15)
+    assert s.pi21 == pytest.approx(3.0 / (G / 3), rel=1e-15)
+    assert s.restitution == pytest.approx(housner_restitution(math.atan(1 / 3)), rel=1e-15)
+    assert s.tips                                   # mu_s = 0.5 > 1/3
+    for kw, pattern in (({"b": 0.3}, r"b = 0\.3, h = None"), ({"b": -0.3, "h": 1.0}, r"b = -0\.3 is out of range"),
+                        ({"restitution": 0.5}, r"restitution = 0\.5 is given without b and h")):
+        with pytest.raises(ValueError, match=pattern):
+            isoslide.Scene.from_physical(a_p=3.0, T_p=1.2, M_b=1e5, T_b=2.5, xi_b=0.1, m_ec=200.0, mu_s=0.5,
+                                         mu_k=0.4, **kw)
