@@ -424,18 +424,19 @@ class Scene:
 
     @property
     def restitution(self) -> float | None:
-        """The rocking block's restitution ``e``: ``Pi20``, or Housner's ``1 - 3/2 sin^2(alpha)`` (``None``
-        without a rocking block)."""
+        """The rocking block's restitution ``e``.
+
+        ``Pi20``, or Housner's ``1 - 3/2 sin^2(alpha)`` (at least 0); ``None`` without a rocking block.
+        """
         if not self.rocks:
             return None
         return self.pi20 if self.pi20 is not None else max(housner_restitution(math.atan(self.pi18)), 0.0)
 
     @property
     def tips(self) -> bool:
-        """True when the contents are a block that tips before it can slide: ``mu_s > tan(alpha)``, i.e.
-        ``Pi2 Pi21 / Pi5 > 1``.
+        """True when the contents are a block that tips before it can slide.
 
-        With ``mu_s <= tan(alpha)`` a block never rocks (Shenton 1996): from rest it slides once
+        That is ``mu_s > tan(alpha)``, i.e. ``Pi2 Pi21 / Pi5 > 1``.  With ``mu_s <= tan(alpha)`` a block never rocks (Shenton 1996): from rest it slides once
         ``|A_F| > mu_s (g + a_v)``, no later than it could tip (``|A_F| > (g + a_v) tan(alpha)``), and a
         flat block sliding with friction ``mu_k <= tan(alpha)`` keeps the resultant of its normal force
         on its base whatever the floor does.  The sliding model is then the whole answer.

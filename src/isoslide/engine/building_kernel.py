@@ -1166,8 +1166,11 @@ def _tfp_enter(im, y, P, u0, r, x0):
 
 @njit(cache=True)
 def _rock_start(s, im, tau, y, P, code, params):
-    """Mode of a block that tips onto its corner ``s`` at ``tau``: rock, or slide-rock when friction cannot hold
-    the pivot at once (Shenton 1996), sliding against the friction it needs."""
+    """Mode of a block that tips onto its corner ``s`` at ``tau``.
+
+    Rock, or slide-rock when friction cannot hold the pivot at once (Shenton 1996), sliding against
+    the friction it needs.
+    """
     nz, _ = normal(tau, P)
     A = np.empty(int(P[P_N]))
     bm = 4.0 * s
