@@ -301,7 +301,9 @@ class RockingBuildingResult:
     t_overturn : float
         Time it did (units ``T_p``), else nan.
     modes : tuple of str
-        The block's modes visited, in the order first entered (among :data:`MODE_NAMES`).
+        The block's modes visited, in the order first entered (among :data:`MODE_NAMES`): the rest it
+        starts in and the mode of every phase integrated (a mode left at the instant it is entered,
+        such as a flat slide that tips at once, is not counted).
     impacts : int
         Impacts at ``theta = 0``.
     settled : bool
@@ -541,7 +543,7 @@ def solve(scene: Scene, *, rtol: float = 1e-10, atol: float = 1e-12, theta_eps_r
     lost = 0.0
     nfev = 0
     zero_len = 0
-    visited: list[str] = []
+    visited = ["rest"]         # the block starts at rest
     hist: list[tuple] = []
 
     def note(t, yy):
@@ -807,7 +809,6 @@ def solve(scene: Scene, *, rtol: float = 1e-10, atol: float = 1e-12, theta_eps_r
             raise RuntimeError(f"events of zero length repeat at tau = {te!r}")
         ys = sol.y.copy()
         ye = np.array(sol.y_events[j][0], dtype=float)
-        ys[:, -1] = ye
         # the event's own coordinate is exactly at its value
         if kind == "apex" or kind == "turn":
             ye[PSID] = 0.0
