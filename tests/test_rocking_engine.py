@@ -7,6 +7,7 @@ the peers run in SI with ``T_p = 1 s``, ``g`` standard, ``a_p = Pi21 g tan(alpha
 """
 
 import dataclasses
+import json
 import math
 
 import numpy as np
@@ -193,3 +194,20 @@ def test_from_physical_makes_the_rocking_groups_and_checks_the_block():
         with pytest.raises(ValueError, match=pattern):
             isoslide.Scene.from_physical(a_p=3.0, T_p=1.2, M_b=1e5, T_b=2.5, xi_b=0.1, m_ec=200.0, mu_s=0.5,
                                          mu_k=0.4, **kw)
+
+
+def test_the_command_line_solves_a_rocking_block_in_pi_groups_and_in_metres(capsys):
+    """``isoslide solve --pi18 ...`` and ``solve-physical --b --h`` print theta_max, overturned and the modes."""
+    from isoslide.cli import main
+    assert main(["solve", "--pi2", "50", "--pi3", "0", "--pi18", "0.2", "--pi19", "8", "--pi21", "1.5",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    sol = isoslide.solve(isoslide.Scene(pi2=50.0, pi3=0.0, pi18=0.2, pi19=8.0, pi21=1.5))
+    assert (out["theta_max"], out["overturned"], out["modes"]) == (sol.theta_max, sol.overturned, list(sol.modes))
+    assert out["scene"]["pi18"] == 0.2 and out["scene"]["pi20"] is None
+    assert main(["solve-physical", "--a-p", "3", "--T-p", "1", "--M-b", "1e5", "--T-b", "0", "--xi-b", "0",
+                 "--m-ec", "100", "--mu-s", "0.6", "--mu-k", "0.6", "--b", "0.2", "--h", "0.8", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ref = isoslide.solve(isoslide.Scene.from_physical(a_p=3.0, T_p=1.0, M_b=1e5, T_b=0.0, xi_b=0.0, m_ec=100.0,
+                                                      mu_s=0.6, mu_k=0.6, b=0.2, h=0.8))
+    assert out["theta_max"] == ref.theta_max and "rock" in out["modes"]

@@ -32,6 +32,10 @@ cost of one analysis of the planar fragility study at full size (``config/fragil
 a checkout; :func:`run_fragility_cost`): a planar and two 1-D solves with the floor's peaks, per
 building, and the CPU time the whole study takes at that cost.
 
+A rocking section (``--rocking-only`` alone; :mod:`isoslide.accuracy.rocking_cost`) times contents
+that rock beside the same contents sliding, on pulses and per sample of the bundled records (the
+goal: at most 3x).
+
 Timings are wall-clock on whatever else the machine is running:
 read ratios, which are measured side by side, rather than absolute figures.
 """
@@ -50,7 +54,7 @@ from pathlib import Path
 import numpy as np
 
 from . import accuracy, config, records
-from .accuracy import kernel_targets, measurements, opensees_cost
+from .accuracy import kernel_targets, measurements, opensees_cost, rocking_cost
 from .accuracy.scenes import (BUILDING_POINTS, BUILDINGS, PENDULUM, SPEED_PENDULUM, STOREYS, STOREYS_NAME,
                               TARGET_TFP_RATIO, TFP_PENDULUM)
 from .model.parts import building_of
@@ -648,6 +652,9 @@ SECTION_FLAGS = (
     ("--planar-only", "only the planar section (planar scenes beside their 1-D twins, recorded pairs per "
                       "sample, the planar fragility study's cost per analysis; about a minute)"),
     ("--no-planar", "leave out the planar section"),
+    ("--rocking-only", "only the rocking section (contents that rock beside the same contents sliding, on pulses "
+                       "and per sample of the bundled records; isoslide.accuracy.rocking_cost)"),
+    ("--no-rocking", "leave out the rocking section"),
     ("--opensees", "only OpenSees against isoslide on every building class, OpenSees at the coarsest step within "
                    "1e-3 of Pi1 (isoslide.accuracy.opensees_cost; a few minutes)"),
     ("--cpu-targets", "only the kernels compiled for this processor against the portable level the shipped "
@@ -712,6 +719,9 @@ def main(argv=None) -> int:
     if a.buildings_only:
         _write_json(a.json, {"buildings": _buildings(3 if a.quick else 7, a.measurements)})
         return 0
+    if a.rocking_only:
+        _write_json(a.json, {"rocking": rocking_cost.report(rocking_cost.run(repeats=3 if a.quick else 7))})
+        return 0
     if a.quick:
         a.per_study, a.repeats, a.peer_repeats, a.regularized_scenes = 1, 5, 1, 2
     out = {}
@@ -735,6 +745,9 @@ def main(argv=None) -> int:
     if not a.no_planar:
         print("")
         out["planar"] = run_report_planar(quick=a.quick)
+    if not a.no_rocking:
+        print("")
+        out["rocking"] = rocking_cost.report(rocking_cost.run(repeats=3 if a.quick else 7))
     _write_json(a.json, {"result": res, "summary": summ, **out})
     return 0
 

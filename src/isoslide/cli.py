@@ -42,7 +42,7 @@ import math
 import sys
 
 from . import __version__
-from .groups import INPUTS
+from .groups import INPUTS, ROCKING
 from .store.history_io import FORMATS, history_format, history_table, write_history
 from .pulses import PULSE_NAMES
 from .reports.quicklook import check_plot_path, plot_fit, plot_history
@@ -113,6 +113,10 @@ def _parser() -> argparse.ArgumentParser:
         default = "required" if g.default is None else f"default {g.default:g}"
         s.add_argument(f"--{g.name}", type=float, required=g.default is None, default=g.default,
                        help=f"{g.definition}: {g.meaning}; {g.range_text.replace('value', g.name)} ({default})")
+    for g in ROCKING:
+        s.add_argument(f"--{g.name}", type=float, default=None,
+                       help=f"{g.definition}: {g.meaning}; {g.range_text.replace('value', g.name)} (default: none, "
+                            "contents that only slide" + (", Housner's" if g.name == "pi20" else "") + ")")
     _common(s)
     q = sub.add_parser("solve-physical", help="one scene in SI units")
     for name, unit, default in [("a-p", "m/s^2; default with --record: the fitted pulse's", None),
@@ -142,9 +146,13 @@ def _parser() -> argparse.ArgumentParser:
                                 ("T-py", "s, second horizontal component's period (with --pulse-y); default T_p",
                                  None),
                                 ("t-y", "s, time by which the second horizontal component lags the first "
-                                        "(with --pulse-y or --record-y)", 0.0)]:
+                                        "(with --pulse-y or --record-y)", 0.0),
+                                ("b", "m, half-width of contents that can rock (with --h)", None),
+                                ("h", "m, half-height of contents that can rock (with --b)", None),
+                                ("restitution", "-, the rocking block's restitution at impact; default Housner's",
+                                 None)]:
         required = default is None and name not in ("a-p", "T-p", "T-b", "R", "mu-b", "mu-b-slow", "Q-slow",
-                                                    "a-py", "T-py")
+                                                    "a-py", "T-py", "b", "h", "restitution")
         q.add_argument(f"--{name}", type=float, required=required, default=default,
                        help=f"{name.replace('-', '_')} [{unit}]")
     for name, unit in (("L", "m, effective radii L1 (each inner surface), L2 (lower outer), L3 (upper outer)"),
@@ -233,7 +241,7 @@ def _scene(args):
     if second is not None and not isinstance(second, str):
         info["record_y"] = _record_dict(second)
     if args.command == "solve":
-        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS}, pulse=excitation, floor=args.floor,
+        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS + ROCKING}, pulse=excitation, floor=args.floor,
                       storeys=args.storeys, pulse_z=args.pulse_z, pulse_y=second, angle=args.angle)
         if rec is not None:
             info["fitted_pulse"] = _fit_dict(rec.fit())
@@ -281,7 +289,8 @@ def _scene(args):
                                 args.beta, args.gamma, args.g, excitation, Q_d=Q_d, D_y=D_y, m_st=args.m_st,
                                 T_s=args.T_s, xi_s=args.xi_s, floor=args.floor, storeys=args.storeys,
                                 a_pz=args.a_pz, pulse_z=args.pulse_z, pulse_y=second, a_py=args.a_py,
-                                T_py=args.T_py, t_y=args.t_y, angle=args.angle, **bearing)
+                                T_py=args.T_py, t_y=args.t_y, angle=args.angle, b=args.b, h=args.h,
+                                restitution=args.restitution, **bearing)
     return scene, info
 
 
@@ -303,7 +312,8 @@ def _solve(args) -> int:
            "peak_angle_deg": math.degrees(sol.peak_angle) if slid else None,
            "settled": sol.settled, "model": sol.model, "contact": sol.facets.contact,
            "n_steps": sol.n_steps, "n_events": sol.n_events, "peak_stage": sol.peak_stage,
-           "scene": {**scene.pis(), "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name,
+           "theta_max": sol.theta_max, "overturned": sol.overturned, "modes": list(sol.modes),
+           "scene": {**scene.pis(), **{g.name: getattr(scene, g.name) for g in ROCKING}, "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name,
                      "pulse_y": None if scene.pulse_y is None else scene.pulse_y.name, "angle": scene.angle,
                      "planar": scene.planar,
                      "pulse_z": None if scene.pulse_z is None else scene.pulse_z.name}}

@@ -197,6 +197,7 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     P[bk.P_QA] = iso.rate if iso.speed_dependent else 0.0
     P[bk.P_KE] = iso.elastic_stiffness
     P[bk.P_THR] = contents.static
+    P[bk.P_HOLD] = contents.static
     P[bk.P_PI2] = contents.kinetic
     P[bk.P_PI6] = contents.sharpness
     P[bk.P_PI7] = contents.viscous
@@ -215,6 +216,7 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
         P[bk.P_REPS] = CASCADE_END * math.atan(contents.aspect)
         P[bk.P_RMUS] = contents.static / g
         P[bk.P_RMUK] = contents.static / g
+        P[bk.P_HOLD] = g * contents.aspect
     if scene.vertical:
         P[bk.P_ZAMP] = scene.pi17
         P[bk.P_ZCODE] = scene.pulse_z.code

@@ -83,8 +83,8 @@ Y_X, Y_XD, Y_XS = range(3)
 
 (P_MB, P_MST, P_M, P_KD, P_CB, P_KS, P_CS, P_Q, P_KE, P_THR, P_PI2, P_PI6, P_PI7, P_COULOMB, P_ROOF,
  P_KIND, P_FLEX, P_N, P_FLOOR, P_ZAMP, P_ZCODE, P_QS, P_QA, P_ZOFF, P_TFP, P_FHI, P_FLO, P_XNEXT,
- P_ROCK, P_RG, P_RK, P_RR, P_RE, P_REPS, P_RMUS, P_RMUK) = range(36)
-P_ARRAYS = 36
+ P_ROCK, P_RG, P_RK, P_RR, P_RE, P_REPS, P_RMUS, P_RMUK, P_HOLD) = range(37)
+P_ARRAYS = 37
 """Start of the arrays in the model parameters: floor masses ``(n,)``, then ``Ks`` and ``Cs``
 ``(n, n)`` row by row, then a triple friction pendulum's surfaces (:data:`TFP_SIZE` values from
 ``P_TFP``; ``P_TFP = 0`` for any other isolator), then the vertical pulse's parameters (from
@@ -99,8 +99,9 @@ the slab still and the displacement ``P_XNEXT`` at which the sliding surfaces ch
 (:mod:`isoslide.model.rocking`) has ``P_ROCK = tan(alpha) = Pi18`` (0: contents that only slide),
 ``P_RG = g/a_p``, ``P_RK = 3/(4 R)`` and ``P_RR = R`` (``R`` in units ``a_p T_p^2``), the restitution
 ``P_RE``, the cascade's end angle ``P_REPS`` (rad) and its static and kinetic friction coefficients
-``P_RMUS``, ``P_RMUK``; when it tips before it can slide (``mu_s > tan(alpha)``) :func:`run` sets,
-in its own copy, ``P_THR`` to the uplift level ``g tan(alpha) / a_p``."""
+``P_RMUS``, ``P_RMUK``.  ``P_HOLD`` is the floor's demand the block at rest holds (units of a_p,
+before the normal-force factor): its static friction ``P_THR``, or the uplift level ``g tan(alpha) /
+a_p`` of a block that tips before it can slide (``mu_s > tan(alpha)``)."""
 
 TFP_SIZE = 12
 """Values of a triple friction pendulum in the model parameters: per surface (1 to 4, bottom to
@@ -721,8 +722,8 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
             lev, dlev = bearing_level(im * y[Y_XD], P)
             # a sliding bearing's fh = q(|x'|) nz im: its rate adds q' |x'|' nz im = q' x'' nz while sliding
             dfh = work[fhi] + dkd * y[Y_X] + (lev * dnz * im + dlev * work[Y_XD] * nz * im * im) * _pendulum(P)
-        g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, kd, P) - P[P_THR] * nz
-        dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], zv, za, dfh, pd, kd, P) - P[P_THR] * dnz
+        g = sig * _floor_stuck(im, y[Y_X], y[Y_XD], zp, zv, fh, p, kd, P) - P[P_HOLD] * nz
+        dg = sig * _floor_stuck(im, y[Y_XD], work[Y_XD], zv, za, dfh, pd, kd, P) - P[P_HOLD] * dnz
         if kind == EV_BPEAK:
             return dg, math.nan
         return g, dg
@@ -922,7 +923,7 @@ def _consistent(b, i, free_b, free_i, p, nz, y, P, A):
     Ab, AF, udd, fh, R, thdd = _accels(b, i, p, nz, y, P, A)
     if free_b:
         if b == 0.0:
-            if abs(AF) > P[P_THR] * nz:
+            if abs(AF) > P[P_HOLD] * nz:
                 return False
         elif not b * udd > 0.0:
             return False
@@ -999,7 +1000,7 @@ def _settled(bm, im, y, P, Wm, Cm, Wh, Ch):
     kind = P[P_KIND]
     if (_sticks(P) or kind == KIND_BILINEAR) and im != 0.0:
         return False
-    limits = np.array([P[P_THR], P[P_QS]])
+    limits = np.array([P[P_HOLD], P[P_QS]])
     if _held(im, P):
         if _energy_settled(im, y, P):
             return True
@@ -1040,7 +1041,7 @@ def _energy_settled(im, y, P):
     flex = P[P_FLEX] != 0.0
     ks = P[P_KS]
     cs = P[P_CS]
-    thr = P[P_THR]
+    thr = P[P_HOLD]
     xs = y[Y_XS]
     xsd = y[Y_XS + 1]
     if _held(im, P):
@@ -1123,7 +1124,7 @@ def _creep_settled(bm, im, y, P, xmax):
     w = math.sqrt(2.0 * energy / M)
     reach = math.sqrt(2.0 * energy * kd)
     demand = (reach + P[P_CB] * w + (P[P_Q] - qs) * (1.0 - math.exp(-P[P_QA] * w))) / M
-    return demand <= P[P_THR] and reach <= 2.0 * qs and (qs + reach) / kd <= xmax
+    return demand <= P[P_HOLD] and reach <= 2.0 * qs and (qs + reach) / kd <= xmax
 
 
 # --- one scene ------------------------------------------------------------------
@@ -1286,11 +1287,8 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         Rows ``[tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im]`` (:func:`history_columns`).
     """
     P = P.copy()    # a triple pendulum keeps its present band, stiffness and next change here
-    rock = P[P_ROCK] > 0.0
-    rock_first = rock and P[P_RMUS] > P[P_ROCK]    # the block tips before it can slide
-    if rock_first:
-        P[P_THR] = P[P_RG] * P[P_ROCK]
-    thr = P[P_THR]
+    rock_first = P[P_ROCK] > 0.0    # the block tips before it can slide
+    thr = P[P_HOLD]
     q = P[P_Q]
     qs = P[P_QS]
     kind = P[P_KIND]
@@ -1337,7 +1335,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     limits = np.array([thr, qs])
     offsets = np.zeros((2, 2))
     zone = 0.0
-    if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < thr:
+    if P[P_COULOMB] == 0.0 and P[P_PI6] > 0.0 and P[P_PI2] < P[P_THR]:
         zone = 30.0 / P[P_PI6]
     check = zone > 0.0
     # a triple pendulum's surfaces: displacements u0 where the slab was at tx0, rates tr in its mode
