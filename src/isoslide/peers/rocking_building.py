@@ -95,8 +95,9 @@ and ``A_F0`` (the floor's absolute acceleration with the block at rest, flat and
 impact instant, ``D = k [Gam sin(alpha - theta_eps) - |A_F0| cos(alpha - theta_eps)]``: if ``D > 0``
 and ``w**2 <= 2 D theta_eps`` the block is at rest from the impact on (``theta = theta' = u' = 0``;
 its remaining kinetic energy is counted as an impact loss).  This freezes the floor over the
-dying excursions (each lasts at most ``2 w/D``): a local estimate on a moving floor, a proof on a
-floor that stays quiet.  After a sliding impact the block is flat, sliding with its centre of
+dying excursions (each lasts at most ``2 w/D``): a local estimate on a moving floor (on an isolated
+slab or a flexible floor the block's own rocking moves it), a proof only where the floor's
+acceleration stays zero, as on a fixed base after the pulse.  After a sliding impact the block is flat, sliding with its centre of
 mass's velocity ``u' = u'+ + s' h psi'+``, when ``w**2/(2 d) <= theta_eps`` with ``d = -psi''`` of
 slide-rock at ``psi = psi' = 0`` (> 0), as in :mod:`isoslide.peers.slide_rock`.
 
