@@ -98,6 +98,9 @@ def test_a_block_that_cannot_tip_gives_the_sliding_answer_bit_for_bit(building):
     assert (a.pi1, a.pi1_residual, a.tau_end, a.n_steps) == (b.pi1, b.pi1_residual, b.tau_end, b.n_steps)
     assert a.model == b.model and b.facets.contents == "sliding"
     assert b.theta_max == 0.0 and not b.overturned and b.modes == ("rest", "slide")
+    full = isoslide.solve(tall, model="full", rtol=1e-8)          # the rocking model, run anyway
+    assert full.facets.contents == "rocking" and full.modes == ("rest", "slide") and full.theta_max == 0.0
+    assert full.pi1 == pytest.approx(a.pi1, rel=1e-6)
 
 
 def test_a_floor_below_the_uplift_level_leaves_the_block_at_rest():
@@ -211,3 +214,31 @@ def test_the_command_line_solves_a_rocking_block_in_pi_groups_and_in_metres(caps
     ref = isoslide.solve(isoslide.Scene.from_physical(a_p=3.0, T_p=1.0, M_b=1e5, T_b=0.0, xi_b=0.0, m_ec=100.0,
                                                       mu_s=0.6, mu_k=0.6, b=0.2, h=0.8))
     assert out["theta_max"] == ref.theta_max and "rock" in out["modes"]
+
+
+@pytest.mark.parametrize("ext", [".csv", ".h5"])
+def test_history_files_of_a_rocking_block_carry_its_tilt(tmp_path, ext):
+    """The history table adds tilt and tilt_rate, and the block's groups and outcome, and reads back the same."""
+    from isoslide.store.history_io import history_table, read_history, write_history
+    scene = isoslide.Scene.from_physical(a_p=3.0, T_p=1.0, M_b=1e5, T_b=2.0, xi_b=0.1, m_ec=1e3, mu_s=0.6, mu_k=0.6,
+                                         b=0.2, h=0.8)
+    sol = isoslide.solve(scene, history=True)
+    tab = history_table(sol, scene)
+    assert tuple(tab.columns)[-2:] == ("tilt", "tilt_rate")
+    assert tab.units["tilt"] == "rad" and tab.units["tilt_rate"] == "rad s-1"
+    np.testing.assert_array_equal(tab.columns["tilt"], sol.history.theta)
+    assert np.max(np.abs(tab.columns["tilt"])) <= sol.theta_max
+    assert tab.attrs["theta_max"] == sol.theta_max and tab.attrs["pi18"] == scene.pi18
+    back = read_history(write_history(sol, scene, tmp_path / f"h{ext}"))
+    assert tuple(back.columns) == tuple(tab.columns)
+    np.testing.assert_array_equal(back.columns["tilt"], tab.columns["tilt"])
+    assert back.attrs["overturned"] == sol.overturned
+
+
+def test_a_block_on_a_sliding_bearing_that_holds_rocks_as_on_a_fixed_base():
+    """A bearing too strong to slip under the rocking block's push: the slab is the ground, theta_max as fixed."""
+    fixed = isoslide.Scene(pi2=50.0, pi3=0.0, pi8=0.3, pi18=0.2, pi19=4.0, pi21=1.3)
+    held = dataclasses.replace(fixed, pi3=3.0, pi9=5.0)
+    a, b = isoslide.solve(fixed, rtol=1e-8), isoslide.solve(held, rtol=1e-8)
+    assert b.facets.isolator == "sliding-bearing" and b.facets.contents == "rocking"
+    assert b.theta_max == pytest.approx(a.theta_max, rel=1e-9) and b.overturned == a.overturned

@@ -528,7 +528,7 @@ def solve(scene: Scene, rtol: float | None = None, history: bool = False, method
     rtol = _check_rtol(rtol)
     if not scene.in_line:
         return _solve_horizontal(scene, rtol, history, horizon, model, max_step, settle, piecewise_path)
-    if not scene.paper_model:
+    if not scene.paper_model or (model == "full" and scene.rocks):
         return _solve_building(scene, rtol, history, horizon, model, max_step, settle, piecewise_path)
     pl = plan(scene)
     fixed = pl["fixed"]
@@ -595,7 +595,8 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
         raise ValueError("model = 'static-kinetic' is available for the paper's model only "
                          "(pi9 = 0 and pi12 = 0)")
     pi8 = scene.pi8
-    P = building.parameters(scene, pi8=pi8, coulomb=coulomb)
+    rocking = scene.rocks and (scene.tips or model == "full")
+    P = building.parameters(scene, pi8=pi8, coulomb=coulomb, rocking=rocking)
     modal = building.modal_data(scene, P)
     pulse = scene.pulse
     hist_cap = 200_000 if history else 0
@@ -619,10 +620,11 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     if out.ints["contact"]:
         raise ContactError(CONTACT_TEXT[building_kernel.CONTACT_LOSSES[out.ints["contact"]]]
                            + f" at tau = {out.floats['tcontact']:.6g} for {scene}")
-    facets = scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0)
+    facets = dataclasses.replace(scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0),
+                                 contents="rocking" if rocking else "sliding")
     sol = dataclasses.replace(_solution(scene, out, facets), peak_stage=out.ints["stage_max"])
     if history:
-        sol = dataclasses.replace(sol, history=_building_history(out.hist, scene))
+        sol = dataclasses.replace(sol, history=_building_history(out.hist, scene, rocking))
     return sol
 
 
@@ -781,7 +783,7 @@ def _planar_history(h: np.ndarray, n: int, scene: Scene, hyst: bool = False) -> 
                    iso_phase=h[:, c["iso_phase"]].astype(np.int8) if bearing else None)
 
 
-def _building_history(h: np.ndarray, scene: Scene) -> History:
+def _building_history(h: np.ndarray, scene: Scene, rocking: bool = False) -> History:
     """The general kernel's history rows as a :class:`History` (building states included)."""
     n = scene.storeys if scene.flexible else 1
     c = building_kernel.history_columns(n)
@@ -796,8 +798,8 @@ def _building_history(h: np.ndarray, scene: Scene) -> History:
                    fh=h[:, c["fh"]].copy() if scene.pi9 > 0.0 else None,
                    iso_phase=h[:, c["iso_phase"]].astype(np.int8) if scene.pi9 > 0.0 else None,
                    stage=h[:, c["stage"]].astype(np.int8) if scene.isolator == "tfp" else None,
-                   theta=h[:, c["theta"]].copy() if scene.tips else None,
-                   thetad=h[:, c["thetad"]].copy() if scene.tips else None)
+                   theta=h[:, c["theta"]].copy() if rocking else None,
+                   thetad=h[:, c["thetad"]].copy() if rocking else None)
 
 
 def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "integrated",

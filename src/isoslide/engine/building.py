@@ -158,7 +158,7 @@ def superstructure(scene: Scene) -> tuple:
     return building_of(scene).superstructure.matrices()
 
 
-def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) -> np.ndarray:
+def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False, rocking: bool | None = None) -> np.ndarray:
     """Model parameters of :func:`isoslide.engine.building_kernel.run` for a general scene.
 
     The scene's parts (:func:`isoslide.model.parts.building_of`) assembled into the kernel's
@@ -166,9 +166,10 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     Stribeck terms (friction at the static level ``Pi2/Pi5`` at every speed).  A rigid
     superstructure is one floor that moves with the slab.  A vertical ground motion
     (:attr:`isoslide.Scene.vertical`) appends its pulse's parameters, read by
-    :func:`isoslide.engine.building_kernel.normal`.
+    :func:`isoslide.engine.building_kernel.normal`.  ``rocking`` as for
+    :func:`isoslide.model.parts.building_of` (default: a block that tips before it can slide).
     """
-    parts = building_of(scene)
+    parts = building_of(scene, rocking)
     iso, sup, contents = parts.isolator, parts.superstructure, parts.contents
     flex = sup.flexible
     n = sup.storeys if flex else 1
@@ -206,7 +207,7 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
     P[bk.P_KIND] = float(KINDS[iso.kind])
     P[bk.P_FLEX] = 1.0 if flex else 0.0
     P[bk.P_ZOFF] = bk.n_parameters(n, 0, n_t)
-    if contents.tips:
+    if contents.rocks:
         g = contents.gravity
         P[bk.P_ROCK] = contents.aspect
         P[bk.P_RG] = g
@@ -216,7 +217,8 @@ def parameters(scene: Scene, pi8: float | None = None, coulomb: bool = False) ->
         P[bk.P_REPS] = CASCADE_END * math.atan(contents.aspect)
         P[bk.P_RMUS] = contents.static / g
         P[bk.P_RMUK] = contents.static / g
-        P[bk.P_HOLD] = g * contents.aspect
+        if contents.tips:
+            P[bk.P_HOLD] = g * contents.aspect
     if scene.vertical:
         P[bk.P_ZAMP] = scene.pi17
         P[bk.P_ZCODE] = scene.pulse_z.code

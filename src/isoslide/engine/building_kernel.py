@@ -730,13 +730,20 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     # EV_BEAR / EV_IPEAK
     rs = 0.0
     rsd = 0.0
-    if bm != 0.0:
+    bf = bm
+    if corner(bm) != 0.0:
+        # a rocking block's force on the held slab (its rate not given: NaN)
+        a1, f, _ = _block_load(bm, nz, y, P)
+        rs = f - P[P_M] * a1 * p
+        rsd = math.nan
+        bf = 1.0
+    elif bm != 0.0:
         ph, dph = friction(y[ud], P)
         rs = P[P_M] * bm * ph * nz
         rsd = P[P_M] * (dph * work[ud] * nz + bm * ph * dnz)
     lim = hold_limit(sig, P)
-    g = sig * _bearing_need(bm, y[Y_X], zp, zv, p, rs, kd, P) - lim * nz
-    dg = sig * (_bearing_need(bm, 0.0, zv, za, pd, rsd, kd, P) - dkd * y[Y_X]) - lim * dnz
+    g = sig * _bearing_need(bf, y[Y_X], zp, zv, p, rs, kd, P) - lim * nz
+    dg = sig * (_bearing_need(bf, 0.0, zv, za, pd, rsd, kd, P) - dkd * y[Y_X]) - lim * dnz
     if kind == EV_IPEAK:
         return dg, math.nan
     return g, dg
@@ -1287,7 +1294,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         Rows ``[tau, x, x', xs_1..n, xs_1'..n', u, u', fh, bm, im]`` (:func:`history_columns`).
     """
     P = P.copy()    # a triple pendulum keeps its present band, stiffness and next change here
-    rock_first = P[P_ROCK] > 0.0    # the block tips before it can slide
+    rock_first = P[P_ROCK] > 0.0 and P[P_RMUS] > P[P_ROCK]    # the block tips before it can slide
     thr = P[P_HOLD]
     q = P[P_Q]
     qs = P[P_QS]

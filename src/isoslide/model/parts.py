@@ -240,8 +240,8 @@ class Contents:
     sharpness, viscous : float
         ``Pi6 = beta a_p T_p`` and ``Pi7 = gamma g T_p``.
     aspect : float
-        ``Pi18 = b/h = tan(alpha)`` of a block that tips before it can slide (:attr:`isoslide.Scene.tips`;
-        0: contents that only slide, including a block that never rocks).
+        ``Pi18 = b/h = tan(alpha)`` of a block the rocking model integrates (0: contents that only slide;
+        see :func:`building_of`).
     frequency : float
         ``Pi19 = p T_p`` of a block that can rock.
     restitution : float
@@ -262,9 +262,14 @@ class Contents:
     gravity: float = 0.0
 
     @property
-    def tips(self) -> bool:
-        """True for a block that tips before it can slide (:attr:`isoslide.Scene.tips`)."""
+    def rocks(self) -> bool:
+        """True for a block the rocking model integrates (:func:`building_of`)."""
         return self.aspect > 0.0
+
+    @property
+    def tips(self) -> bool:
+        """True for a block that tips before it can slide, ``mu_s > tan(alpha)`` (:attr:`isoslide.Scene.tips`)."""
+        return self.rocks and self.static > self.gravity * self.aspect
 
     @property
     def radius(self) -> float:
@@ -292,12 +297,15 @@ class Building:
         return min(periods) if periods else 0.0
 
 
-def building_of(scene) -> Building:
+def building_of(scene, rocking: bool | None = None) -> Building:
     """The parts of a scene (:class:`isoslide.Scene`), each reading only the groups it needs.
 
     The isolator is fixed for ``Pi3 = 0`` and otherwise the scene's kind (``scene.isolator``:
     linear, bilinear or sliding); the superstructure is a shear building for ``Pi12 > 0``; the
-    contents sit on the scene's floor of a shear building, on the slab of a rigid one.
+    contents sit on the scene's floor of a shear building, on the slab of a rigid one.  They are a
+    block that can rock when ``rocking`` (default: when the scene's block tips before it can slide,
+    :attr:`isoslide.Scene.tips`; ``True`` keeps the rocking model for any block, to check that the
+    sliding model is its answer where it cannot tip).
     """
     kind = "fixed" if scene.pi3 == 0.0 else scene.isolator
     groups = {"fixed": {}, "linear": dict(period=scene.pi3, damping=scene.pi4),
@@ -310,12 +318,12 @@ def building_of(scene) -> Building:
     flexible = scene.pi12 > 0.0
     sup = Superstructure(scene.pi11, scene.pi12, scene.pi13, scene.storeys, scene.floor_masses,
                          scene.storey_stiffnesses) if flexible else Superstructure()
-    rocking = {}
-    if scene.tips:
-        rocking = dict(aspect=scene.pi18, frequency=scene.pi19, restitution=scene.restitution,
-                       gravity=1.0 / (scene.pi18 * scene.pi21))
+    block = {}
+    if (scene.tips if rocking is None else rocking) and scene.rocks:
+        block = dict(aspect=scene.pi18, frequency=scene.pi19, restitution=scene.restitution,
+                     gravity=1.0 / (scene.pi18 * scene.pi21))
     contents = Contents(floor=scene.floor_index if flexible else 0, mass=scene.pi8, kinetic=scene.pi2,
-                        static=scene.pi2 / scene.pi5, sharpness=scene.pi6, viscous=scene.pi7, **rocking)
+                        static=scene.pi2 / scene.pi5, sharpness=scene.pi6, viscous=scene.pi7, **block)
     return Building(iso, sup, contents)
 
 

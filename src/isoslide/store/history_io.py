@@ -36,7 +36,9 @@ or the superstructure's roof) in ``floor_*``, its floor acceleration from
 (:data:`BUILDING_COLUMNS`): the slab's and the superstructure's motion, the
 hysteretic isolator force and the isolator's phase.  A superstructure of ``N > 1``
 storeys has one ``super_disp_k``, ``super_vel_k`` per floor ``k = 1 .. N`` (relative to
-the slab).
+the slab).  Contents that can rock add the block's tilt and its rate last
+(:data:`ROCKING_COLUMNS`), and the block's groups with its ``theta_max`` and ``overturned`` to the
+attributes.
 
 A scene that ran in the plane (``Solution.facets.contact == "plane"``) has every
 motion column twice, ``<name>_x`` and ``<name>_y`` along the building's axes (a
@@ -93,6 +95,13 @@ BUILDING_COLUMNS = (
 )
 """Columns added after :data:`COLUMNS` for a general building (not the paper's model)."""
 
+ROCKING_COLUMNS = (
+    ("tilt", "rocking block's tilt, positive on its corner at +b", "rad", "1"),
+    ("tilt_rate", "rocking block's angular velocity", "rad s-1", "1/T_p"),
+)
+"""Columns added last for contents that can rock (:attr:`isoslide.Scene.tips`); their ``phase`` adds 4
+times the corner the block rocks on (+4 / -4 rocking, the others slide-rock)."""
+
 FORMATS = {".csv": "csv", ".h5": "hdf5", ".hdf5": "hdf5"}
 """File extensions :func:`write_history` and :func:`read_history` understand."""
 
@@ -104,7 +113,7 @@ _PLANAR_PHASES = {"phase": "stick/slip phase: 0 stuck, 1 sliding (the direction:
 _STOREY_COLUMNS = ("super_disp", "super_vel")
 
 
-def table_columns(planar: bool = False, general: bool = False, storeys: int = 1) -> tuple:
+def table_columns(planar: bool = False, general: bool = False, storeys: int = 1, rocking: bool = False) -> tuple:
     """``(name, long name, SI unit, dimensionless scale)`` of the columns of one kind of history, in file order.
 
     Parameters
@@ -115,6 +124,8 @@ def table_columns(planar: bool = False, general: bool = False, storeys: int = 1)
         A general building: :data:`BUILDING_COLUMNS` follow :data:`COLUMNS`.
     storeys : int
         Floors of the superstructure (``>= 1``); above one, a ``super_*`` column per floor.
+    rocking : bool
+        Contents that can rock: :data:`ROCKING_COLUMNS` come last.
     """
     out = []
     for name, long_name, unit, scale in COLUMNS + (BUILDING_COLUMNS if general else ()):
@@ -131,11 +142,11 @@ def table_columns(planar: bool = False, general: bool = False, storeys: int = 1)
                 out.extend((f"{fname}_{a}", f"{flong}, along the building's {a} axis", unit, scale) for a in AXES)
             else:
                 out.append((fname, flong, unit, scale))
-    return tuple(out)
+    return tuple(out) + (ROCKING_COLUMNS if rocking else ())
 
 
 def _kind_of(names, ordered: bool = True):
-    """``(planar, general, storeys)`` of a history with the columns ``names`` (in that order when ``ordered``).
+    """``(planar, general, storeys, rocking)`` of a history with the columns ``names`` (in that order when ``ordered``).
 
     None when no kind of :func:`table_columns` has them.
     """
@@ -143,7 +154,7 @@ def _kind_of(names, ordered: bool = True):
     planar = "slide_disp_x" in names
     general = "isolator_phase" in names
     storeys = max(1, sum(1 for n in names if n.startswith("super_disp")) // (2 if planar else 1))
-    kind = (planar, general, storeys)
+    kind = (planar, general, storeys, "tilt" in names)
     expected = tuple(c[0] for c in table_columns(*kind))
     return kind if (names == expected if ordered else set(names) == set(expected)) else None
 
@@ -219,8 +230,10 @@ def _building_floor(h: History, scene: Scene, facets: Facets, ground: np.ndarray
     xsd = np.zeros((n, nfl)) if h.xsd is None else np.asarray(h.xsd).reshape(n, -1)
     fh = h.fh if h.fh is not None else np.zeros(n)
     iso = h.iso_phase if h.iso_phase is not None else np.zeros(n, dtype=np.int8)
+    th = h.theta if h.theta is not None else np.zeros(n)
+    thd = h.thetad if h.thetad is not None else np.zeros(n)
     for i in range(n):
-        y[:] = (h.x[i], h.xd[i], *xs[i], *xsd[i], h.u[i], h.ud[i], fh[i])
+        y[:] = (h.x[i], h.xd[i], *xs[i], *xsd[i], th[i], thd[i], h.u[i], h.ud[i], fh[i])
         acc[i] = bk._accels(float(h.phase[i]), float(iso[i]), ground[i], bk.normal(h.tau[i], P)[0], y, P,
                             floors)[1]
     k = building_of(scene).contents.floor
@@ -250,7 +263,7 @@ def history_table(solution, scene: Scene) -> HistoryTable:
     if h.x.ndim == 2:
         return _planar_table(solution, scene)
     ground = np.asarray(scene.pulse.accel(h.tau), dtype=float)
-    general = h.xs is not None or h.fh is not None
+    general = h.xs is not None or h.fh is not None or h.theta is not None
     if general:
         floor, fdisp, fvel = _building_floor(h, scene, solution.facets, ground)
     else:
@@ -270,7 +283,9 @@ def history_table(solution, scene: Scene) -> HistoryTable:
         cols.update({"isolator_force": (h.fh if h.fh is not None else zeros) * F,
                      "isolator_phase": (h.iso_phase if h.iso_phase is not None
                                         else zeros.astype(np.int8)).astype(np.int8)})
-        columns = table_columns(False, True, _storeys(h))
+        columns = table_columns(False, True, _storeys(h), h.theta is not None)
+        if h.theta is not None:
+            cols.update({"tilt": h.theta.copy(), "tilt_rate": h.thetad / T})
     return _table(cols, columns, solution, scene)
 
 
@@ -297,6 +312,9 @@ def _table(cols: dict, columns: tuple, solution, scene: Scene) -> HistoryTable:
     units = {name: (unit if sc is not None else "1") for name, _, unit, _ in columns}
     attrs = {"physical": sc is not None, "pulse": scene.pulse.name, "model": solution.model,
              **scene.pis(), "floor": scene.floor, "pi1": solution.pi1, "pi1_residual": solution.pi1_residual}
+    if scene.rocks:
+        attrs.update({"pi18": scene.pi18, "pi19": scene.pi19, "pi20": scene.restitution, "pi21": scene.pi21,
+                      "theta_max": solution.theta_max, "overturned": solution.overturned})
     if scene.pulse_y is not None:
         attrs.update({"pulse_y": scene.pulse_y.name, "angle": scene.angle,
                       "peak_angle": solution.peak_angle})
