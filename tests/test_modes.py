@@ -21,3 +21,10 @@ def test_three_interfaces_are_ordered_by_the_number_sliding():
     slides = (rows != 0.0).sum(axis=1)
     assert rows.shape == (27, 3) and np.all(np.diff(slides) >= 0)
     assert len({tuple(r) for r in rows.tolist()}) == 27
+
+
+def test_a_rocking_block_that_is_not_free_keeps_its_mode_code():
+    """A block rocking on its left corner (mode -4) or slide-rocking (+5) stays so while the bearing's modes are tried."""
+    rows = candidates(np.array([False, True]), np.array([-4.0, 1.0])).tolist()
+    assert rows == [[-4, 0], [-4, 1], [-4, -1]]
+    assert candidates(np.array([False, True]), np.array([5.0, 0.0])).tolist() == [[5, 0], [5, 1], [5, -1]]

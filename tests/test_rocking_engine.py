@@ -242,3 +242,31 @@ def test_a_block_on_a_sliding_bearing_that_holds_rocks_as_on_a_fixed_base():
     a, b = isoslide.solve(fixed, rtol=1e-8), isoslide.solve(held, rtol=1e-8)
     assert b.facets.isolator == "sliding-bearing" and b.facets.contents == "rocking"
     assert b.theta_max == pytest.approx(a.theta_max, rel=1e-9) and b.overturned == a.overturned
+
+
+# two-way coupled scenes: (building, contents) keyword arguments of isoslide.Scene
+TWO_WAY = {
+    "linear, heavy block rocks": dict(pi2=50.0, pi3=2.0, pi4=0.1, pi8=0.5, pi19=3.0, pi21=3.0),
+    "linear, slide-rock, overturns": dict(pi2=0.4, pi3=2.0, pi4=0.1, pi8=0.3, pi19=2.0, pi21=3.0, pulse="rectangular"),
+    "linear, slide-rock, rests": dict(pi2=0.21 / 0.4, pi3=2.0, pi4=0.1, pi8=0.3, pi19=1.0, pi21=2.0,
+                                      pulse="rectangular"),
+    "lead-rubber": dict(pi2=0.4, pi3=2.5, pi4=0.05, pi8=0.3, pi9=0.1, pi10=0.01, pi19=2.0, pi21=3.0),
+    "sliding bearing slips under the block": dict(pi2=1 / 0.6, pi3=2.0, pi8=0.4, pi9=0.12, pi19=1.0, pi21=3.0),
+    "sliding bearing": dict(pi2=0.4, pi3=3.0, pi8=0.3, pi9=0.08, pi19=2.0, pi21=5.0),
+    "2 storeys, roof, slide-rock": dict(pi2=0.4, pi3=2.5, pi4=0.1, pi8=0.3, pi11=0.6, pi12=0.3, pi13=0.02, storeys=2,
+                                        floor="roof", pi19=2.0, pi21=5.0, pulse="rectangular"),
+}
+
+
+@pytest.mark.parametrize("name", TWO_WAY)
+def test_rocking_block_on_isolated_buildings_matches_the_two_way_peer(name):
+    """Engine against the independent SciPy peer of the coupled building: theta_max and Pi1 to 1e-6, flag, modes."""
+    from isoslide.peers.rocking_building import solve as peer
+    scene = isoslide.Scene(pi18=0.2, **TWO_WAY[name])
+    sol = isoslide.solve(scene, rtol=1e-8)
+    ref = peer(scene)
+    assert sol.overturned == ref.overturned
+    assert sol.theta_max == pytest.approx(ref.theta_max, rel=1e-6)
+    assert sol.pi1 == pytest.approx(ref.pi1, rel=1e-6, abs=1e-12)
+    assert set(sol.modes) == set(ref.modes)
+    assert "rock" in sol.modes

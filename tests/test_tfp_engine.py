@@ -282,3 +282,19 @@ def test_a_recorded_ground_motion_runs_on_the_triple_pendulum():
     b = solve(Scene(**{**BASE, "pulse": record}))
     assert b.model.startswith("triple-friction-pendulum")
     assert b.pi1 == pytest.approx(a.pi1, rel=1e-4)
+
+
+def test_history_files_of_a_triple_pendulum_carry_its_regime(tmp_path):
+    """The history table adds isolator_stage after the building's columns, and it reads back as written."""
+    from isoslide.store.history_io import history_table, read_history, write_history
+    scene = isoslide.Scene(pi2=0.1, pi3=2.0, pi4=0.0, pi8=0.01, pi9=0.05, pi24=0.1, pi25=0.5, pi26=0.5, pi27=2.0,
+                           pi28=0.05, pi29=0.1, pi30=0.2)
+    sol = isoslide.solve(scene, history=True)
+    tab = history_table(sol, scene)
+    assert tuple(tab.columns)[-1] == "isolator_stage"
+    np.testing.assert_array_equal(tab.columns["isolator_stage"], sol.history.stage)
+    assert tab.columns["isolator_stage"].max() == sol.peak_stage > 0
+    for ext in (".csv", ".h5"):
+        back = read_history(write_history(sol, scene, tmp_path / f"h{ext}"))
+        assert tuple(back.columns) == tuple(tab.columns)
+        np.testing.assert_array_equal(back.columns["isolator_stage"], tab.columns["isolator_stage"])

@@ -1465,7 +1465,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     copy_state(yb, ye)
             if corner(bm) != 0.0:
                 # the rocking block: impact, overturning and (below the tipping angle) its pivot slipping
-                pivot = base_slide(bm) == 0.0 and corner(bm) * max(y[Y_TH], y1[Y_TH]) < alpha
+                pivot = base_slide(bm) == 0.0 and max(corner(bm) * y[Y_TH], corner(bm) * y1[Y_TH]) < alpha
                 for ev in (EV_IMPACT, EV_OVER, EV_PIVOT):
                     if ev == EV_PIVOT and not pivot:
                         continue

@@ -67,13 +67,16 @@ def candidates(free, current):
         for j in range(k - 1, -1, -1):
             digit = rem % 3
             rem //= 3
-            value = SIGNS[digit]
             if not free[j]:
-                if value != current[j]:
+                # a non-free interface keeps its mode (whatever its code: a rocking block's too), once
+                if digit != 0:
                     ok = False
                     break
-            elif value != 0.0:
-                n += 1
+                value = current[j]
+            else:
+                value = SIGNS[digit]
+                if value != 0.0:
+                    n += 1
             rows[m, j] = value
         if ok:
             slides[m] = n

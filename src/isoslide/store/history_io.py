@@ -34,7 +34,8 @@ A general building (:mod:`isoslide.engine.building`) has its contents' floor (th
 or the superstructure's roof) in ``floor_*``, its floor acceleration from
 :mod:`isoslide.engine.building_kernel`'s equations, and six more columns
 (:data:`BUILDING_COLUMNS`): the slab's and the superstructure's motion, the
-hysteretic isolator force and the isolator's phase.  A superstructure of ``N > 1``
+hysteretic isolator force and the isolator's phase (and a triple friction pendulum's regime,
+:data:`STAGE_COLUMNS`).  A superstructure of ``N > 1``
 storeys has one ``super_disp_k``, ``super_vel_k`` per floor ``k = 1 .. N`` (relative to
 the slab).  Contents that can rock add the block's tilt and its rate last
 (:data:`ROCKING_COLUMNS`), and the block's groups with its ``theta_max`` and ``overturned`` to the
@@ -95,6 +96,12 @@ BUILDING_COLUMNS = (
 )
 """Columns added after :data:`COLUMNS` for a general building (not the paper's model)."""
 
+STAGE_COLUMNS = (
+    ("isolator_stage", "triple friction pendulum's regime: 0 held, 1..5 Fenz and Constantinou's I..V, -1 another "
+                       "set of sliding surfaces", "1", "1"),
+)
+"""Column added after :data:`BUILDING_COLUMNS` for a triple friction pendulum."""
+
 ROCKING_COLUMNS = (
     ("tilt", "rocking block's tilt, positive on its corner at +b", "rad", "1"),
     ("tilt_rate", "rocking block's angular velocity", "rad s-1", "1/T_p"),
@@ -113,7 +120,8 @@ _PLANAR_PHASES = {"phase": "stick/slip phase: 0 stuck, 1 sliding (the direction:
 _STOREY_COLUMNS = ("super_disp", "super_vel")
 
 
-def table_columns(planar: bool = False, general: bool = False, storeys: int = 1, rocking: bool = False) -> tuple:
+def table_columns(planar: bool = False, general: bool = False, storeys: int = 1, rocking: bool = False,
+                  stage: bool = False) -> tuple:
     """``(name, long name, SI unit, dimensionless scale)`` of the columns of one kind of history, in file order.
 
     Parameters
@@ -126,6 +134,8 @@ def table_columns(planar: bool = False, general: bool = False, storeys: int = 1,
         Floors of the superstructure (``>= 1``); above one, a ``super_*`` column per floor.
     rocking : bool
         Contents that can rock: :data:`ROCKING_COLUMNS` come last.
+    stage : bool
+        A triple friction pendulum: :data:`STAGE_COLUMNS` after the building's columns.
     """
     out = []
     for name, long_name, unit, scale in COLUMNS + (BUILDING_COLUMNS if general else ()):
@@ -142,11 +152,11 @@ def table_columns(planar: bool = False, general: bool = False, storeys: int = 1,
                 out.extend((f"{fname}_{a}", f"{flong}, along the building's {a} axis", unit, scale) for a in AXES)
             else:
                 out.append((fname, flong, unit, scale))
-    return tuple(out) + (ROCKING_COLUMNS if rocking else ())
+    return tuple(out) + (STAGE_COLUMNS if stage else ()) + (ROCKING_COLUMNS if rocking else ())
 
 
 def _kind_of(names, ordered: bool = True):
-    """``(planar, general, storeys, rocking)`` of a history with the columns ``names`` (in that order when ``ordered``).
+    """``(planar, general, storeys, rocking, stage)`` of a history with the columns ``names`` (in that order when ``ordered``).
 
     None when no kind of :func:`table_columns` has them.
     """
@@ -154,7 +164,7 @@ def _kind_of(names, ordered: bool = True):
     planar = "slide_disp_x" in names
     general = "isolator_phase" in names
     storeys = max(1, sum(1 for n in names if n.startswith("super_disp")) // (2 if planar else 1))
-    kind = (planar, general, storeys, "tilt" in names)
+    kind = (planar, general, storeys, "tilt" in names, "isolator_stage" in names)
     expected = tuple(c[0] for c in table_columns(*kind))
     return kind if (names == expected if ordered else set(names) == set(expected)) else None
 
@@ -283,7 +293,9 @@ def history_table(solution, scene: Scene) -> HistoryTable:
         cols.update({"isolator_force": (h.fh if h.fh is not None else zeros) * F,
                      "isolator_phase": (h.iso_phase if h.iso_phase is not None
                                         else zeros.astype(np.int8)).astype(np.int8)})
-        columns = table_columns(False, True, _storeys(h), h.theta is not None)
+        columns = table_columns(False, True, _storeys(h), h.theta is not None, h.stage is not None)
+        if h.stage is not None:
+            cols["isolator_stage"] = h.stage.astype(np.int8)
         if h.theta is not None:
             cols.update({"tilt": h.theta.copy(), "tilt_rate": h.thetad / T})
     return _table(cols, columns, solution, scene)
@@ -395,7 +407,7 @@ def write_history(solution, scene: Scene, path) -> Path:
         w.writerow([f"{name} [{table.units[name]}]" for name in names])
         data = [table.columns[name] for name in names]
         for i in range(len(table)):
-            w.writerow([int(c[i]) if name.endswith("phase") else repr(float(c[i]))
+            w.writerow([int(c[i]) if name.endswith(("phase", "stage")) else repr(float(c[i]))
                         for name, c in zip(names, data, strict=True)])
     return path
 
@@ -446,12 +458,13 @@ def read_history(path) -> HistoryTable:
     if _kind_of(names) is None:
         raise ValueError(f"path = {str(path)!r} has columns {names}; expected {base}, optionally followed by "
                          f"{[c[0] for c in BUILDING_COLUMNS]} (isoslide.store.history_io.table_columns: in the "
-                         "plane each motion column along x and y, a super_* column per floor)")
+                         "plane each motion column along x and y, a super_* column per floor, then a triple "
+                         "pendulum's isolator_stage and a rocking block's tilt and tilt_rate)")
     units = {n: h.split(" [", 1)[1].rstrip("]") for n, h in zip(names, header, strict=True)}
     data = np.array([[float(x) for x in r] for r in csv.reader(rows)], dtype=float).reshape(-1, len(names))
     cols = {n: data[:, i] for i, n in enumerate(names)}
     for n in names:
-        if n.endswith("phase"):
+        if n.endswith(("phase", "stage")):
             cols[n] = cols[n].astype(np.int8)
     return HistoryTable(columns=cols, units=units, attrs=attrs)
 
