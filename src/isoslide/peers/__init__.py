@@ -19,6 +19,9 @@ returns a :class:`PeerResult` whose history is an :class:`isoslide.store.history
 :func:`~.rocking.solve_rocking` (:mod:`.rocking`), :func:`~.slide_rock.solve_block` (:mod:`.slide_rock`)
     A rigid block on a moving floor: rocking on stuck corners (Housner), and with Coulomb friction
     rest, slide, rock and slide-rock (Shenton).
+:func:`~.rocking_building.solve` (:mod:`.rocking_building`)
+    That block on any floor of the general building, its contact force acting back on the floor
+    (two-way), with impacts and overturning.
 :func:`solve_opensees` (:mod:`.opensees`)
     The paper's model and the general building in OpenSees, sticks regularised by elastic-plastic
     springs (extra ``peers``; :func:`opensees_available`).
