@@ -270,3 +270,16 @@ def test_rocking_block_on_isolated_buildings_matches_the_two_way_peer(name):
     assert sol.pi1 == pytest.approx(ref.pi1, rel=1e-6, abs=1e-12)
     assert set(sol.modes) == set(ref.modes)
     assert "rock" in sol.modes
+
+
+@pytest.mark.parametrize("pi20", [None, 0.85])
+def test_free_rocking_after_the_pulse_keeps_e_squared_of_the_energy_at_each_impact(pi20):
+    """On a quiet fixed base each impact's outgoing angular speed is e times the previous one (energy ratio e^2)."""
+    scene = isoslide.Scene(pi2=50.0, pi3=0.0, pi18=0.2, pi19=4.0, pi20=pi20, pi21=1.3)
+    sol = isoslide.solve(scene, rtol=1e-10, history=True)
+    h = sol.history
+    after = (h.tau > scene.pulse.tau_end) & (h.theta == 0.0) & (np.abs(h.phase) == 4)
+    w = np.abs(h.thetad[after])
+    assert w.size >= 5
+    np.testing.assert_allclose(w[1:] / w[:-1], scene.restitution, rtol=1e-7)
+    assert np.all(np.sign(h.phase[after][1:]) == -np.sign(h.phase[after][:-1]))     # the pivot alternates
