@@ -283,3 +283,20 @@ def test_free_rocking_after_the_pulse_keeps_e_squared_of_the_energy_at_each_impa
     assert w.size >= 5
     np.testing.assert_allclose(w[1:] / w[:-1], scene.restitution, rtol=1e-7)
     assert np.all(np.sign(h.phase[after][1:]) == -np.sign(h.phase[after][:-1]))     # the pivot alternates
+
+
+def test_first_impact_after_a_rectangular_pulse_converges_to_the_linearised_closed_form_as_alpha_squared():
+    """The slender block's first impact time differs from Housner's linearised one by O(alpha^2), and only so."""
+    from isoslide.model.rocking import rectangular_pulse_first_impact
+    errors = []
+    for alpha in (0.02, 0.01):
+        beta, p_td = 1.1, 2.0                     # below the overturning ratio 1/(1 - exp(-2)) = 1.157
+        scene = isoslide.Scene(pi2=1e3, pi3=0.0, pi18=math.tan(alpha), pi19=p_td, pi21=beta * alpha / math.tan(alpha),
+                               pulse="rectangular")
+        h = isoslide.solve(scene, rtol=1e-10, history=True).history
+        first = h.tau[np.flatnonzero((h.theta == 0.0) & (np.abs(h.phase) == 4) & (h.tau > 0.5))[0]]
+        block = Block.from_slenderness(alpha, 0.75 * G / p_td**2)
+        exact = rectangular_pulse_first_impact(block, beta * G * alpha, 1.0)
+        errors.append(abs(first - exact) / exact)
+    assert errors[1] < 3e-4
+    assert 3.5 < errors[0] / errors[1] < 4.5
