@@ -253,6 +253,9 @@ TWO_WAY = {
     "lead-rubber": dict(pi2=0.4, pi3=2.5, pi4=0.05, pi8=0.3, pi9=0.1, pi10=0.01, pi19=2.0, pi21=3.0),
     "sliding bearing slips under the block": dict(pi2=1 / 0.6, pi3=2.0, pi8=0.4, pi9=0.12, pi19=1.0, pi21=3.0),
     "sliding bearing": dict(pi2=0.4, pi3=3.0, pi8=0.3, pi9=0.08, pi19=2.0, pi21=5.0),
+    "fixed base, vertical motion": dict(pi2=0.7, pi3=0.0, pi8=0.2, pi19=2.0, pi21=2.0, pi17=0.6, pulse_z="ricker"),
+    "linear, vertical motion": dict(pi2=0.7, pi3=2.0, pi4=0.1, pi8=0.2, pi19=2.0, pi21=2.0, pi17=0.6,
+                                    pulse_z="ricker"),
     "2 storeys, roof, slide-rock": dict(pi2=0.4, pi3=2.5, pi4=0.1, pi8=0.3, pi11=0.6, pi12=0.3, pi13=0.02, storeys=2,
                                         floor="roof", pi19=2.0, pi21=5.0, pulse="rectangular"),
 }
