@@ -56,7 +56,7 @@ import xarray as xr
 
 from ..atomic import atomic_path
 
-__all__ = ["COMPONENT_IDS", "DEMANDS", "DIRECTIONAL", "G_PELICUN", "damage_db", "write_damage_db"]
+__all__ = ["COMPONENT_IDS", "DEMANDS", "DIRECTIONAL", "G_PELICUN", "SLIDING_TEXTS", "damage_db", "write_damage_db"]
 
 G_PELICUN = 9.80665
 """pelicun's ``g``, m/s^2 (``pelicun/settings/default_units.json``): the median in g is the fitted one over it."""
@@ -207,25 +207,36 @@ def _csv_text(table: pd.DataFrame) -> str:
     return buf.getvalue()
 
 
-def _json_text(table: pd.DataFrame, description: str) -> str:
+SLIDING_TEXTS = {"short_name": "isoslide sliding contents",
+                 "component_text": "Sliding contents on an isolated floor",
+                 "comments": "Lognormal curves fitted by maximum likelihood (Baker 2015) to exact sliding analyses "
+                             "(isoslide); limit state k: peak sliding displacement above the k-th limit"}
+"""The descriptions of the ``.json`` by default: those of the sliding contents' curves."""
+
+
+def _json_text(table: pd.DataFrame, description: str, short_name: str, component_text: str, comments: str,
+               limit_texts) -> str:
     limits = table.attrs["limit_states_m"]
+    if limit_texts is None:
+        limit_texts = [f"Peak sliding displacement above {lim:g} m" for lim in limits]
+    elif len(limit_texts) != len(limits):
+        raise ValueError(f"limit_texts = {list(limit_texts)!r} has {len(limit_texts)} entries; allowed: one per limit "
+                         f"state ({len(limits)}), in increasing limit_state")
     info = {"_GeneralInformation": {
-        "ShortName": "isoslide sliding contents",
+        "ShortName": short_name,
         "Description": description,
         "Version": "1.0",
     }}
     for cid, row in table.iterrows():
         info[cid] = {
-            "Description": f"Sliding contents on an isolated floor, {row['Demand-Type'].lower()} fragility "
-                           f"({row['Demand-Unit']})",
-            "Comments": "Lognormal curves fitted by maximum likelihood (Baker 2015) to exact sliding "
-                        "analyses (isoslide); limit state k: peak sliding displacement above the k-th limit",
+            "Description": f"{component_text}, {row['Demand-Type'].lower()} fragility ({row['Demand-Unit']})",
+            "Comments": comments,
             "SuggestedComponentBlockSize": "1 EA",
             "Directional": "non-directional: assign with direction 0; pelicun reads the largest floor demand "
                            "of the directions times its non-directional multiplier",
             "RoundUpToIntegerQuantity": "True",
-            "LimitStates": {f"LS{k + 1}": {f"DS{k + 1}": {"Description": f"Peak sliding displacement above {lim:g} m"}}
-                            for k, lim in enumerate(limits)},
+            "LimitStates": {f"LS{k + 1}": {f"DS{k + 1}": {"Description": text}}
+                            for k, text in enumerate(limit_texts)},
         }
     return json.dumps(info, indent=2, sort_keys=False) + "\n"
 
@@ -237,7 +248,9 @@ def _write_atomic(path: Path, text: str) -> None:
 
 def write_damage_db(path, theta: xr.DataArray, beta: xr.DataArray, *, json_path=None,
                     component_ids: dict | None = None, incomplete: str = "raise",
-                    description: str = "Fragility of sliding contents computed by isoslide") -> Path:
+                    description: str = "Fragility of sliding contents computed by isoslide",
+                    short_name: str = SLIDING_TEXTS["short_name"], component_text: str = SLIDING_TEXTS["component_text"],
+                    comments: str = SLIDING_TEXTS["comments"], limit_texts=None) -> Path:
     """Write :func:`damage_db` as pelicun's damage-model CSV (atomically, the same bytes for the same curves).
 
     Parameters
@@ -250,6 +263,15 @@ def write_damage_db(path, theta: xr.DataArray, beta: xr.DataArray, *, json_path=
         Also write the companion ``.json`` (component and limit-state descriptions) there.
     description : str
         ``_GeneralInformation.Description`` of the ``.json``.
+    short_name : str
+        ``_GeneralInformation.ShortName`` of the ``.json``.
+    component_text : str
+        What each component is; its ``Description`` adds the demand and its unit.
+    comments : str
+        ``Comments`` of each component: how the curves were made.
+    limit_texts : sequence of str, optional
+        ``Description`` of each limit state's damage state, in increasing ``limit_state``; None:
+        ``Peak sliding displacement above <limit> m``.
 
     Returns
     -------
@@ -259,7 +281,8 @@ def write_damage_db(path, theta: xr.DataArray, beta: xr.DataArray, *, json_path=
     """
     table = damage_db(theta, beta, component_ids=component_ids, incomplete=incomplete)
     csv_text = _csv_text(table)
-    json_text = None if json_path is None else _json_text(table, description)
+    json_text = None if json_path is None else _json_text(table, description, short_name, component_text, comments,
+                                                          limit_texts)
     path = Path(path)
     _write_atomic(path, csv_text)
     if json_text is not None:
