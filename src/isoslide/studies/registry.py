@@ -30,7 +30,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
-from . import fragility_planar, fragility_study, isolation_study
+from . import fragility_planar, fragility_study, isolation_study, rocking
 from .imports import closure, module_names
 
 DATASET_DIR = "results/datasets"
@@ -191,6 +191,16 @@ ISOLATION_FIGURES = ("isolation_bearings", "isolation_flexible", "isolation_rigi
 PLANAR_FIGURES = ("planar", "planar_ratio", "planar_vertical", "planar_pi5")
 """The planar study's figures (:data:`isoslide.reports.planar_plot.FIGURES`)."""
 
+ROCKING_PELICUN = "results/rocking/pelicun_damage_db.csv"
+"""The rocking block's overturning curves as a pelicun damage-model CSV (its ``.json`` beside it)."""
+
+
+def _rocking_data(config: Mapping) -> dict:
+    # spectra_path, map_path, fragility_path and the pelicun CSV the notebook shows
+    names = rocking.dataset_names()
+    return {f"{n.removeprefix('rocking_')}_path": dataset_path(n) for n in names} | {"pelicun_path": ROCKING_PELICUN}
+
+
 PIPELINE = Study(
     name="pipeline",
     sections=(),
@@ -329,6 +339,21 @@ STUDIES: tuple[Study, ...] = (
         },
         rule_files=("planar.smk",),
         groups={"planar_dataset": "merge", "planar_figure": "figures"},
+    ),
+    Study(
+        name="rocking",
+        sections=("rocking", "solver"),
+        datasets=tuple(rocking.dataset_names()),
+        outputs=(ROCKING_PELICUN,),
+        # the notebook draws the figures itself
+        reports=(Report("rocking", data=_rocking_data, code="rocking_report"),),
+        code={
+            # rocking_datasets
+            "rocking": ("budget", "solver", "store.provenance", "studies.rocking"),
+            "rocking_report": ("datasets", "reports.rocking_plot", "studies.rocking"),
+        },
+        rule_files=("rocking.smk",),
+        groups={"rocking_datasets": "merge"},
     ),
 )
 """Every study of the pipeline, in the order of ``rule all``, the reports and the index page."""
