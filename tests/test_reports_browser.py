@@ -28,7 +28,7 @@ from selenium.webdriver.chrome.service import Service
 
 from test_workflow import TEST_CONFIG, copy_workflow, snakemake
 
-REPORT_PAGES = ["accuracy", "figures", "records", "similarity", "fragility", "isolation", "planar", "index"]
+REPORT_PAGES = ["accuracy", "figures", "records", "similarity", "fragility", "isolation", "planar", "rocking", "index"]
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 CHROMEDRIVER = shutil.which("chromedriver")

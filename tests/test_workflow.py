@@ -38,7 +38,7 @@ TEST_CONFIG = ["--configfile", "config/test.yaml"]
 STUDIES = sorted(yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["studies"])
 ISOLATION_STUDIES = ["iso_fp", "iso_lrb", "iso_flex_base", "iso_flex_roof"]
 ISOLATION_RULES = {"isolation_rigid", "isolation_design", "isolation_bearings", "isolation_figure"}
-REPORTS = ["accuracy", "figures", "fragility", "isolation", "planar", "records", "similarity"]
+REPORTS = ["accuracy", "figures", "fragility", "isolation", "planar", "records", "rocking", "similarity"]
 LAUNCHERS = ("snakemake", "papermill", "jupyter", "jupyter-nbconvert")
 
 
@@ -420,7 +420,8 @@ def test_dry_run_plans_the_whole_dag(wf):
     rules = {r for r, _ in jobs}
     assert {"solve_chunk", "merge_study", "merge_isolation_study", "similarity", "figure", "fig4_record",
             "record_compare", "records_dataset", "figure_records", "accuracy_part", "accuracy_dataset",
-            "fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report", "all"} | ISOLATION_RULES <= rules
+            "fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "rocking_datasets",
+            "report", "all"} | ISOLATION_RULES <= rules
     assert sorted(w for r, w in jobs if r == "report") == [f"report={r}" for r in REPORTS]
     chunk_wildcards = [w for r, w in jobs if r == "solve_chunk"]
     assert all(re.fullmatch(r"study=\w+, chunk=\d+", w) for w in chunk_wildcards)
@@ -459,6 +460,7 @@ def test_dry_run_plans_the_whole_dag(wf):
     ({"isolation": {"friction_pendulum": {"pi9": [0.1, -0.1]}}}, "['friction_pendulum']['pi9']"),
     ({"isolation": {"bearings": {"a_p": [2.0, 1.0]}}}, "isolation.bearings.a_p = [2.0, 1.0] is not strictly increasing"),
     ({"storeys": {"storeys": [2, 1]}}, "storeys.storeys = [2, 1] is not strictly increasing"),
+    ({"rocking": {"spectra": {"pi3": [1.0, 2.0]}}}, "rocking.spectra.pi3 = [1.0, 2.0] does not start at 0.0"),
 ])
 def test_invalid_config_fails_before_any_job_naming_the_key(tmp_path, overlay, key):
     d = copy_workflow(tmp_path / "bad")
@@ -734,6 +736,38 @@ def test_changing_the_fragility_study_reruns_only_fragility_jobs(full_run):
     assert rules <= {"fragility_chunk", "fragility_dataset", "fragility_pelicun", "fragility_figure", "report",
                      "fragility_planar_chunk", "fragility_planar_dataset", "index_page", "all"}, rules
     assert {w for r, w in planned_jobs(out) if r == "report"} == {"report=fragility"}
+
+
+@pytest.mark.slow
+def test_rocking_outputs(full_run):
+    """The rocking datasets, the pelicun CSV and the report of the tiny run."""
+    wf, _ = full_run
+    cfg = isoslide.config.load(ROOT / "config" / "config.yaml",
+                               yaml.safe_load((ROOT / "config" / "test.yaml").read_text()))["rocking"]
+    spectra = datasets.open_dataset(wf / "results" / "datasets" / "rocking_spectra.nc")
+    assert spectra["theta_max_over_alpha"].dims == ("pulse", "pi3", "pi19", "pi21")
+    assert spectra["pi3"].values.tolist() == cfg["spectra"]["pi3"] and "isoslide_config" in spectra.attrs
+    rock_map = datasets.open_dataset(wf / "results" / "datasets" / "rocking_map.nc")
+    assert rock_map["response"].dims == ("pi3", "mu_s", "pi18") and rock_map["mu_s"].values.tolist() == cfg["map"]["mu_s"]
+    frag = datasets.open_dataset(wf / "results" / "datasets" / "rocking_fragility.nc")
+    assert frag.sizes["record"] == cfg["fragility"]["motions"] and "overturned" in frag
+    log = (wf / "logs" / "rocking_datasets" / "rocking_datasets.log").read_text()
+    assert provenance.source_text().split(" (git")[0] in log and log.rstrip().endswith("done")
+    assert (wf / "results" / "rocking" / "pelicun_damage_db.csv").read_text().startswith("ID,Incomplete,")
+    html = (wf / "reports" / "rocking.html").read_text()
+    assert "Contents that rock" in html and "Traceback" not in html
+    assert "Does isolation protect the block or expose it?" in html and "Overturning fragility" in html
+    assert 'href="rocking.html"' in (wf / "reports" / "index.html").read_text()
+
+
+@pytest.mark.slow
+def test_changing_the_rocking_study_reruns_only_its_job_and_report(full_run):
+    wf, _ = full_run
+    (wf / "config" / "rock.yaml").write_text(yaml.safe_dump({"rocking": {"map": {"a_p_over_g": 0.6}}}))
+    _, out = snakemake(wf, "-n", *TEST_CONFIG, "config/rock.yaml", timeout=300)
+    jobs = planned_jobs(out)
+    assert {r for r, _ in jobs} == {"rocking_datasets", "report", "index_page", "all"}
+    assert {w for r, w in jobs if r == "report"} == {"report=rocking"}
 
 
 def _digests(directory: Path) -> dict:
