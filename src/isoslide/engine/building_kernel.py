@@ -1550,7 +1550,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     break
                 bm, b_just, r_just = nb_, True, True
                 slipped = slipped or base_slide(bm) != 0.0
-                short = True
+                short = False    # the next excursion is like the last one, e times smaller
             elif best == EV_OVER:
                 overturned = True
                 y[Y_TH] = corner(bm) * 0.5 * math.pi
