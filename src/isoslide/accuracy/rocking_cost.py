@@ -36,8 +36,6 @@ INTENSITIES = (1.5, 2.0, 3.0)
 """``Pi21`` of the rocking scenes."""
 PULSES = ("ricker", "rectangular")
 """Pulses of the rocking scenes."""
-PAPER_BUILDINGS = ("fixed base", "linear isolator (pi3 2)")
-"""The buildings of :data:`POINTS` that are the paper's model (its own solver runs their sliding twins)."""
 RECORD_BUILDING = "linear isolator (pi3 2)"
 """Building under which the bundled records run."""
 TARGET_RATIO = 3.0
