@@ -673,6 +673,15 @@ def _buildings(repeats: int, path: str | None) -> dict:
     return summ
 
 
+def _rocking(repeats: int, path: str | None) -> dict:
+    """The rocking section, run and printed; its rows of the measurements table rewritten when ``path`` is given."""
+    summ = rocking_cost.report(rocking_cost.run(repeats=repeats))
+    if path:
+        measurements.write_rows(path, "rocking", measurements.ROCKING_COMMAND,
+                                measurements.rocking_rows(summ, repeats))
+    return summ
+
+
 def _write_json(path: str | None, out: dict) -> None:
     """Write ``out`` as JSON to ``path`` (numbers as floats); nothing when ``path`` is None."""
     if path:
@@ -697,7 +706,7 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="1 scene per study, 5 repeats, 2 regularised scenes")
     ap.add_argument("--json", metavar="PATH", help="also write the records and summary as JSON")
     ap.add_argument("--measurements", metavar="PATH",
-                    help="rewrite the buildings and OpenSees sections' rows of the documentation's measurements "
+                    help="rewrite the buildings, rocking and OpenSees sections' rows of the documentation's measurements "
                          "table (docs/measurements.csv) from this run (isoslide.accuracy.measurements)")
     ap.add_argument("-v", "--verbose", action="store_true", help="print every scene as it is measured")
     for flag, text in SECTION_FLAGS:
@@ -720,7 +729,7 @@ def main(argv=None) -> int:
         _write_json(a.json, {"buildings": _buildings(3 if a.quick else 7, a.measurements)})
         return 0
     if a.rocking_only:
-        _write_json(a.json, {"rocking": rocking_cost.report(rocking_cost.run(repeats=3 if a.quick else 7))})
+        _write_json(a.json, {"rocking": _rocking(3 if a.quick else 7, a.measurements)})
         return 0
     if a.quick:
         a.per_study, a.repeats, a.peer_repeats, a.regularized_scenes = 1, 5, 1, 2
@@ -747,7 +756,7 @@ def main(argv=None) -> int:
         out["planar"] = run_report_planar(quick=a.quick)
     if not a.no_rocking:
         print("")
-        out["rocking"] = rocking_cost.report(rocking_cost.run(repeats=3 if a.quick else 7))
+        out["rocking"] = _rocking(3 if a.quick else 7, a.measurements)
     _write_json(a.json, {"result": res, "summary": summ, **out})
     return 0
 

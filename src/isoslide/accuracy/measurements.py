@@ -30,6 +30,9 @@ BUILDINGS_COMMAND = "python -m isoslide.bench --buildings-only"
 OPENSEES_COMMAND = "python -m isoslide.bench --opensees"
 """The command whose rows of the topic ``opensees_cost`` :func:`opensees_rows` makes."""
 
+ROCKING_COMMAND = "python -m isoslide.bench --rocking-only"
+"""The command whose rows of the topic ``rocking`` :func:`rocking_rows` makes."""
+
 
 @dataclass(frozen=True)
 class Measurement:
@@ -111,6 +114,26 @@ def buildings_rows(summary: dict, paper: str, points: int, repeats: int) -> list
     worst = max(s["err_max"] for s in summary.values())
     rows.append(Measurement("largest error of any building class at default rtol", f"{worst:.1e}", "1",
                             "against rtol = 1e-12"))
+    return rows
+
+
+def rocking_rows(summary: dict, repeats: int) -> list[Measurement]:
+    """The rocking section's figures: a rocking scene's cost over the same scene sliding, records per sample.
+
+    ``summary`` is :func:`isoslide.accuracy.rocking_cost.report`'s return.
+    """
+    rows = [Measurement("rocking block / the same contents sliding: cost ratio, median / largest (not overturning)",
+                        f"{summary['ratio_median']:.2f} / {summary['ratio_max']:.2f}", "x",
+                        f"{summary['rows']} scenes (4 buildings, Ricker and rectangular pulses, 3 intensities), "
+                        f"median of {repeats} interleaved runs; {machine_conditions()}")]
+    if "slow" in summary:
+        rows.append(Measurement("rocking scenes past the 3x aim: steps / cost per step over the sliding twin's",
+                                f"{summary['slow_steps_ratio']:.1f} / {summary['slow_step_cost_ratio']:.1f}", "x",
+                                f"{summary['slow']} scenes, each an impact cascade"))
+    if "records" in summary:
+        rows.append(Measurement("rocking block on the bundled records: cost per sample, rocking / sliding",
+                                f"{summary['rock_ns_per_sample']:.0f} / {summary['slide_ns_per_sample']:.0f}", "ns",
+                                f"{summary['records']} records under a linear isolator, medians"))
     return rows
 
 
