@@ -64,3 +64,12 @@ def test_building_rows_carry_the_paper_cost_and_every_ratio():
     assert rows[0].value == "140.0" and rows[0].unit == "us" and "8 Pi points" in rows[0].conditions
     assert rows[1].value == "2.10" and "0.80" in rows[1].conditions
     assert rows[-1].value == "3.0e-09"
+
+
+def test_rocking_rows_carry_the_ratio_what_limits_it_and_the_records_cost():
+    summary = {"ratio_median": 1.2, "ratio_max": 5.5, "rows": 24, "slow": 3, "slow_steps_ratio": 4.0,
+               "slow_step_cost_ratio": 2.5, "records": 18, "rock_ns_per_sample": 900.0, "slide_ns_per_sample": 90.0}
+    rows = ms.rocking_rows(summary, repeats=7)
+    assert [r.value for r in rows] == ["1.20 / 5.50", "4.0 / 2.5", "900 / 90"]
+    assert "24 scenes" in rows[0].conditions and "3 scenes" in rows[1].conditions and "18 records" in rows[2].conditions
+    assert len(ms.rocking_rows({"ratio_median": 1.0, "ratio_max": 2.0, "rows": 4}, repeats=3)) == 1
