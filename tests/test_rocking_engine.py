@@ -9,6 +9,7 @@ the peers run in SI with ``T_p = 1 s``, ``g`` standard, ``a_p = Pi21 g tan(alpha
 import dataclasses
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -303,3 +304,17 @@ def test_first_impact_after_a_rectangular_pulse_converges_to_the_linearised_clos
         errors.append(abs(first - exact) / exact)
     assert errors[1] < 3e-4
     assert 3.5 < errors[0] / errors[1] < 4.5
+
+
+def test_flight_stops_the_solve_naming_the_time_the_peer_finds():
+    """A light block rocking hard on an isolated slab would leave the floor: ContactError at the peer's time (1e-6)."""
+    from isoslide.peers.rocking import RockingContactError
+    from isoslide.peers.rocking_building import solve as peer
+    scene = isoslide.Scene(pi2=5.0, pi3=1.0, pi4=0.05, pi8=1e-3, pi18=0.2, pi19=2.0, pi21=10.0)
+    with pytest.raises(RockingContactError, match="leave the floor") as ref:
+        peer(scene)
+    t_ref = float(re.search(r"at tau = ([0-9.e+-]+)", str(ref.value)).group(1))
+    with pytest.raises(isoslide.solver.ContactError, match="would leave the floor") as err:
+        isoslide.solve(scene, rtol=1e-8)
+    t = float(re.search(r"at tau = ([0-9.e+-]+)", str(err.value)).group(1))
+    assert t == pytest.approx(t_ref, abs=1e-5)

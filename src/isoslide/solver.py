@@ -104,7 +104,8 @@ CONTACT_TEXT = {
               "tipping angle; flight is not modelled)",
     "impact": "the rocking block's impact has no impulse consistent with Coulomb friction and a non-bouncing "
               "contact",
-    "indeterminate": "the slide-rocking block's equations have no consistent solution (Painleve's paradox)",
+    "indeterminate": "the rocking block's modes have no consistent choice (slide-rock whose equations have no "
+                     "solution, Painleve's paradox, or whose pivot would slide against its direction)",
 }
 """What each loss of contact (:data:`isoslide.engine.building_kernel.CONTACT_LOSSES`) means."""
 

@@ -143,10 +143,14 @@ N_F = len(FLOAT_RESULTS)
 BLOCK_MODES = ("rest", "slide", "rock", "slide-rock")
 """The block's modes, in the order of the bits of the ``modes`` result."""
 
+MAX_STALLED = 1000
+"""Events in a row without time passing after which a rocking block's modes count as unresolved."""
+
 CONTACT_LOSSES = ("", "flight", "impact", "indeterminate")
 """Losses of the rocking block's contact (the ``contact`` result): none, the vertical contact force
 would turn negative below the tipping angle, an impact with no consistent impulse, the slide-rock
-equations without a consistent solution (Painleve)."""
+equations without a consistent solution (Painleve), or modes that change for ever without time
+passing (:data:`MAX_STALLED` events)."""
 
 # history columns: [tau, x, x', xs_1..n, xs_1'..n', theta, theta', u, u', fh, bm, im, stage] (see history_columns)
 H_TAU, H_X, H_XD, H_XS = range(4)
@@ -168,7 +172,7 @@ def history_columns(n: int) -> dict:
 
 # event kinds
 EV_BLOCK, EV_BEAR, EV_YIELD, EV_BSPEED, EV_ISPEED, EV_BPEAK, EV_IPEAK, EV_XD, EV_TFP, EV_IMPACT, EV_OVER, EV_PIVOT, \
-    EV_APEX = range(13)
+    EV_APEX, EV_FLIGHT = range(14)
 
 
 _stribeck = njit(cache=True)(stribeck)
@@ -675,6 +679,7 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     EV_IMPACT ``psi`` (the rocking block reaches the floor)   EV_OVER ``pi/2 - psi`` (it overturns)
     EV_PIVOT  ``mu_s V - |H|`` (the rocking block's pivot slips; rate not given: NaN)
     EV_APEX   ``psi'`` (the tilt's extremes)
+    EV_FLIGHT ``V`` below the tipping angle, positive above it (the rocking block would leave the floor)
     """
     n = int(P[P_N])
     ny = y.shape[0]
@@ -696,11 +701,13 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
         if kind == EV_OVER:
             return 0.5 * math.pi - s * y[th], -s * work[th]
         return s * y[th + 1], s * work[th + 1]
-    if kind == EV_PIVOT:
+    if kind == EV_PIVOT or kind == EV_FLIGHT:
         nz, _ = normal(tau, P)
         A = np.empty(n)
-        AF = _accels(bm, im, accel_at(code, params, tau), nz, y, P, A)[1]
-        H, V = contact(bm, nz, y, AF, AF, P)
+        a = _accels(bm, im, accel_at(code, params, tau), nz, y, P, A)
+        H, V = contact(bm, nz, y, a[1], a[1] + a[2], P)
+        if kind == EV_FLIGHT:
+            return (V if corner(bm) * y[Y_XS + 2 * n] < math.atan(P[P_ROCK]) else 1.0 + abs(V)), math.nan
         return P[P_RMUS] * V - abs(H), math.nan
     if kind == EV_ISPEED:
         return im * y[Y_XD], im * work[Y_XD]
@@ -1190,6 +1197,34 @@ def _rock_start(s, im, tau, y, P, code, params):
 
 
 @njit(cache=True)
+def _contact_loss(bm, im, tau, y, P, code, params):
+    """The rocking block's loss of contact at an accepted state (index in :data:`CONTACT_LOSSES`; 0: none).
+
+    Below the tipping angle: flight when the vertical contact force is negative, and, for a pivot
+    that starts to slide, no consistent slide-rock (the equations' determinant not positive, or the
+    pivot accelerating against its sliding direction).
+    """
+    s, psi, psd, d = _tilt(bm, y, P)
+    if psi >= math.atan(P[P_ROCK]):
+        return 0
+    nz, _ = normal(tau, P)
+    A = np.empty(int(P[P_N]))
+    Ab, AF, udd, fh, R, thdd = _accels(bm, im, accel_at(code, params, tau), nz, y, P, A)
+    H, V = contact(bm, nz, y, AF, AF + udd, P)
+    if V < 0.0:
+        return 1
+    sig = base_slide(bm)
+    if sig != 0.0:
+        cc = s * math.cos(d) + P[P_RMUK] * sig * math.sin(d)
+        # a pivot starting to slide must not accelerate against its direction (beyond round-off: at the
+        # slip threshold its acceleration starts from zero)
+        if 1.0 - 0.75 * cc * s * math.cos(d) <= 0.0 or (y[y.shape[0] - 2] == 0.0 and
+                                                         sig * udd < -1e-9 * P[P_RG] * nz):
+            return 3
+    return 0
+
+
+@njit(cache=True)
 def _impact(bm, im, tau, y, P, code, params):
     """The rocking block's impact at ``theta = 0``: its new mode, with ``theta'`` and ``u'`` set in ``y``.
 
@@ -1353,6 +1388,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     stage_max = 0
     capacity = False
     r_just = False     # a rocking phase began at theta = 0 at the accepted point
+    stalled = 0
     thmax = 0.0
     overturned = False
     modes = 1
@@ -1372,6 +1408,11 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             if capacity:
                 break
         modes |= 1 << block_mode(bm)
+        if corner(bm) != 0.0:
+            loss = _contact_loss(bm, im, tau, y, P, code, params)
+            if loss != 0:
+                tloss = tau
+                break
         # --- mode checks at the accepted point (round-off past a limit) ---------
         p_now = accel_at(code, params, tau)
         if bm == 0.0 or (_sticks(P) and im == 0.0):
@@ -1466,7 +1507,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             if corner(bm) != 0.0:
                 # the rocking block: impact, overturning and (below the tipping angle) its pivot slipping
                 pivot = base_slide(bm) == 0.0 and max(corner(bm) * y[Y_TH], corner(bm) * y1[Y_TH]) < alpha
-                for ev in (EV_IMPACT, EV_OVER, EV_PIVOT):
+                for ev in (EV_IMPACT, EV_OVER, EV_PIVOT, EV_FLIGHT):
                     if ev == EV_PIVOT and not pivot:
                         continue
                     found, hs, herr = _speed_candidate(ev, bm, im, tau, y, y1, h, t_end_step,
@@ -1528,6 +1569,11 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             if herr_best > 1.0:
                 h = 0.5 * hbest
                 continue
+            # a rocking block's modes that cannot be resolved (events without time passing, for ever)
+            stalled = stalled + 1 if hbest == 0.0 and P[P_ROCK] > 0.0 else 0
+            if stalled > MAX_STALLED:
+                loss, tloss = 3, tau
+                break
             tau = tau + hbest
             copy_state(y, yb)
             xmax = max(xmax, abs(y[Y_X]))
@@ -1551,6 +1597,10 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 bm, b_just, r_just = nb_, True, True
                 slipped = slipped or base_slide(bm) != 0.0
                 short = False    # the next excursion is like the last one, e times smaller
+            elif best == EV_FLIGHT:
+                loss, tloss = 1, tau
+                nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
+                break
             elif best == EV_OVER:
                 overturned = True
                 y[Y_TH] = corner(bm) * 0.5 * math.pi
@@ -1641,16 +1691,6 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 locate(EV_APEX, 0.0, bm, im, tau, y, 0.0, g0, h, g1, -1.0, False, P, code, params, atol, rtol,
                        K, ye, work, cnt)
                 thmax = max(thmax, abs(ye[Y_TH]))
-            if s_ * y1[Y_TH] < alpha:
-                nz_now, _ = normal(t_end_step, P)
-                a_ = _accels(bm, im, accel_at(code, params, t_end_step), nz_now, y1, P, A)
-                H, V = contact(bm, nz_now, y1, a_[1], a_[1] + a_[2], P)
-                if V < 0.0:
-                    loss, tloss = 1, tnew
-                    copy_state(y, y1)
-                    tau = tnew
-                    nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
-                    break
         if bm != 0.0:
             b_just = False
             if abs(y1[Y_UD]) > vmax:
