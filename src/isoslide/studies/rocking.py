@@ -74,6 +74,7 @@ analysis, Earthquake Spectra 31(1).
 from __future__ import annotations
 
 import copy
+import itertools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -163,7 +164,7 @@ def _increasing(key: str, values, lo: float, hi: float, lo_in: bool = False, min
     if not isinstance(values, (list, tuple)) or len(values) < min_items:
         raise ValueError(f"rocking.{key} = {values!r} is invalid; allowed: a list of at least {min_items} numbers")
     out = [_number(key, v, lo, hi, lo_in) for v in values]
-    if any(b <= a for a, b in zip(out, out[1:])):
+    if any(b <= a for a, b in itertools.pairwise(out)):
         raise ValueError(f"rocking.{key} = {values!r} is not strictly increasing; allowed: increasing values, each once")
     return out
 
