@@ -14,7 +14,7 @@ import xarray as xr
 import isoslide
 from isoslide import datasets
 from isoslide.models import (BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, PLANAR_LABELS,
-                             VERTICAL_LABELS, Facets, label)
+                             ROCKING_LABELS, VERTICAL_LABELS, Facets, label)
 from isoslide.pulses import sampled
 
 CODES_FILE = Path(__file__).parent / "data" / "facet_codes.json"
@@ -81,15 +81,18 @@ def building_scene(name: str) -> isoslide.Scene:
         kw.update(pi17=0.2, pulse_z="ricker")
     if "planar" in parts:
         kw.update(pulse_y="antisymmetric_ricker", pi14=0.8)
+    if "rocking" in parts:   # a block that tips (mu_s = 1.001 tan(alpha) when it slides) and slide-rocks
+        kw.update(pi2=5.0 if "no-slide" in parts else 0.25025, pi18=0.2, pi19=1.0, pi21=4.0)
     return isoslide.Scene(**kw)
 
 
-PATHS += [(building_scene(name), {}) for name in BUILDING_LABELS + VERTICAL_LABELS + PLANAR_LABELS]
+PATHS += [(building_scene(name), {}) for name in BUILDING_LABELS + VERTICAL_LABELS + PLANAR_LABELS + ROCKING_LABELS]
 
 
 def test_building_labels_name_their_scenes():
-    """Each general-building label is the label of the scene built from its parts (vertical motion, the plane)."""
-    for name in BUILDING_LABELS + VERTICAL_LABELS + PLANAR_LABELS:
+    """Each general-building label is the label of the scene built from its parts (vertical motion, the plane,
+    a rocking block)."""
+    for name in BUILDING_LABELS + VERTICAL_LABELS + PLANAR_LABELS + ROCKING_LABELS:
         assert isoslide.solve(building_scene(name)).model == name
 
 

@@ -14,7 +14,7 @@ from isoslide.studies.similarity import physical_parameters
 SCENE = isoslide.Scene(pi2=0.2, pi3=1.0, pi4=0.1)   # resonance, Coulomb: every peer can run it
 HORIZON = 10.0                                       # T_p after the pulse
 SOLVER_FIELDS = ["tau", "x", "xd", "u", "ud", "phase"]
-BUILDING_FIELDS = ["xs", "xsd", "fh", "iso_phase", "stage"]
+BUILDING_FIELDS = ["xs", "xsd", "fh", "iso_phase", "stage", "theta", "thetad"]
 """Optional states of a general building (None for the paper's model; stage for a triple friction pendulum)."""
 
 
