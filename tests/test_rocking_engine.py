@@ -318,3 +318,20 @@ def test_flight_stops_the_solve_naming_the_time_the_peer_finds():
         isoslide.solve(scene, rtol=1e-8)
     t = float(re.search(r"at tau = ([0-9.e+-]+)", str(err.value)).group(1))
     assert t == pytest.approx(t_ref, abs=1e-5)
+
+
+def test_a_mirrored_ground_motion_mirrors_the_rocking_response():
+    """The ground negated: theta and u change sign, the modes and times stay (a sampled Ricker pulse, isolated)."""
+    from isoslide.pulses import get_pulse, sampled
+    taus = np.linspace(-2.0, 2.0, 801)
+    wave = np.asarray(get_pulse("ricker").accel(taus), dtype=float)
+    runs = []
+    for sign in (1.0, -1.0):
+        scene = isoslide.Scene(pi2=0.26, pi3=2.0, pi4=0.1, pi8=0.3, pi18=0.2, pi19=1.0, pi21=4.0,
+                               pulse=sampled(sign * wave, 4.0 / 800, tau0=-2.0))
+        runs.append(isoslide.solve(scene, history=True))
+    a, b = runs
+    assert a.theta_max > 0.0 and a.modes == b.modes and a.theta_max == b.theta_max and a.pi1 == b.pi1
+    np.testing.assert_array_equal(a.history.tau, b.history.tau)
+    np.testing.assert_array_equal(a.history.theta, -b.history.theta)
+    np.testing.assert_array_equal(a.history.u, -b.history.u)
