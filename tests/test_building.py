@@ -14,7 +14,8 @@ from isoslide.engine import building
 from isoslide.engine import building_kernel as bk
 from isoslide.pulses import sampled
 from isoslide.scene import G_STANDARD
-from isoslide.solver import _horizon, base_atol, integrator_rtol
+from isoslide.engine.system import horizon_end
+from isoslide.solver import base_atol, integrator_rtol
 
 PAPER_SCENES = [
     Scene(pi2=0.2, pi3=1.0, pi4=0.1),
@@ -32,7 +33,7 @@ def run_kernel(sc: Scene, rtol: float = 1e-6):
     P = building.parameters(sc)
     pu = sc.pulse
     irt = integrator_rtol(sc, rtol)
-    return bk.run(P, pu.code, pu.param_array, pu.breakpoint_array, pu.tau_start, pu.tau_end, _horizon(sc, 200.0),
+    return bk.run(P, pu.code, pu.param_array, pu.breakpoint_array, pu.tau_start, pu.tau_end, horizon_end(sc, 200.0),
                   0.15, building.free_step(sc), irt, base_atol(sc, irt), 0, 1e-4, True, 10 ** 7,
                   *building.modal_data(sc, P))
 

@@ -57,6 +57,7 @@ from . import accuracy, config, records
 from .accuracy import kernel_targets, measurements, opensees_cost, rocking_cost
 from .accuracy.scenes import (BUILDING_POINTS, BUILDINGS, PENDULUM, SPEED_PENDULUM, STOREYS, STOREYS_NAME,
                               TARGET_TFP_RATIO, TFP_PENDULUM)
+from .engine.system import unassembled
 from .model.parts import building_of
 from .scene import Scene
 from .studies import fragility_planar
@@ -107,6 +108,7 @@ def run(per_study: int = 6, hard: bool = True, repeats: int = 15, peer_repeats: 
         for r in range(max(repeats, peer_repeats)):
             # interleave: isoslide, then the reference, on the same scene
             if r < repeats:
+                sc = unassembled(sc)
                 t0 = time.perf_counter()
                 s = solve(sc, horizon=horizon)
                 t_iso.append(time.perf_counter() - t0)
@@ -355,8 +357,9 @@ def run_buildings(repeats: int = 7) -> dict:
     for _ in range(repeats):
         for k in range(len(BUILDING_POINTS)):
             for name, scs in scenes.items():
+                sc = unassembled(scs[k])
                 t0 = time.perf_counter()
-                sol = solve(scs[k])
+                sol = solve(sc)
                 out[name]["times"][k].append(time.perf_counter() - t0)
                 out[name]["pi1"][k], out[name]["models"][k], out[name]["steps"][k] = sol.pi1, sol.model, sol.n_steps
     return {"rows": out, "points": BUILDING_POINTS, "repeats": repeats}
@@ -452,8 +455,9 @@ def run_planar(repeats: int = 7) -> dict:
                 row = out[name]
                 order = (("1d", 0), ("planar", 1)) if r % 2 == 0 else (("planar", 1), ("1d", 0))
                 for which, j in order:
+                    sc = unassembled(pairs[k][j])
                     t0 = time.perf_counter()
-                    sol = solve(pairs[k][j])
+                    sol = solve(sc)
                     row[f"t_{which}"][k].append(time.perf_counter() - t0)
                     tail = "" if which == "planar" else "_1d"
                     row[f"pi1{tail}"][k], row[f"models{tail}"][k], row[f"steps{tail}"][k] = \
@@ -538,10 +542,11 @@ def run_pairs(n: int = 4, repeats: int = 5, suite_name: str = PAIR_SUITE) -> dic
         solve(c["one"])
     for _ in range(repeats):
         for c in cases:
+            planar, one = unassembled(c["planar"]), unassembled(c["one"])
             t0 = time.perf_counter()
-            sp = solve(c["planar"])
+            sp = solve(planar)
             t1 = time.perf_counter()
-            s1 = solve(c["one"])
+            s1 = solve(one)
             c["t_planar"].append(t1 - t0)
             c["t_1d"].append(time.perf_counter() - t1)
             c.update(pi1=sp.pi1, model=sp.model, steps=sp.n_steps, pi1_1d=s1.pi1, model_1d=s1.model)

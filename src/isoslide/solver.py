@@ -61,6 +61,8 @@ import numpy as np
 
 from .engine import building, building_kernel, kernel, piecewise, planar_kernel, planar_piecewise
 from .engine.planar import excitation, pair_grid
+from .engine.system import (DEFAULT_HORIZON, STEPS_PER_PERIOD, assemble, excitation_end, horizon_end,  # noqa: F401
+                            step_budget)
 from .store.history import History
 from .model.parts import building_of
 from .models import BEARING_REDUCTIONS, Facets
@@ -79,10 +81,6 @@ MANY_EVENTS = 50
 """Above this many transitions the local tolerance is tightened in proportion (one refinement pass)."""
 CONVERGENCE_PASSES = 3
 """Most tightening passes (each 10 x) for scenes with more than ``MANY_EVENTS`` transitions."""
-STEPS_PER_PERIOD = 200
-"""Step budget per isolation period followed (see :func:`step_budget`)."""
-DEFAULT_HORIZON = 200.0
-"""Follow-up after the pulse, in isolation periods (pulse periods for a fixed base)."""
 
 log = logging.getLogger(__name__)
 
@@ -223,15 +221,6 @@ def _model_array(scene: Scene, pi8: float, coulomb: float, thr: float | None = N
     return m
 
 
-def _tau_end(scene: Scene) -> float:
-    """End of the excitation: the last of its components' (:attr:`isoslide.Scene.span`)."""
-    return scene.span[1]
-
-
-def _horizon(scene: Scene, horizon: float) -> float:
-    return _tau_end(scene) + horizon * max(scene.pi3, 1.0)
-
-
 def _long_run_factor(scene: Scene, horizon: float) -> float:
     """Tolerance tightening for lightly damped isolated scenes.
 
@@ -323,7 +312,7 @@ def _checked(run: Run, scene: Scene, horizon: float, budget: int, what: str, rto
     ``what`` names the steps counted; ``rtol``, where the run's cost depends on it, is quoted with
     its allowed range.
     """
-    if run.floats["tend"] < _horizon(scene, horizon) and not run.ints["settled"] and run.ints["steps"] > budget:
+    if run.floats["tend"] < horizon_end(scene, horizon) and not run.ints["settled"] and run.ints["steps"] > budget:
         shorten = f"the horizon (horizon = {horizon:g}) for {scene}"
         advice = (f"Shorten {shorten}" if rtol is None else
                   f"Loosen rtol (allowed range: 1e-13 <= rtol <= 0.1) or shorten {shorten}")
@@ -381,7 +370,7 @@ def _run(scene: Scene, pi8: float, coulomb: float, rtol: float, hist_cap: int = 
     m = _model_array(scene, pi8, coulomb, thr=math.inf if track_max else None)
     h_free = min(max(scene.pi3, 1.0) / 8.0, max_step)
     return kernel.run(m, pulse.code, pulse.param_array, pulse.breakpoint_array,
-                      pulse.tau_start, pulse.tau_end, _horizon(scene, horizon),
+                      pulse.tau_start, pulse.tau_end, horizon_end(scene, horizon),
                       min(H_MAX_PULSE, max_step), h_free, irtol, base_atol(scene, irtol, many_transitions), track_max,
                       hist_cap, min(H_RESTART, max_step), settle, step_budget(scene, horizon))
 
@@ -402,24 +391,9 @@ def _run_piecewise(scene: Scene, pi8: float, hist_cap: int = 0, horizon: float =
     pulse = scene.pulse
     m = _model_array(scene, pi8, 1.0, thr=math.inf if track_max else None)
     budget = step_budget(scene, horizon)
-    res = piecewise.run(m, pulse.param_array, pulse.tau_start, pulse.tau_end, _horizon(scene, horizon),
+    res = piecewise.run(m, pulse.param_array, pulse.tau_start, pulse.tau_end, horizon_end(scene, horizon),
                         track_max, hist_cap, settle, budget)
     return _checked(Run.of(piecewise, res), scene, horizon, budget, "substeps")
-
-
-def step_budget(scene: Scene, horizon: float = DEFAULT_HORIZON) -> int:
-    """Most Runge-Kutta steps one run of a scene may take.
-
-    ``STEPS_PER_PERIOD`` per isolation period followed (a stiff undamped base is followed for up to
-    ``horizon / Pi3`` periods, each with its own breakaways; for a general building the shortest
-    period it integrates counts, see :func:`isoslide.engine.building.free_step`), and never fewer than
-    :data:`isoslide.engine.kernel.MAX_STEPS`.  A run that needs more raises :class:`StepBudgetError`.
-    """
-    span = _horizon(scene, horizon) - scene.pulse.tau_start
-    periods = span / scene.pi3 if scene.pi3 > 0.0 else span
-    if not scene.paper_model:
-        periods = max(periods, span / (8.0 * building.free_step(scene)))
-    return int(max(kernel.MAX_STEPS, min(STEPS_PER_PERIOD * periods, 1e12)))
 
 
 def _impulse_velocity_l1(scene: Scene) -> float:
@@ -597,21 +571,17 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
                          "(pi9 = 0 and pi12 = 0)")
     pi8 = scene.pi8
     rocking = scene.rocks and (scene.tips or model == "full")
-    P = building.parameters(scene, pi8=pi8, coulomb=coulomb, rocking=rocking)
-    modal = building.modal_data(scene, P)
+    system = assemble(scene, pi8=pi8, coulomb=coulomb, rocking=rocking, horizon=horizon)
     pulse = scene.pulse
     hist_cap = 200_000 if history else 0
-    stop = _horizon(scene, horizon)
-    budget = step_budget(scene, horizon)
-    h_free = min(building.free_step(scene), max_step)
-    breakpoints = _breakpoints(scene)
+    h_free = min(system.free_step, max_step)
 
     def run(irtol, many=False):
-        res = building_kernel.run(P, pulse.code, pulse.param_array, breakpoints, pulse.tau_start,
-                                  _tau_end(scene), stop, min(H_MAX_PULSE, max_step), h_free, irtol,
-                                  base_atol(scene, irtol, many), hist_cap, min(H_RESTART, max_step), settle, budget,
-                                  *modal)
-        return _checked(Run.of(building_kernel, res), scene, horizon, budget, "Runge-Kutta steps", rtol)
+        res = building_kernel.run(system.P, pulse.code, pulse.param_array, system.breakpoints, pulse.tau_start,
+                                  system.end, system.stop, min(H_MAX_PULSE, max_step), h_free, irtol,
+                                  base_atol(scene, irtol, many), hist_cap, min(H_RESTART, max_step), settle,
+                                  system.budget, *system.modal)
+        return _checked(Run.of(building_kernel, res), scene, horizon, system.budget, "Runge-Kutta steps", rtol)
 
     out = _refined(run(integrator_rtol(scene, rtol, horizon)), run, scene, rtol, horizon, demand_integrated=True)
     if out.ints["capacity"]:
@@ -692,17 +662,6 @@ def along_line(scene: Scene) -> tuple:
     return line, lam, theta
 
 
-def _breakpoints(scene: Scene) -> np.ndarray:
-    """Every acting component's breakpoints on the main pulse's time axis (the second pulse's mapped)."""
-    b = scene.pulse.breakpoint_array
-    if scene.bidirectional:
-        py = scene.pulse_y
-        b = np.union1d(b, scene.pi16 + scene.pi15 * np.append(py.breakpoint_array, py.tau_start))
-    if scene.vertical:
-        b = np.union1d(b, scene.pulse_z.breakpoint_array)
-    return b[b > scene.span[0]]
-
-
 def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
                   settle: bool, state: tuple | None = None) -> Solution:
     """:func:`solve` in the plane: :func:`isoslide.engine.planar_kernel.run` with the general building's parameters.
@@ -711,17 +670,14 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
     :func:`~isoslide.engine.planar_kernel.deriv`).
     """
     coulomb = scene.rate_independent and model == "auto"
-    P = building.parameters(scene, pi8=scene.pi8, coulomb=coulomb)
+    system = assemble(scene, pi8=scene.pi8, coulomb=coulomb, horizon=horizon)
+    P, modal, bps, start, stop, budget = (system.P, system.planar_modal, system.breakpoints, system.start,
+                                          system.stop, system.budget)
     n = int(P[building_kernel.P_N])
     hyst = P[building_kernel.P_KIND] == building_kernel.KIND_BILINEAR
-    modal = _planar_modal(building.modal_data(scene, P), n, hyst)
-    start, _ = scene.span
     hist_cap = 200_000 if history else 0
-    stop = _horizon(scene, horizon)
-    budget = step_budget(scene, horizon)
-    h_free = min(building.free_step(scene), max_step)
+    h_free = min(system.free_step, max_step)
     ex = excitation(scene)
-    bps = _breakpoints(scene)
     y0, md0 = (np.zeros(planar_kernel.state_size(n, hyst)), np.array([0.0, 1.0, 0.0, 0.0, 1.0, 0.0])) \
         if state is None else state
 
@@ -731,12 +687,12 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
         kernel_args = (min(H_MAX_PULSE, max_step), h_free, irtol, base_atol(scene, irtol, many))
         if grid is not None:
             # a recorded pair: the stick phases propagated exactly, the slides in the planar kernel
-            res = planar_piecewise.run(_model_array(scene, scene.pi8, 1.0), *grid, _tau_end(scene), stop, hist_cap,
+            res = planar_piecewise.run(_model_array(scene, scene.pi8, 1.0), *grid, system.end, stop, hist_cap,
                                        settle, budget, P, ex, bps, *kernel_args, min(H_RESTART, max_step), *modal,
                                        planar_kernel.slaved_speed(irtol))
             return _checked(Run.of(planar_piecewise, res), scene, horizon, budget, "substeps and Runge-Kutta steps",
                             rtol)
-        res = planar_kernel.run(P, ex, bps, start, _tau_end(scene), stop, *kernel_args, hist_cap,
+        res = planar_kernel.run(P, ex, bps, start, system.end, stop, *kernel_args, hist_cap,
                                 min(H_RESTART, max_step), settle, budget, *modal, np.asarray(y0, dtype=float),
                                 np.asarray(md0, dtype=float), planar_kernel.slaved_speed(irtol), False,
                                 np.empty(len(y0) + 6))
@@ -751,19 +707,6 @@ def _solve_planar(scene: Scene, rtol: float, history: bool, horizon: float, mode
     if history:
         sol = dataclasses.replace(sol, history=_planar_history(out.hist, n, scene, hyst))
     return sol
-
-
-def _planar_modal(modal: tuple, n: int, hyst: bool) -> tuple:
-    """The general kernel's modal data (:func:`isoslide.engine.building.modal_data`) in the planar kernel's axis order.
-
-    An axis of the planar state is ``[x, x', xs.., xs'..]`` and a bilinear bearing's ``fh``, which
-    the general kernel's state holds last (after the block's ``u, u'``): ``W``'s columns and
-    ``V``'s rows are taken in that order.
-    """
-    Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh = modal
-    cols = list(range(2 + 2 * n)) + ([Wm.shape[1] - 1] if hyst else [])
-    return (np.ascontiguousarray(Wm[:, cols]), Cm, np.ascontiguousarray(Vm[cols, :]), Lm,
-            np.ascontiguousarray(Wh[:, cols]), Ch, np.ascontiguousarray(Vh[cols, :]), Lh)
 
 
 def _planar_history(h: np.ndarray, n: int, scene: Scene, hyst: bool = False) -> History:

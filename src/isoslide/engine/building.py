@@ -314,7 +314,8 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
             out.extend(_empty_modal(ny))
             continue
         lam, V = np.linalg.eig(A)
-        if np.max(lam.real) > 1e-12 * max(1.0, np.max(np.abs(lam))) or np.linalg.cond(V) > 1e8:
+        cond = np.linalg.cond(V)
+        if np.max(lam.real) > 1e-12 * max(1.0, np.max(np.abs(lam))) or cond > 1e8:
             out.extend(_empty_modal(ny))
             continue
         order = np.argsort(-np.abs(lam), kind="stable")
@@ -336,6 +337,6 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
             if len(demand_rows) > 1:
                 c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, zp, zv, 0.0, 0.0, P[bk.P_KD], P)
         # a relative margin for the round-off of the eigen-decomposition
-        margin = 1.0 + 1e-12 + 1e-14 * np.linalg.cond(V)
+        margin = 1.0 + 1e-12 + 1e-14 * cond
         out.extend([W, (margin * (c @ V)).astype(np.complex128), Vfull, lam.astype(np.complex128)])
     return tuple(out)

@@ -14,11 +14,11 @@ import math
 
 import numpy as np
 
-from . import building
 from . import building_kernel as bk
 from . import planar_kernel
 from ..pulses import SAMPLED
 from ..scene import Scene
+from .system import assemble
 
 __all__ = ["excitation", "floor_motion", "pair_grid"]
 
@@ -51,7 +51,7 @@ def floor_motion(scene: Scene, history) -> np.ndarray:
     """
     if history.x.ndim != 2:
         raise ValueError("history is one-dimensional; allowed: the history of a scene that ran in the plane")
-    P = building.parameters(scene, pi8=scene.pi8, coulomb=scene.rate_independent)
+    P = assemble(scene, pi8=scene.pi8, coulomb=scene.rate_independent).P
     n = int(P[bk.P_N])
     hyst = P[bk.P_KIND] == bk.KIND_BILINEAR
     rows = history.tau.size

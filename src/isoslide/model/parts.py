@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -199,13 +200,26 @@ class Superstructure:
         ``kappa r_j``, ``kappa`` chosen so that the fixed-base fundamental period is ``Pi12``; the
         damping is classical with ratio ``Pi13`` in every fixed-base mode
         (:mod:`isoslide.model.shear_building`).  One floor: ``k_s = m_st (2 pi/Pi12)^2``,
-        ``c_s = 2 Pi13 (2 pi/Pi12) m_st`` exactly.
+        ``c_s = 2 Pi13 (2 pi/Pi12) m_st`` exactly.  Derived once per superstructure (the arrays
+        are shared: do not change them).
         """
+        return self._modes[:3]
+
+    @property
+    def shortest_period(self) -> float:
+        """Shortest fixed-base period (``Pi12`` for one floor; 0 when rigid)."""
+        if not self.flexible or self.storeys == 1:
+            return self.period
+        return self._modes[3]
+
+    @cached_property
+    def _modes(self) -> tuple:
+        """``(masses, Ks, Cs, shortest period)`` of :meth:`matrices` and :attr:`shortest_period`."""
         n = self.storeys
         ws = 2.0 * math.pi / self.period
         if n == 1:
             return (np.array([self.mass]), np.array([[self.mass * ws * ws]]),
-                    np.array([[2.0 * self.damping * ws * self.mass]]))
+                    np.array([[2.0 * self.damping * ws * self.mass]]), self.period)
         w = np.full(n, 1.0 / n) if self.floor_masses is None else np.asarray(self.floor_masses)
         r = np.ones(n) if self.storey_stiffnesses is None else np.asarray(self.storey_stiffnesses)
         masses = self.mass * w
@@ -213,16 +227,8 @@ class Superstructure:
         omega, _ = shear_building.fixed_base_modes(masses, shape)
         Ks = (ws / omega[0]) ** 2 * shape
         omega, phi = shear_building.fixed_base_modes(masses, Ks)
-        return masses, Ks, shear_building.classical_damping(masses, omega, phi, self.damping)
-
-    @property
-    def shortest_period(self) -> float:
-        """Shortest fixed-base period (``Pi12`` for one floor; 0 when rigid)."""
-        if not self.flexible or self.storeys == 1:
-            return self.period
-        masses, Ks, _ = self.matrices()
-        omega, _ = shear_building.fixed_base_modes(masses, Ks)
-        return 2.0 * math.pi / omega[-1]
+        return (masses, Ks, shear_building.classical_damping(masses, omega, phi, self.damping),
+                2.0 * math.pi / omega[-1])
 
 
 @dataclass(frozen=True)
@@ -305,8 +311,18 @@ def building_of(scene, rocking: bool | None = None) -> Building:
     contents sit on the scene's floor of a shear building, on the slab of a rigid one.  They are a
     block that can rock when ``rocking`` (default: when the scene's block tips before it can slide,
     :attr:`isoslide.Scene.tips`; ``True`` keeps the rocking model for any block, to check that the
-    sliding model is its answer where it cannot tip).
+    sliding model is its answer where it cannot tip).  The parts are derived once per scene and
+    model (a scene is immutable) and kept with it.
     """
+    rocking = bool((scene.tips if rocking is None else rocking) and scene.rocks)
+    built = scene.__dict__.setdefault("_parts", {})
+    if rocking not in built:
+        built[rocking] = _assembled(scene, rocking)
+    return built[rocking]
+
+
+def _assembled(scene, rocking: bool) -> Building:
+    """:func:`building_of` derived anew (``rocking``: a block that can rock, given by the scene)."""
     kind = "fixed" if scene.pi3 == 0.0 else scene.isolator
     groups = {"fixed": {}, "linear": dict(period=scene.pi3, damping=scene.pi4),
               "bilinear": dict(period=scene.pi3, damping=scene.pi4, strength=scene.pi9,
@@ -319,7 +335,7 @@ def building_of(scene, rocking: bool | None = None) -> Building:
     sup = Superstructure(scene.pi11, scene.pi12, scene.pi13, scene.storeys, scene.floor_masses,
                          scene.storey_stiffnesses) if flexible else Superstructure()
     block = {}
-    if (scene.tips if rocking is None else rocking) and scene.rocks:
+    if rocking:
         block = dict(aspect=scene.pi18, frequency=scene.pi19, restitution=scene.restitution,
                      gravity=1.0 / (scene.pi18 * scene.pi21))
     contents = Contents(floor=scene.floor_index if flexible else 0, mass=scene.pi8, kinetic=scene.pi2,
