@@ -69,3 +69,33 @@ def test_opensees_report_ends_with_the_triple_pendulums_aims():
     assert "at least 20x faster than OpenSees's TripleFrictionPendulum at 0.001 in Pi1 -> MET" in text
     assert "a lower bound: OpenSees did not reach the tolerance" in text
     assert f"at most 2x its cost on the constant-friction pendulum ({PENDULUM}) -> MET (ratio 1.50" in text
+
+
+def test_the_compared_classes_add_the_planar_buildings_and_each_base_of_a_recorded_pair():
+    """Every building at every point, then the planar classes OpenSees's planar model takes, then the pairs."""
+    from isoslide.accuracy.scenes import BUILDINGS, PAIR_POINTS
+
+    classes = opensees_cost.scenes_by_class(pairs=1)
+    names = list(classes)
+    assert names[:len(BUILDINGS)] == list(BUILDINGS)
+    planar = [f"planar: {n}" for n in opensees_cost.PLANAR_CLASSES]
+    pairs = [f"recorded pair, {b}" for b in PAIR_POINTS]
+    assert names[len(BUILDINGS):] == planar + pairs
+    for name in planar + pairs:
+        assert all(sc.planar and sc.pi5 == 1.0 and sc.pi9 == 0.0 and sc.pi12 == 0.0 for sc in classes[name]), name
+    assert len(classes[pairs[0]]) == 1 and classes[pairs[1]][0].pi3 == 0.0
+
+
+@pytest.mark.skipif(not opensees_available(), reason="OpenSees not installed (pip install -e .[peers])")
+def test_a_planar_scene_runs_on_opensees_planar_model_from_its_softest_stick():
+    """The planar classes take their stick stiffnesses coarsest first, each with the planar model's own step."""
+    from isoslide.accuracy.scenes import BUILDING_POINTS, PLANAR_EXCITATION
+
+    scene = Scene(**{**BUILDING_POINTS[2], "pi3": 0.0}, **PLANAR_EXCITATION)
+    pairs = opensees_cost.planar_pairs(scene)
+    assert [k for _, k in pairs] == list(opensees_cost.PLANAR_STIFFNESSES)
+    assert all(a >= b for (a, _), (b, _) in zip(pairs, pairs[1:]))
+    row = opensees_cost.compare(scene, tolerance=1.0, horizon=2.0, repeats=1)
+    assert (row["dtau"], row["stick"], row["reached"]) == (*pairs[0], True)
+    strict = opensees_cost.compare(scene, pairs=pairs[:2], tolerance=1e-14, horizon=2.0, repeats=1)
+    assert strict["stick"] == pairs[1][1] and strict["opensees_error"] < row["opensees_error"]

@@ -55,8 +55,11 @@ import numpy as np
 
 from . import accuracy, config, records
 from .accuracy import kernel_targets, measurements, opensees_cost, rocking_cost
-from .accuracy.scenes import (BUILDING_POINTS, BUILDINGS, PENDULUM, SPEED_PENDULUM, STOREYS, STOREYS_NAME,
-                              TARGET_TFP_RATIO, TFP_PENDULUM)
+from .accuracy.scenes import (BUILDING_POINTS, BUILDINGS, PAIR_LAG, PAIR_POINTS, PAIR_SUITE, PENDULUM,  # noqa: F401
+                              PLANAR_BUILDINGS, PLANAR_EXCITATION, PLANAR_POINTS, SPEED_PENDULUM, STOREYS,
+                              STOREYS_NAME, TARGET_TFP_RATIO, TFP_PENDULUM, recorded_pairs)
+from .accuracy.timing import assembly_times
+from .engine import building
 from .engine.system import unassembled
 from .model.parts import building_of
 from .scene import Scene
@@ -334,14 +337,18 @@ def _limits(p, rows: dict, summ: dict, paper: str) -> None:
     """
     steps0 = np.array(rows[paper]["steps"], dtype=float)
     p("what limits each: steps per scene and cost per step against the paper model's "
-      "(shortest period followed, units of T_p)")
+      "(shortest period followed, units of T_p), and the assembly of a general scene (parts, arrays, modal data; "
+      "its share of the cost per scene)")
     for name, r in rows.items():
         if name == paper:
             continue
         steps = float(np.median(np.array(r["steps"], dtype=float) / steps0))
         per_step = summ[name]["ratio"] / steps
-        summ[name].update(steps_ratio=steps, step_cost_ratio=per_step, shortest_period=r["period"])
-        p(f"  {name:46s} steps x{steps:5.2f}  cost per step x{per_step:5.2f}  shortest period {r['period']:.3g}")
+        share = r["assembly_us"] / summ[name]["us"]
+        summ[name].update(steps_ratio=steps, step_cost_ratio=per_step, shortest_period=r["period"],
+                          assembly_us=r["assembly_us"], assembly_share=share)
+        p(f"  {name:46s} steps x{steps:5.2f}  cost per step x{per_step:5.2f}  shortest period {r['period']:.3g}  "
+          f"assembly {r['assembly_us']:6.0f} us ({100.0 * share:3.0f} %)")
 
 
 def run_buildings(repeats: int = 7) -> dict:
@@ -362,6 +369,9 @@ def run_buildings(repeats: int = 7) -> dict:
                 sol = solve(sc)
                 out[name]["times"][k].append(time.perf_counter() - t0)
                 out[name]["pi1"][k], out[name]["models"][k], out[name]["steps"][k] = sol.pi1, sol.model, sol.n_steps
+    for name, scs in scenes.items():
+        general = [sc for sc in scs if building.reduction(sc)[0] == "general"]
+        out[name]["assembly_us"] = 1e6 * float(np.median(assembly_times(general, repeats))) if general else 0.0
     return {"rows": out, "points": BUILDING_POINTS, "repeats": repeats}
 
 
@@ -398,25 +408,8 @@ def report_buildings(res: dict, file=sys.stdout) -> dict:
     return summ
 
 
-PLANAR_POINTS = [dict(pi2=pi2, pi3=pi3, pi4=0.1) for pi2 in (0.1, 0.2, 0.3) for pi3 in (1.0, 2.0)]
-"""Pi points of the planar section: every building of :data:`PLANAR_BUILDINGS` at each."""
-PLANAR_EXCITATION = dict(pulse="ricker", pulse_y="antisymmetric_ricker", pi14=0.7)
-"""The planar scenes' excitation: a Ricker pulse along x, an antisymmetric Ricker of 0.7 a_p along y."""
-PLANAR_BUILDINGS = {
-    "fixed base": dict(pi3=0.0),
-    "linear isolator, two-way coupling (pi8 = 0.2)": dict(pi8=0.2),
-    "Stribeck contents (pi5 = 0.7, pi6 = 20)": dict(pi5=0.7, pi6=20.0),
-    "3 storeys, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, storeys=3, floor="roof"),
-}
-"""Buildings of the planar section (keyword arguments of :class:`isoslide.Scene` over each point)."""
 TARGET_PLANAR_RATIO = 3.0
 """Goal: a planar scene costs at most this many times the same scene without its second component."""
-PAIR_SUITE = "fema-p695-near-field-pulse"
-"""Suite whose recorded pairs the planar section times."""
-PAIR_POINTS = {"isolated": dict(pi2=0.2, pi3=2.0, pi4=0.1), "fixed base": dict(pi2=0.2, pi3=0.0, pi4=0.1)}
-"""Pi points at which each recorded pair runs as recorded."""
-PAIR_LAG = 0.25
-"""Lag (units of T_p) of a bundled record paired with itself when :data:`PAIR_SUITE` is unavailable."""
 TARGET_PAIR_US_PER_SAMPLE = 1.0
 """Goal: a recorded pair costs at most this many microseconds per sample of its x component, on median."""
 
@@ -495,22 +488,6 @@ def report_planar(res: dict, file=sys.stdout) -> dict:
     return summ
 
 
-def _pairs(n: int, suite_name: str = PAIR_SUITE) -> tuple:
-    """``(source, [(name, x, y, lag), ...])``: the suite's first ``n`` pairs, or bundled records lagged.
-
-    When the suite cannot be read, each of the first ``n`` bundled samples is paired with itself
-    lagged by :data:`PAIR_LAG` of its fitted period (a planar excitation of one record).
-    """
-    try:
-        motions = records.suite(suite_name)
-    except (ValueError, ImportError, OSError) as exc:
-        names = records.samples()[:n]
-        return (f"bundled samples paired with themselves lagged by {PAIR_LAG:g} T_p ({suite_name} unavailable: "
-                f"{' '.join(str(exc).split())})",
-                [(nm, records.sample(nm), records.sample(nm), PAIR_LAG) for nm in names])
-    return suite_name, [(gm.name, gm.x, gm.y, 0.0) for gm in motions[:n]]
-
-
 def run_pairs(n: int = 4, repeats: int = 5, suite_name: str = PAIR_SUITE) -> dict:
     """Time recorded pairs as recorded, beside their x component alone, at each of :data:`PAIR_POINTS`.
 
@@ -530,7 +507,7 @@ def run_pairs(n: int = 4, repeats: int = 5, suite_name: str = PAIR_SUITE) -> dic
         ``rows``: per pair and point the samples of the x component, the median planar and 1-D
         times, Pi1 and the models; ``source``, ``repeats``.
     """
-    source, pairs = _pairs(n, suite_name)
+    source, pairs = recorded_pairs(n, suite_name)
     cases = []
     for name, x, y, lag in pairs:
         for where, pt in PAIR_POINTS.items():

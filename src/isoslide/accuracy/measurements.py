@@ -150,5 +150,5 @@ def opensees_rows(summary: dict, points: int) -> list[Measurement]:
                  "(the tolerance not reached)")
         rows.append(Measurement(f"OpenSees / isoslide cost per scene at 1e-3 in Pi1: {name}", f"{s['ratio']:.0f}",
                                 "ratio", f"isoslide {s['isoslide_ms']:.2f} ms, OpenSees {s['opensees_s']:.2f} s "
-                                f"{reach}; medians over {points} Pi points; {machine_conditions()}"))
+                                f"{reach}; medians over {s.get('scenes', points)} scenes; {machine_conditions()}"))
     return rows

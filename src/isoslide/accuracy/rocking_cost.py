@@ -19,10 +19,10 @@ import time
 import numpy as np
 
 from .. import records
-from ..engine import building
 from ..engine.system import unassembled
 from ..scene import Scene
 from ..solver import solve
+from .timing import assembly_times
 
 POINTS = {
     "fixed base": dict(pi3=0.0),
@@ -60,17 +60,6 @@ def _time(scenes: list, repeats: int) -> np.ndarray:
     return np.median(t, axis=0)
 
 
-def _assembly(scenes: list, repeats: int) -> np.ndarray:
-    """Median time (s) of assembling each general scene into the kernel's arrays (parameters and modal data)."""
-    t = np.zeros((repeats, len(scenes)))
-    for r in range(repeats):
-        for k, sc in enumerate(scenes):
-            t0 = time.perf_counter()
-            building.modal_data(sc, building.parameters(sc))
-            t[r, k] = time.perf_counter() - t0
-    return np.median(t, axis=0)
-
-
 def run(repeats: int = 7) -> dict:
     """Time every rocking scene beside its sliding twin; the records per sample at :data:`RECORD_BUILDING`."""
     rows = []
@@ -86,7 +75,7 @@ def run(repeats: int = 7) -> dict:
     for sc in flat[:2]:   # compile or load every path before timing
         solve(sc)
     times = _time(flat, repeats)
-    assembly = _assembly(flat[::2], repeats)
+    assembly = assembly_times(flat[::2], repeats)
     for k, r in enumerate(rows):
         rock, slide = r.pop("scenes")
         sol, twin = solve(rock), solve(slide)

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import records
 from ..groups import INPUT_NAMES, group
 from ..scene import Scene
 from ..solver import peak_stuck_demand
@@ -246,3 +247,37 @@ TARGET_TFP_RATIO = 2.0
 """Aim: isoslide's cost on the triple friction pendulum at most this many times its cost on :data:`PENDULUM`."""
 PENDULUM = "friction pendulum (pi9 = 0.05)"
 """Row of the constant-friction pendulum."""
+
+PLANAR_POINTS = [dict(pi2=pi2, pi3=pi3, pi4=0.1) for pi2 in (0.1, 0.2, 0.3) for pi3 in (1.0, 2.0)]
+"""Pi points of the planar scenes of the bench: every building of :data:`PLANAR_BUILDINGS` at each."""
+PLANAR_EXCITATION = dict(pulse="ricker", pulse_y="antisymmetric_ricker", pi14=0.7)
+"""The planar scenes' excitation: a Ricker pulse along x, an antisymmetric Ricker of 0.7 a_p along y."""
+PLANAR_BUILDINGS = {
+    "fixed base": dict(pi3=0.0),
+    "linear isolator, two-way coupling (pi8 = 0.2)": dict(pi8=0.2),
+    "Stribeck contents (pi5 = 0.7, pi6 = 20)": dict(pi5=0.7, pi6=20.0),
+    "3 storeys, contents on the roof": dict(pi11=0.6, pi12=0.2, pi13=0.02, storeys=3, floor="roof"),
+}
+"""Buildings of the planar scenes of the bench (keyword arguments of :class:`isoslide.Scene` over each point)."""
+PAIR_SUITE = "fema-p695-near-field-pulse"
+"""Suite whose recorded pairs the bench times."""
+PAIR_POINTS = {"isolated": dict(pi2=0.2, pi3=2.0, pi4=0.1), "fixed base": dict(pi2=0.2, pi3=0.0, pi4=0.1)}
+"""Pi points at which each recorded pair runs as recorded."""
+PAIR_LAG = 0.25
+"""Lag (units of T_p) of a bundled record paired with itself when :data:`PAIR_SUITE` is unavailable."""
+
+
+def recorded_pairs(n: int, suite_name: str = PAIR_SUITE) -> tuple:
+    """``(source, [(name, x, y, lag), ...])``: the suite's first ``n`` pairs, or bundled records lagged.
+
+    When the suite cannot be read, each of the first ``n`` bundled samples is paired with itself
+    lagged by :data:`PAIR_LAG` of its fitted period (a planar excitation of one record).
+    """
+    try:
+        motions = records.suite(suite_name)
+    except (ValueError, ImportError, OSError) as exc:
+        names = records.samples()[:n]
+        return (f"bundled samples paired with themselves lagged by {PAIR_LAG:g} T_p ({suite_name} unavailable: "
+                f"{' '.join(str(exc).split())})",
+                [(nm, records.sample(nm), records.sample(nm), PAIR_LAG) for nm in names])
+    return suite_name, [(gm.name, gm.x, gm.y, 0.0) for gm in motions[:n]]

@@ -8,6 +8,7 @@ import time
 
 import numpy as np
 
+from ..engine.system import assemble, unassembled
 from ..peers import WorkLimitError, solve_opensees, solve_reference, solve_regularized
 from ..scene import Scene
 from ..solver import StepBudgetError, solve
@@ -22,6 +23,22 @@ STATUS_ATTRS = {"long_name": "outcome of the run", "units": "1",
                 "flag_values": np.array(list(STATUS.values()), dtype=np.int8),
                 "flag_meanings": " ".join(k.replace("-", "_") for k in STATUS)}
 """CF attributes of the ``status`` variable."""
+
+
+def assembly_times(scenes: list, repeats: int) -> np.ndarray:
+    """Median time (s) of assembling each general scene as a solve does (:func:`isoslide.engine.system.assemble`).
+
+    Each assembly is of a new copy (:func:`~isoslide.engine.system.unassembled`): the parts, the
+    kernel's arrays, the modal data, the breakpoints and the step budget, derived from the groups.
+    """
+    t = np.zeros((repeats, len(scenes)))
+    for r in range(repeats):
+        for k, sc in enumerate(scenes):
+            sc = unassembled(sc)
+            t0 = time.perf_counter()
+            assemble(sc, pi8=sc.pi8, coulomb=sc.rate_independent)
+            t[r, k] = time.perf_counter() - t0
+    return np.median(t, axis=0)
 
 
 PEER_MARGIN = 2.0
