@@ -73,3 +73,18 @@ def test_rocking_rows_carry_the_ratio_what_limits_it_and_the_records_cost():
     assert [r.value for r in rows] == ["1.20 / 5.50", "4.0 / 2.5", "900 / 90"]
     assert "24 scenes" in rows[0].conditions and "3 scenes" in rows[1].conditions and "18 records" in rows[2].conditions
     assert len(ms.rocking_rows({"ratio_median": 1.0, "ratio_max": 2.0, "rows": 4}, repeats=3)) == 1
+
+
+def test_planar_rows_carry_each_buildings_ratio_the_pairs_cost_per_sample_and_the_studys_cpu_time():
+    scenes = {"fixed base": {"ratio": 10.2, "err_max": 5e-9}, "3 storeys": {"ratio": 2.1, "err_max": 3e-10}}
+    pairs = {"isolated": {"us_per_sample_median": 1.8, "us_per_sample_1d_median": 0.07},
+             "fixed base": {"us_per_sample_median": 3.3, "us_per_sample_1d_median": 0.068},
+             "us_per_sample_median": 2.1, "met": False}
+    frag = {"config": "x.yaml", "analyses": 16000, "sampled": [1, 2, 3, 4],
+            "isolated": {"mean_ms": 30.0}, "fixed_base": {"mean_ms": 60.0}}
+    rows = ms.planar_rows({"scenes": scenes, "pairs": pairs, "fragility": frag}, 7, 3.0, 0.5)
+    assert [r.value for r in rows] == ["10.2 / 2.1", "5.0e-09", "2.10", "8.0 / 16.0"]
+    assert rows[0].quantity.endswith("fixed base / 3 storeys") and "largest fixed base" in rows[0].conditions
+    assert "goal 0.5" in rows[2].quantity and "isolated 1.80" in rows[2].conditions
+    assert "16000 analyses per building" in rows[3].quantity and rows[3].unit == "CPU-min"
+    assert len(ms.planar_rows({"scenes": scenes, "pairs": pairs, "fragility": None}, 3, 3.0, 0.5)) == 3

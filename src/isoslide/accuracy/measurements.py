@@ -30,6 +30,9 @@ BUILDINGS_COMMAND = "python -m isoslide.bench --buildings-only"
 OPENSEES_COMMAND = "python -m isoslide.bench --opensees"
 """The command whose rows of the topic ``opensees_cost`` :func:`opensees_rows` makes."""
 
+PLANAR_COMMAND = "python -m isoslide.bench --planar-only"
+"""The command whose rows of the topic ``planar`` :func:`planar_rows` makes."""
+
 ROCKING_COMMAND = "python -m isoslide.bench --rocking-only"
 """The command whose rows of the topic ``rocking`` :func:`rocking_rows` makes."""
 
@@ -114,6 +117,35 @@ def buildings_rows(summary: dict, paper: str, points: int, repeats: int) -> list
     worst = max(s["err_max"] for s in summary.values())
     rows.append(Measurement("largest error of any building class at default rtol", f"{worst:.1e}", "1",
                             "against rtol = 1e-12"))
+    return rows
+
+
+def planar_rows(summary: dict, repeats: int, target_ratio: float, target_us: float) -> list[Measurement]:
+    """The planar section's figures: planar over 1-D per building, recorded pairs per sample, the study's cost.
+
+    ``summary`` is :func:`isoslide.bench.run_report_planar`'s return (``scenes``, ``pairs`` and
+    ``fragility``); ``target_ratio`` and ``target_us`` the section's goals.
+    """
+    scenes, pairs, frag = summary["scenes"], summary["pairs"], summary.get("fragility")
+    worst = max(scenes, key=lambda k: scenes[k]["ratio"])
+    rows = [Measurement("planar cost over the same 1-D scene: " + " / ".join(scenes),
+                        " / ".join(f"{v['ratio']:.1f}" for v in scenes.values()), "x",
+                        f"medians of {repeats} interleaved runs; goal {target_ratio:g}x, largest {worst}; "
+                        f"{machine_conditions()}"),
+            Measurement("planar scenes at default rtol: largest error of Pi1",
+                        f"{max(v['err_max'] for v in scenes.values()):.1e}", "1", "against rtol = 1e-12")]
+    bases = [k for k, v in pairs.items() if isinstance(v, dict)]
+    rows.append(Measurement(f"recorded pairs in the plane, median cost per sample over every pair and base "
+                            f"(goal {target_us:g})", f"{pairs['us_per_sample_median']:.2f}", "us",
+                            "; ".join(f"{b} {pairs[b]['us_per_sample_median']:.2f} (the x component alone "
+                                      f"{pairs[b]['us_per_sample_1d_median']:.3f})" for b in bases)))
+    if frag is not None:
+        cpu = {b: frag[b]["mean_ms"] * 1e-3 * frag["analyses"] / 60.0 for b in frag if isinstance(frag[b], dict)
+               and "mean_ms" in frag[b]}
+        rows.append(Measurement(f"planar fragility study at full size ({frag['analyses']} analyses per building): "
+                                "CPU time of solving, " + " / ".join(cpu), " / ".join(f"{v:.1f}" for v in cpu.values()),
+                                "CPU-min", f"{len(frag['sampled'])} analyses per building timed (seeded draw), each "
+                                "a planar and two 1-D solves with the floor's peaks"))
     return rows
 
 
