@@ -273,3 +273,24 @@ def test_modules_of_the_flat_layout_still_import_from_their_old_names():
     assert old is importlib.import_module("isoslide.studies.sweep")
     assert any(issubclass(w.category, DeprecationWarning) and "isoslide.studies.sweep" in str(w.message)
                for w in caught)
+
+
+INNER_LOOPS = {
+    "building_kernel": ("deriv", "rk_step", "_event", "_event_at", "_accels", "_block_load", "normal", "friction",
+                        "bearing_level", "_hysteretic", "_storey_force", "_base_shear", "_floor_stuck",
+                        "_bearing_need", "contact"),
+    "planar_kernel": ("deriv", "rk_step", "_event", "_demand", "_bearing_need", "_slaved_dir", "_turning"),
+}
+"""The functions each Runge-Kutta stage or event evaluation of the general and planar kernels runs."""
+
+
+@pytest.mark.parametrize("module", sorted(INNER_LOOPS))
+def test_the_kernels_inner_loops_are_compiled_without_reference_counting(module):
+    """What runs at every stage allocates nothing, so it is compiled without numba's reference counts
+    (atomic increments and decrements on every array argument at every call): a function that
+    needed them would not compile."""
+    import importlib
+
+    mod = importlib.import_module(f"isoslide.engine.{module}")
+    counted = [name for name in INNER_LOOPS[module] if getattr(mod, name).targetoptions.get("_nrt", True)]
+    assert not counted, f"{module}: {counted} are compiled with reference counting"

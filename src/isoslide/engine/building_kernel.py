@@ -179,7 +179,7 @@ _stribeck = njit(cache=True)(stribeck)
 jit_cache.seed(_stribeck)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def friction(v, P):
     """Friction level ``phi(|v|)`` (units of a_p) and its derivative ``d phi / d|v|``."""
     thr = P[P_THR]
@@ -188,7 +188,7 @@ def friction(v, P):
     return _stribeck(v, thr, P[P_PI2], P[P_PI6], P[P_PI7], 1.0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def bearing_level(w, P):
     """A sliding bearing's friction level at the speed ``w`` along its sliding direction, and ``d/dw``.
 
@@ -205,20 +205,20 @@ def bearing_level(w, P):
     return P[P_Q] - e, a * e
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _held(im, P):
     """True while the slab is held to the ground (stuck sliding bearing or triple pendulum, or a fixed base)."""
     kind = P[P_KIND]
     return kind == KIND_FIXED or ((kind == KIND_SLIDING or kind == KIND_TFP) and im == 0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _sticks(P):
     """True for an isolator that holds the slab with true stick (a sliding bearing or a triple pendulum)."""
     return P[P_KIND] == KIND_SLIDING or P[P_KIND] == KIND_TFP
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def hold_limit(sig, P):
     """Largest ``sig fh`` a held slab's bearing gives before it slides in ``sig`` (units ``M_b a_p``, per unit ``nz``).
 
@@ -231,13 +231,13 @@ def hold_limit(sig, P):
     return P[P_QS]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _excess(fh, nz, P):
     """How far the force ``fh`` that holds the slab lies outside the stick band (positive: it slides)."""
     return max(fh - hold_limit(1.0, P) * nz, -fh - hold_limit(-1.0, P) * nz)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _push(fh, nz, P):
     """Direction in which a held slab slides when ``fh`` lies outside its band: towards the nearer-exceeded edge."""
     return 1.0 if fh - hold_limit(1.0, P) * nz > -fh - hold_limit(-1.0, P) * nz else -1.0
@@ -396,7 +396,7 @@ def tfp_moved(u0, r, dx, P, u):
             u[i] = d if u[i] > 0.0 else -d
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def normal(tau, P):
     """Normal force over its static value, ``1 + Pi17 p_z(tau)``, and its tau-rate (1, 0 without vertical motion).
 
@@ -412,19 +412,19 @@ def normal(tau, P):
     return 1.0 + amp * accel_at(code, zp, tau), amp * jerk_at(code, zp, tau)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _pendulum(P):
     """1 for a sliding bearing (a friction pendulum's stiffness scales with its normal force), else 0."""
     return 1.0 if P[P_KIND] == KIND_SLIDING else 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _stiffness(nz, P):
     """Isolator stiffness under the normal-force factor ``nz`` (a friction pendulum's scales with it)."""
     return P[P_KD] * nz if P[P_KIND] == KIND_SLIDING else P[P_KD]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _hysteretic(im, nz, y, P):
     """Hysteretic isolator force of a moving slab.
 
@@ -441,7 +441,7 @@ def _hysteretic(im, nz, y, P):
     return 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _storey_force(j, zp, zv, P):
     """Force of the superstructure on floor ``j`` (0-based), negated: ``G_j = (Ks zp + Cs zv)_j``.
 
@@ -459,7 +459,7 @@ def _storey_force(j, zp, zv, P):
     return acc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _base_shear(zp, zv, P):
     """Force of the superstructure on the slab, ``S = sum_j G_j`` (linear in ``zp, zv``)."""
     acc = 0.0
@@ -502,7 +502,7 @@ def _tilt(bm, y, P):
     return s, psi, s * y[Y_XS + 2 * n + 1], math.atan(P[P_ROCK]) - psi
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _block_load(bm, nz, y, P):
     """How the block of mode ``bm`` loads its floor: ``(a1, f, ac)``.
 
@@ -537,7 +537,7 @@ def _block_load(bm, nz, y, P):
     return 0.0, m * mu * V * sig, ac
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _accels(bm, im, p, nz, y, P, A):
     """Accelerations of a mode: ``(Ab, A_F, u'', fh, R, theta'')``; the floors' into ``A``.
 
@@ -593,7 +593,7 @@ def _accels(bm, im, p, nz, y, P, A):
     return Ab, AF, a - AF, fh, R, s * psdd
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def contact(bm, nz, y, AF, ac, P):
     """The rocking block's contact force per unit mass ``(H, V)`` at its pivot (units of a_p).
 
@@ -608,7 +608,7 @@ def contact(bm, nz, y, AF, ac, P):
     return ac + s * R * (cd * psdd + sd * psd * psd), gam + R * (sd * psdd - cd * psd * psd)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def deriv(bm, im, tau, y, P, code, params, out):
     """Right-hand side of the mode ``(bm, im)`` at ``(tau, y)``, written into ``out``."""
     n = int(P[P_N])
@@ -635,7 +635,7 @@ def deriv(bm, im, tau, y, P, code, params, out):
         else 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _floor_stuck(im, x, xd, zp, zv, fh, p, kd, P):
     """Floor acceleration ``A_F`` of a stuck block (units of a_p), with the isolator stiffness ``kd``.
 
@@ -653,7 +653,7 @@ def _floor_stuck(im, x, xd, zp, zv, fh, p, kd, P):
     return (-(kd * x + P[P_CB] * xd + fh) + S) / (P[P_MB] + m)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _bearing_need(bm, x, zp, zv, p, rs, kd, P):
     """Force (units of M_b a_p) that holds a stuck sliding bearing's slab to the ground.
 
@@ -667,7 +667,7 @@ def _bearing_need(bm, x, zp, zv, p, rs, kd, P):
     return -P[P_MB] * p - kd * x + S + r
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)``.
 
@@ -680,12 +680,24 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
     EV_PIVOT  ``mu_s V - |H|`` (the rocking block's pivot slips; rate not given: NaN)
     EV_APEX   ``psi'`` (the tilt's extremes)
     EV_FLIGHT ``V`` below the tipping angle, positive above it (the rocking block would leave the floor)
+
+    ``work`` receives the right-hand side at ``(tau, y)`` for the kinds that read it
+    (:func:`_event_at`).
     """
+    if kind != EV_YIELD and kind != EV_TFP and kind != EV_PIVOT and kind != EV_FLIGHT:
+        deriv(bm, im, tau, y, P, code, params, work)
+    return _event_at(kind, sig, bm, im, tau, y, P, code, params, work)
+
+
+@njit(cache=True, _nrt=False)
+def _event_at(kind, sig, bm, im, tau, y, P, code, params, d):
+    """:func:`_event` with the right-hand side at ``(tau, y)`` given in ``d`` (read by every kind but
+    EV_YIELD, EV_TFP, EV_PIVOT and EV_FLIGHT; the last two write the floors' accelerations into it)."""
+    work = d
     n = int(P[P_N])
     ny = y.shape[0]
     ud = ny - 2
     fhi = ny - 1
-    deriv(bm, im, tau, y, P, code, params, work)
     if kind == EV_XD:
         return sig * y[Y_XD], sig * work[Y_XD]
     if kind == EV_TFP:
@@ -703,7 +715,7 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
         return s * y[th + 1], s * work[th + 1]
     if kind == EV_PIVOT or kind == EV_FLIGHT:
         nz, _ = normal(tau, P)
-        A = np.empty(n)
+        A = d[Y_XS + n:Y_XS + 2 * n]    # scratch: these kinds do not read the right-hand side
         a = _accels(bm, im, accel_at(code, params, tau), nz, y, P, A)
         H, V = contact(bm, nz, y, a[1], a[1] + a[2], P)
         if kind == EV_FLIGHT:
@@ -759,16 +771,17 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
 # --- one Runge-Kutta step ---------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def rk_step(bm, im, tau, y, h, P, code, params, atol, rtol, K, ynew):
     """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
 
     ``K`` (``(NS + 1, len(y))``) receives the stages, row ``NS`` the right-hand side at the step end;
-    stages at the step end see the pulse's left limit.
+    stages at the step end see the pulse's left limit.  ``ynew`` (never ``y`` itself) holds each
+    stage's state until the step's end state is written into it.
     """
     t_left = _left_limit(tau + h)
     ny = y.shape[0]
-    ys = np.empty(ny)
+    ys = ynew
     deriv(bm, im, tau, y, P, code, params, K[0])
     for st in range(1, NS):
         stage_state(y, h, K, st, ys)
@@ -826,15 +839,16 @@ def locate(kind, sig, bm, im, tau, y, ha, ga, hb, gb, h0, check, P, code, params
 
 @njit(cache=True)
 def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code, params, atol, rtol, check, K, ye,
-                  work, cnt):
+                  work, cnt, d0, d1):
     """First root of a demand event ``kind`` (EV_BLOCK or EV_BEAR, sign ``sig``) in the accepted step.
 
     Found directly when the step ends above the limit, or past an interior peak of the demand
     (a root of its rate, ``peak`` the kind that evaluates it) whose cubic Hermite estimate comes
-    within 1 % of the limit.  Returns ``(found, hs, herr)``; ``ye`` holds the state there.
+    within 1 % of the limit.  ``d0``, ``d1`` hold the right-hand side at the step's ends ``(tau,
+    y)`` and ``(t_end, y1)``.  Returns ``(found, hs, herr)``; ``ye`` holds the state there.
     """
-    g0, r0 = _event(kind, sig, bm, im, tau, y, P, code, params, work)
-    g1, r1 = _event(kind, sig, bm, im, t_end, y1, P, code, params, work)
+    g0, r0 = _event_at(kind, sig, bm, im, tau, y, P, code, params, d0)
+    g1, r1 = _event_at(kind, sig, bm, im, t_end, y1, P, code, params, d1)
     if g1 > 0.0:
         if g0 >= 0.0:
             for i in range(y.shape[0]):
@@ -860,15 +874,16 @@ def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code,
 
 @njit(cache=True, inline="always")
 def _earliest_demand_event(kind, peak, limit, bm, im, tau, y, y1, h, t_end, P, code, params, atol, rtol, check, K,
-                           ye, yb, work, cnt, best, best_sig, hbest, herr_best):
+                           ye, yb, work, cnt, best, best_sig, hbest, herr_best, d0, d1):
     """The earliest of :func:`_demand_event` in both directions, if before the best event so far.
 
     ``(best, best_sig, hbest, herr_best)`` is the best event so far (kind, sign, step length and
-    error estimate; ``yb`` its state); returns it updated.
+    error estimate; ``yb`` its state); returns it updated.  ``d0``, ``d1``: the right-hand side at
+    the step's ends, as for :func:`_demand_event`.
     """
     for sig in (1.0, -1.0):
         found, hs, herr = _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code, params, atol,
-                                        rtol, check, K, ye, work, cnt)
+                                        rtol, check, K, ye, work, cnt, d0, d1)
         if found and hs < hbest:
             best, best_sig, hbest, herr_best = kind, sig, hs, herr
             copy_state(yb, ye)
@@ -1347,6 +1362,8 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     yb = np.empty(ny)
     K = np.empty((NS + 1, ny))
     work = np.empty(ny)
+    d0 = np.empty(ny)
+    d1 = np.empty(ny)
     A = np.empty(nfl)
     cnt = np.zeros(1, dtype=np.int64)
     hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 4))   # history_width(nfl)
@@ -1493,10 +1510,14 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         best_sig = 0.0
         hbest = math.inf
         herr_best = 0.0
+        if bm == 0.0 or (_sticks(P) and im == 0.0):
+            # the demands' rates at the step's ends, shared by every demand event
+            deriv(bm, im, tau, y, P, code, params, d0)
+            deriv(bm, im, t_end_step, y1, P, code, params, d1)
         if bm == 0.0:
             best, best_sig, hbest, herr_best = _earliest_demand_event(
                 EV_BLOCK, EV_BPEAK, thr, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
-                ye, yb, work, cnt, best, best_sig, hbest, herr_best)
+                ye, yb, work, cnt, best, best_sig, hbest, herr_best, d0, d1)
         else:
             if base_slide(bm) != 0.0:
                 found, hs, herr = _speed_candidate(EV_BSPEED, bm, im, tau, y, y1, h, t_end_step, b_just, check, P,
@@ -1519,7 +1540,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         if _sticks(P) and im == 0.0:
             best, best_sig, hbest, herr_best = _earliest_demand_event(
                 EV_BEAR, EV_IPEAK, qs, bm, im, tau, y, y1, h, t_end_step, P, code, params, atol, rtol, check, K,
-                ye, yb, work, cnt, best, best_sig, hbest, herr_best)
+                ye, yb, work, cnt, best, best_sig, hbest, herr_best, d0, d1)
         elif kind == KIND_BILINEAR and im == 0.0:
             for sig in (1.0, -1.0):
                 g0, r0 = _event(EV_YIELD, sig, bm, im, tau, y, P, code, params, work)

@@ -287,7 +287,7 @@ def _block_force(md, y, gx, gy, P, nz, tmp, held, rbx, rby):
     return sg * dx, sg * dy, _level(abs(sigma), nz, P), dx, dy, ax, ay, amag
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _bearing_need(md, y, gx, gy, P, nz, tmp):
     """Force ``(f_x, f_y)`` (units of ``M_b a_p``) a held sliding bearing must supply to hold the slab.
 
@@ -426,7 +426,7 @@ def _rates(md, tau, y, P, ex, out, tmp):
     return AFx, AFy
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def deriv(md, tau, y, P, ex, out, tmp):
     """Right-hand side at ``(tau, y)`` in the modes ``md``, written into ``out``; returns ``(A_Fx, A_Fy)``.
 
@@ -478,7 +478,7 @@ def deriv(md, tau, y, P, ex, out, tmp):
     return AFx, AFy
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _slaved_dir(which, md, tau, y, P, ex, tmp):
     """The slaved direction of the block (``which = 0``) or of a sliding bearing (1) at ``(tau, y)``."""
     gx, gy = ground(tau, ex)
@@ -492,7 +492,7 @@ def _slaved_dir(which, md, tau, y, P, ex, tmp):
     return _unit(-ax, -ay, md[M_E0], md[M_E1])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _turning(which, md, tau, y, P, ex, rate, tmp, dx, dy):
     """Rate ``d'`` of a slaved direction along the motion ``rate`` (central differences; see :data:`FD_STEP`)."""
     ny = y.shape[0]
@@ -507,7 +507,7 @@ def _turning(which, md, tau, y, P, ex, rate, tmp, dx, dy):
     return (px - mx) / (2.0 * eps), (py - my) / (2.0 * eps)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
     """One DOP853 step of length ``h`` from ``(tau, y)`` into ``ynew``; returns the error norm.
 
@@ -540,7 +540,7 @@ def verify(md, tau, y, h, ycand, P, ex, atol, rtol, K):
     return doubling_error(y, yb, ycand, atol, rtol, ny - 4, ny)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _demand(kind, md, tau, y, P, ex, tmp):
     """Value of a demand event (EV_DEMAND or EV_BDEMAND) at ``(tau, y)``; ``tmp`` scratch space."""
     gx, gy = ground(tau, ex)
@@ -555,7 +555,7 @@ def _demand(kind, md, tau, y, P, ex, tmp):
     return math.sqrt(ax * ax + ay * ay) - P[P_THR] * nz
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _event(kind, md, tau, y, P, ex, work):
     """Value and tau-rate ``(g, dg)`` of the event function ``kind`` at ``(tau, y)`` (rate NaN: not given).
 
