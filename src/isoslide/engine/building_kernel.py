@@ -691,8 +691,11 @@ def _event(kind, sig, bm, im, tau, y, P, code, params, work):
 
 @njit(cache=True, _nrt=False)
 def _event_at(kind, sig, bm, im, tau, y, P, code, params, d):
-    """:func:`_event` with the right-hand side at ``(tau, y)`` given in ``d`` (read by every kind but
-    EV_YIELD, EV_TFP, EV_PIVOT and EV_FLIGHT; the last two write the floors' accelerations into it)."""
+    """:func:`_event` with the right-hand side at ``(tau, y)`` given in ``d``.
+
+    Every kind reads ``d`` but EV_YIELD, EV_TFP, EV_PIVOT and EV_FLIGHT; the last two write the
+    floors' accelerations into it.
+    """
     work = d
     n = int(P[P_N])
     ny = y.shape[0]
