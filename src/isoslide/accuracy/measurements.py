@@ -103,8 +103,9 @@ def write_rows(path: Path, topic: str, command: str, rows: list[Measurement], da
 def buildings_rows(summary: dict, paper: str, points: int, repeats: int) -> list[Measurement]:
     """The buildings section's figures: the paper model's cost per scene, every other class's ratio to it.
 
-    ``summary`` is :func:`isoslide.bench.report_buildings`'s return (``us``, ``ratio`` and, for the
-    speed-dependent pendulum, ``pendulum_ratio`` per building), ``paper`` the paper model's row name.
+    ``summary`` is :func:`isoslide.bench.report_buildings`'s return (``us``, ``ratio``, what limits
+    each class: ``steps_ratio``, ``step_cost_ratio``, ``assembly_us`` and ``assembly_share``, and, for
+    the pendulums, ``pendulum_ratio`` per building), ``paper`` the paper model's row name.
     """
     base = summary[paper]
     rows = [Measurement(f"{paper}: cost per scene", f"{base['us']:.1f}", "us",
@@ -112,8 +113,13 @@ def buildings_rows(summary: dict, paper: str, points: int, repeats: int) -> list
     for name, s in summary.items():
         if name == paper:
             continue
-        note = (f"its ratio to the constant pendulum: {s['pendulum_ratio']:.2f}" if "pendulum_ratio" in s else "")
-        rows.append(Measurement(f"{name}: cost ratio to the paper model", f"{s['ratio']:.2f}", "x", note))
+        notes = []
+        if "steps_ratio" in s:
+            notes.append(f"steps x{s['steps_ratio']:.2f}, cost per step x{s['step_cost_ratio']:.2f}, assembly "
+                         f"{s['assembly_us']:.0f} us ({100.0 * s['assembly_share']:.0f} % of its cost)")
+        if "pendulum_ratio" in s:
+            notes.append(f"its ratio to the constant pendulum: {s['pendulum_ratio']:.2f}")
+        rows.append(Measurement(f"{name}: cost ratio to the paper model", f"{s['ratio']:.2f}", "x", "; ".join(notes)))
     worst = max(s["err_max"] for s in summary.values())
     rows.append(Measurement("largest error of any building class at default rtol", f"{worst:.1e}", "1",
                             "against rtol = 1e-12"))
