@@ -1,0 +1,49 @@
+"""The first step after a transition: steps, time and error of the planar scenes at several lengths.
+
+Run: ``python benchmarks/restart_step.py`` (about a minute).  Every integrated solve restarts its
+Runge-Kutta steps at ``isoslide.solver.H_RESTART`` (units of T_p) after each transition (a
+breakaway, a stop, the pulse's breakpoints).  In the plane the sliding direction turns near a
+breakaway as a power of the time since it, which the embedded error estimate does not see reliably
+on a long first step.  For each restart length this prints, over the planar scenes of the bench
+(:data:`isoslide.accuracy.scenes.PLANAR_BUILDINGS` at each of
+:data:`~isoslide.accuracy.scenes.PLANAR_POINTS`), the total Runge-Kutta steps, the time of all the
+solves (the median of 3, each scene a new copy) and the largest and median relative error of
+``Pi1`` against ``solve(rtol=1e-12)`` at the default length.
+"""
+
+import time
+
+import numpy as np
+
+from isoslide import Scene, solve, solver
+from isoslide.accuracy.scenes import PLANAR_BUILDINGS, PLANAR_EXCITATION, PLANAR_POINTS
+from isoslide.engine.system import unassembled
+
+LENGTHS = (1e-4, 1e-3, 1e-2, 3e-2)
+"""Restart lengths compared (units of T_p); the first is the solver's."""
+
+
+def main() -> None:
+    scenes = [Scene(**{**pt, **kw}, **PLANAR_EXCITATION) for kw in PLANAR_BUILDINGS.values() for pt in PLANAR_POINTS]
+    default = solver.H_RESTART
+    exact = [solve(sc, rtol=1e-12).pi1 for sc in scenes]
+    print(f"{len(scenes)} planar scenes; errors against solve(rtol=1e-12) with the restart length {default:g}")
+    print(f"{'restart':>8s} {'steps':>7s} {'ms':>8s} {'max err':>9s} {'med err':>9s}")
+    try:
+        for length in LENGTHS:
+            solver.H_RESTART = length
+            times = []
+            for _ in range(3):
+                copies = [unassembled(sc) for sc in scenes]
+                t0 = time.perf_counter()
+                sols = [solve(sc) for sc in copies]
+                times.append(time.perf_counter() - t0)
+            err = np.array([abs(s.pi1 - e) / e for s, e in zip(sols, exact, strict=True)])
+            print(f"{length:8.0e} {sum(s.n_steps for s in sols):7d} {1e3 * np.median(times):8.1f} "
+                  f"{err.max():9.1e} {np.median(err):9.1e}")
+    finally:
+        solver.H_RESTART = default
+
+
+if __name__ == "__main__":
+    main()
