@@ -99,3 +99,27 @@ def test_a_planar_scene_runs_on_opensees_planar_model_from_its_softest_stick():
     assert (row["dtau"], row["stick"], row["reached"]) == (*pairs[0], True)
     strict = opensees_cost.compare(scene, pairs=pairs[:2], tolerance=1e-14, horizon=2.0, repeats=1)
     assert strict["stick"] == pairs[1][1] and strict["opensees_error"] < row["opensees_error"]
+
+
+def test_the_buildings_section_splits_each_class_into_steps_cost_per_step_and_assembly():
+    """Each class's ratio to the paper model is its steps ratio times its cost per step; the assembly's
+    share is its time over the class's cost; the aims are the bench's constants."""
+    from isoslide import bench
+    from isoslide.accuracy.scenes import BUILDINGS, STOREYS_NAME
+
+    points = 2
+    rows = {}
+    for k, name in enumerate(BUILDINGS):
+        us = 100.0 * (k + 1)
+        rows[name] = {"times": [[us * 1e-6] * 3 for _ in range(points)], "pi1": [1.0] * points,
+                      "conv": [1.0] * points, "models": ["m"] * points, "steps": [10 * (k + 1)] * points,
+                      "period": 1.0, "assembly_us": 0.0 if k == 0 else 25.0 * (k + 1)}
+    out = io.StringIO()
+    summ = bench.report_buildings({"rows": rows, "points": [{}] * points, "repeats": 3}, file=out)
+    text = out.getvalue()
+    name = list(BUILDINGS)[2]
+    assert summ[name]["ratio"] == pytest.approx(3.0) and summ[name]["steps_ratio"] == pytest.approx(3.0)
+    assert summ[name]["step_cost_ratio"] == pytest.approx(1.0) and summ[name]["assembly_share"] == pytest.approx(0.25)
+    assert f"at most {bench.TARGET_BUILDING_RATIO:g}x the paper model's cost" in text
+    assert f"aim: {bench.TARGET_STOREYS} storeys at most {bench.TARGET_STOREYS_RATIO:g}x" in text
+    assert STOREYS_NAME.format(bench.TARGET_STOREYS) in summ and "assembly     75 us ( 25 %)" in text
