@@ -343,8 +343,10 @@ def tfp_reach(sig, u, F, K, r, P):
     o = int(P[P_TFP])
     sl = np.empty(4)
     _tfp_slopes(u, P, sl)
-    dq0 = K - P[o] * r[0]
-    dq3 = K - P[o + 3] * r[3]
+    # a sliding outer surface's reaction is pinned: its rate, and its inner surface's, are exactly 0
+    # (``K - k r`` would leave round-off that could fire an inner surface resting on its limit at once)
+    dq0 = 0.0 if r[0] > 0.0 else K - P[o] * r[0]
+    dq3 = 0.0 if r[3] > 0.0 else K - P[o + 3] * r[3]
     rates = (dq0, dq0 - P[o + 1] * r[1], dq3 - P[o + 2] * r[2], dq3)
     best = math.inf
     for i in range(4):
