@@ -58,9 +58,8 @@ from .accuracy import kernel_targets, measurements, opensees_cost, rocking_cost
 from .accuracy.scenes import (BUILDING_POINTS, BUILDINGS, PAIR_LAG, PAIR_POINTS, PAIR_SUITE, PENDULUM,  # noqa: F401
                               PLANAR_BUILDINGS, PLANAR_EXCITATION, PLANAR_POINTS, SPEED_PENDULUM, STOREYS,
                               STOREYS_NAME, TARGET_TFP_RATIO, TFP_PENDULUM, recorded_pairs)
-from .accuracy.timing import assembly_times
+from .accuracy.timing import assembly_times, timed_solve
 from .engine import building
-from .engine.system import unassembled
 from .model.parts import building_of
 from .scene import Scene
 from .studies import fragility_planar
@@ -111,10 +110,8 @@ def run(per_study: int = 6, hard: bool = True, repeats: int = 15, peer_repeats: 
         for r in range(max(repeats, peer_repeats)):
             # interleave: isoslide, then the reference, on the same scene
             if r < repeats:
-                sc = unassembled(sc)
-                t0 = time.perf_counter()
-                s = solve(sc, horizon=horizon)
-                t_iso.append(time.perf_counter() - t0)
+                seconds, s = timed_solve(sc, horizon=horizon)
+                t_iso.append(seconds)
             if r < peer_repeats:
                 p_ref, t, w_ref, st_ref = accuracy.run_setting(ref, sc, horizon, max_work)
                 t_ref.append(t if st_ref == "ok" else math.nan)
@@ -366,10 +363,8 @@ def run_buildings(repeats: int = 7) -> dict:
     for _ in range(repeats):
         for k in range(len(BUILDING_POINTS)):
             for name, scs in scenes.items():
-                sc = unassembled(scs[k])
-                t0 = time.perf_counter()
-                sol = solve(sc)
-                out[name]["times"][k].append(time.perf_counter() - t0)
+                seconds, sol = timed_solve(scs[k])
+                out[name]["times"][k].append(seconds)
                 out[name]["pi1"][k], out[name]["models"][k], out[name]["steps"][k] = sol.pi1, sol.model, sol.n_steps
     for name, scs in scenes.items():
         general = [sc for sc in scs if building.reduction(sc)[0] == "general"]
@@ -450,10 +445,8 @@ def run_planar(repeats: int = 7) -> dict:
                 row = out[name]
                 order = (("1d", 0), ("planar", 1)) if r % 2 == 0 else (("planar", 1), ("1d", 0))
                 for which, j in order:
-                    sc = unassembled(pairs[k][j])
-                    t0 = time.perf_counter()
-                    sol = solve(sc)
-                    row[f"t_{which}"][k].append(time.perf_counter() - t0)
+                    seconds, sol = timed_solve(pairs[k][j])
+                    row[f"t_{which}"][k].append(seconds)
                     tail = "" if which == "planar" else "_1d"
                     row[f"pi1{tail}"][k], row[f"models{tail}"][k], row[f"steps{tail}"][k] = \
                         sol.pi1, sol.model, sol.n_steps
@@ -521,13 +514,10 @@ def run_pairs(n: int = 4, repeats: int = 5, suite_name: str = PAIR_SUITE) -> dic
         solve(c["one"])
     for _ in range(repeats):
         for c in cases:
-            planar, one = unassembled(c["planar"]), unassembled(c["one"])
-            t0 = time.perf_counter()
-            sp = solve(planar)
-            t1 = time.perf_counter()
-            s1 = solve(one)
-            c["t_planar"].append(t1 - t0)
-            c["t_1d"].append(time.perf_counter() - t1)
+            t_planar, sp = timed_solve(c["planar"])
+            t_1d, s1 = timed_solve(c["one"])
+            c["t_planar"].append(t_planar)
+            c["t_1d"].append(t_1d)
             c.update(pi1=sp.pi1, model=sp.model, steps=sp.n_steps, pi1_1d=s1.pi1, model_1d=s1.model)
     rows = [{k: v for k, v in c.items() if k not in ("planar", "one", "t_planar", "t_1d")}
             | {"planar_s": _median(c["t_planar"]), "one_s": _median(c["t_1d"])} for c in cases]

@@ -23,10 +23,10 @@ import time
 import numpy as np
 
 from .. import jit_cache
-from ..engine.system import unassembled
 from ..scene import Scene
 from ..solver import solve
 from .scenes import BUILDING_POINTS, BUILDINGS
+from .timing import timed_solve
 
 WORKER = [sys.executable, "-m", "isoslide.accuracy.kernel_targets", "--worker"]
 TARGETS = {
@@ -53,10 +53,8 @@ def _worker() -> int:
             break
         times, pi1 = [], []
         for sc in scenes[name]:
-            sc = unassembled(sc)
-            t = time.perf_counter()
-            sol = solve(sc)
-            times.append(time.perf_counter() - t)
+            seconds, sol = timed_solve(sc)
+            times.append(seconds)
             pi1.append(sol.pi1)
         print(json.dumps({"times": times, "pi1": pi1}), flush=True)
     return 0

@@ -25,6 +25,18 @@ STATUS_ATTRS = {"long_name": "outcome of the run", "units": "1",
 """CF attributes of the ``status`` variable."""
 
 
+def timed_solve(scene: Scene, **options) -> tuple:
+    """``(seconds, Solution)`` of :func:`isoslide.solve` (``options`` its keywords) on a new copy of ``scene``.
+
+    The copy (:func:`~isoslide.engine.system.unassembled`) is made before the clock starts, so the
+    solve pays for its own assembly, as a solve of a study's new scene does, and not for a copy.
+    """
+    sc = unassembled(scene)
+    t0 = time.perf_counter()
+    sol = solve(sc, **options)
+    return time.perf_counter() - t0, sol
+
+
 def assembly_times(scenes: list, repeats: int) -> np.ndarray:
     """Median time (s) of assembling each general scene as a solve does (:func:`isoslide.engine.system.assemble`).
 

@@ -1,9 +1,9 @@
 """The compiled solvers and what they integrate: the model assembled into arrays, the kernels.
 
 :mod:`isoslide.engine.building` assembles a building into the arrays of
-:mod:`isoslide.engine.building_kernel`, and :mod:`isoslide.engine.system` keeps that assembly
-(with the modal data, breakpoints and step budget) once per scene (the general event-driven engine of a slab, N floors and
-the contents on any floor); :mod:`isoslide.engine.kernel` (the paper's model) and
+:mod:`isoslide.engine.building_kernel` (the general event-driven engine of a slab, N floors and
+the contents on any floor), and :mod:`isoslide.engine.system` keeps that assembly (with the modal
+data, breakpoints and step budget) once per scene; :mod:`isoslide.engine.kernel` (the paper's model) and
 :mod:`isoslide.engine.piecewise` (exact propagation of sampled records) are fast paths the
 planner in :mod:`isoslide.solver` chooses; :mod:`isoslide.engine.planar_kernel` integrates the
 same buildings with the contents sliding in the plane, from the inputs :mod:`isoslide.engine.planar`
