@@ -28,7 +28,9 @@ PLANAR = dict(pulse="ricker", pulse_y="antisymmetric_ricker", pi14=0.7)
 
 def _system(sc: Scene, held: bool):
     P = building.parameters(sc)
-    A, idx = building._free_system(P, sc.pulse.code, sc.pulse.param_array, held)
+    idx = building.free_states(P, held)
+    ny = bk.state_size(int(P[bk.P_N]))
+    A, _ = bk.free_system(P, sc.pulse.code, sc.pulse.param_array, held, np.array(idx), ny, 1)
     modal = building.modal_data(sc, P)
     return P, A, idx, modal[4:] if held else modal[:4]
 
@@ -51,6 +53,37 @@ def test_a_modal_step_is_the_matrix_exponential(name):
         ref = expm(A * h) @ y[idx]
         assert np.max(np.abs(out[idx] - ref)) <= 1e-11 * max(1.0, np.max(np.abs(ref)))
         assert out[ny - 3] == 0.25
+
+
+@pytest.mark.parametrize("name", ["flexible, roof", "five storeys, floor 2", "lead-rubber",
+                                  "friction pendulum, flexible", "fixed base, three storeys"])
+def test_the_modal_data_decompose_the_free_system_with_exact_conjugate_pairs(name):
+    """V diag(L) W is the free system's matrix, W V the identity, and every complex mode's conjugate is a mode.
+
+    Both configurations that occur (elastic, and held for a sliding bearing or a fixed base) are
+    checked; the demand rows ``C`` are ``c V`` to the decomposition's margin.
+    """
+    sc = Scene(**BUILDINGS[name])
+    P = building.parameters(sc)
+    modal = building.modal_data(sc, P)
+    ny = bk.state_size(int(P[bk.P_N]))
+    checked = 0
+    for held, (W, C, V, L) in ((False, modal[:4]), (True, modal[4:])):
+        if L.size == 0:
+            continue
+        idx = building.free_states(P, held)
+        A, c = bk.free_system(P, sc.pulse.code, sc.pulse.param_array, held, np.array(idx), ny, C.shape[0])
+        Wm, Vm = W[:, idx], V[idx, :]
+        scale = max(1.0, np.max(np.abs(A)))
+        assert np.max(np.abs(Vm @ np.diag(L) @ Wm - A)) <= 1e-11 * scale
+        assert np.max(np.abs(Wm @ Vm - np.eye(len(idx)))) <= 1e-11
+        assert np.max(np.abs(C - c @ Vm)) <= 1e-9 * max(1.0, np.max(np.abs(C)))
+        assert np.all(np.diff(np.abs(L)) <= 0.0)   # fastest first
+        for k in np.flatnonzero(L.imag != 0.0):
+            j = np.flatnonzero(L == np.conj(L[k]))
+            assert j.size == 1 and np.array_equal(V[:, j[0]], np.conj(V[:, k]))
+        checked += 1
+    assert checked >= 1
 
 
 def _dephased(a, lam, rng):

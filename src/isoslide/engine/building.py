@@ -257,29 +257,21 @@ def _empty_modal(ny: int) -> tuple:
             np.zeros((ny, 0), dtype=np.complex128), np.zeros(0, dtype=np.complex128))
 
 
-def _free_system(P: np.ndarray, code: int, params: np.ndarray, held: bool) -> tuple:
-    """``(A, idx)``: the free linear system ``z' = A z`` of the moving states ``y[idx]`` after the pulse.
+def free_states(P: np.ndarray, held: bool) -> list[int]:
+    """Indices of the states that move in the free linear phase after the pulse (block stuck).
 
-    The block is stuck and the isolator stuck (``held``) or elastic; built column by column from
-    :func:`isoslide.engine.building_kernel.deriv` (affine in ``y``) at a time after any pulse.
+    The slab's ``x, x'`` unless the isolator holds it (``held``), a flexible superstructure's floors,
+    and an elastic bilinear bearing's force; the system they obey is
+    :func:`isoslide.engine.building_kernel.free_system`.
     """
     kind = int(P[bk.P_KIND])
     n = int(P[bk.P_N])
-    ny = bk.state_size(n)
     idx = [] if held else [bk.Y_X, bk.Y_XD]
     if P[bk.P_FLEX] != 0.0:
         idx += list(range(bk.Y_XS, bk.Y_XS + 2 * n))
     if kind == bk.KIND_BILINEAR and not held:
-        idx.append(ny - 1)
-    late = 1e30   # after every pulse and record: p = 0
-    out = np.zeros(ny)
-    A = np.zeros((len(idx), len(idx)))
-    for j, col in enumerate(idx):
-        y = np.zeros(ny)
-        y[col] = 1.0
-        bk.deriv(0.0, 0.0, late, y, P, code, params, out)
-        A[:, j] = out[idx]
-    return A, idx
+        idx.append(bk.state_size(n) - 1)
+    return idx
 
 
 def modal_data(scene: Scene, P: np.ndarray) -> tuple:
@@ -293,7 +285,9 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
     move) and ``L`` holds the eigenvalues (units ``1/T_p``), the modes ordered from the fastest to the
     slowest (:mod:`isoslide.engine.free_phase`).  ``W, C`` prove settlement; all four propagate the
     phase exactly.  Empty where the configuration cannot occur, has no moving state, or its
-    eigenvectors are too ill-conditioned (condition number above 1e8) for a trustworthy bound.
+    eigenvectors are too ill-conditioned (condition number above
+    :data:`isoslide.engine.building_kernel.FREE_MODES_COND`) for a trustworthy bound
+    (:func:`isoslide.engine.building_kernel.free_modes`).
 
     Returns
     -------
@@ -304,39 +298,12 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
     n = int(P[bk.P_N])
     ny = bk.state_size(n)
     code, params = scene.pulse.code, scene.pulse.param_array
+    n_rows = 2 if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING, bk.KIND_TFP) else 1
     out = []
     for held in (False, True):
-        if held != (kind in (bk.KIND_SLIDING, bk.KIND_FIXED, bk.KIND_TFP)):
+        idx = free_states(P, held)
+        if held != (kind in (bk.KIND_SLIDING, bk.KIND_FIXED, bk.KIND_TFP)) or not idx:
             out.extend(_empty_modal(ny))
             continue
-        A, idx = _free_system(P, code, params, held)
-        if not idx:
-            out.extend(_empty_modal(ny))
-            continue
-        lam, V = np.linalg.eig(A)
-        cond = np.linalg.cond(V)
-        if np.max(lam.real) > 1e-12 * max(1.0, np.max(np.abs(lam))) or cond > 1e8:
-            out.extend(_empty_modal(ny))
-            continue
-        order = np.argsort(-np.abs(lam), kind="stable")
-        lam, V = lam[order], V[:, order]
-        Winv = np.linalg.inv(V)
-        W = np.zeros((len(idx), ny), dtype=np.complex128)
-        W[:, idx] = Winv
-        Vfull = np.zeros((ny, len(idx)), dtype=np.complex128)
-        Vfull[idx, :] = V
-        demand_rows = [0] + ([1] if kind in (bk.KIND_BILINEAR, bk.KIND_SLIDING, bk.KIND_TFP) else [])
-        c = np.zeros((len(demand_rows), len(idx)))
-        for k, col in enumerate(idx):
-            y = np.zeros(ny)
-            y[col] = 1.0
-            im = 0.0
-            fh = y[ny - 1] if kind == bk.KIND_BILINEAR else 0.0
-            zp, zv = y[bk.Y_XS:bk.Y_XS + n], y[bk.Y_XS + n:bk.Y_XS + 2 * n]
-            c[0, k] = bk._floor_stuck(im, y[bk.Y_X], y[bk.Y_XD], zp, zv, fh, 0.0, P[bk.P_KD], P)
-            if len(demand_rows) > 1:
-                c[1, k] = fh if not held else bk._bearing_need(0.0, 0.0, zp, zv, 0.0, 0.0, P[bk.P_KD], P)
-        # a relative margin for the round-off of the eigen-decomposition
-        margin = 1.0 + 1e-12 + 1e-14 * cond
-        out.extend([W, (margin * (c @ V)).astype(np.complex128), Vfull, lam.astype(np.complex128)])
+        out.extend(bk.free_modes(P, code, params, held, np.array(idx, dtype=np.int64), ny, n_rows)[:4])
     return tuple(out)

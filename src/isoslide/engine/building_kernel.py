@@ -1744,5 +1744,100 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     return ints, floats, hist[:nh]
 
 
+FREE_MODES_COND = 1e8
+"""Largest condition number of the free phase's eigenvectors that :func:`free_modes` accepts."""
+
+
+@njit(cache=True)
+def free_system(P, code, params, held, idx, ny, n_rows):
+    """The free linear system after the pulse: ``(A, c)`` with ``z' = A z`` for the moving states ``z = y[idx]``.
+
+    The block is stuck and the isolator stuck (``held``) or elastic; ``A`` is built column by column
+    from :func:`deriv` (affine in ``y``) at a time after any pulse, and the demands' rows ``c``
+    (0: the block's floor acceleration; 1, when ``n_rows = 2``: the bilinear bearing's force, or
+    the force holding a sliding bearing) from :func:`_floor_stuck` and :func:`_bearing_need`.
+    ``ny`` is the state's length (:func:`state_size`).
+    """
+    n = int(P[P_N])
+    m = idx.shape[0]
+    A = np.zeros((m, m))
+    c = np.zeros((n_rows, m))
+    y = np.zeros(ny)
+    out = np.zeros(ny)
+    late = 1e30   # after every pulse and record: p = 0
+    for j in range(m):
+        y[:] = 0.0
+        y[idx[j]] = 1.0
+        deriv(0.0, 0.0, late, y, P, code, params, out)
+        for i in range(m):
+            A[i, j] = out[idx[i]]
+        fh = y[ny - 1] if P[P_KIND] == KIND_BILINEAR else 0.0
+        zp = y[Y_XS:Y_XS + n]
+        zv = y[Y_XS + n:Y_XS + 2 * n]
+        c[0, j] = _floor_stuck(0.0, y[Y_X], y[Y_XD], zp, zv, fh, 0.0, P[P_KD], P)
+        if n_rows > 1:
+            c[1, j] = _bearing_need(0.0, 0.0, zp, zv, 0.0, 0.0, P[P_KD], P) if held else fh
+    return A, c
+
+
+FREE_MODES_COND = 1e8
+"""Largest condition number of the free phase's eigenvectors that :func:`free_modes` accepts."""
+
+
+@njit(cache=True)
+def free_modes(P, code, params, held, idx, ny, n_rows):
+    """Modal data of the free linear system of :func:`free_system` (:func:`isoslide.engine.building.modal_data`).
+
+    Returns ``(W, C, V, L, ok)``: ``A = V diag(L) W`` with the modes ordered from the fastest to the
+    slowest (stable order), the modes of a conjugate pair exact conjugates, ``W`` and ``V`` spread
+    over the whole state of length ``ny`` (zero columns and rows for the states that do not move),
+    ``C = margin c V`` with a relative margin for the round-off of the decomposition; ``ok`` False
+    (and empty arrays) where a mode grows or the eigenvectors' condition number exceeds
+    :data:`FREE_MODES_COND`.
+    """
+    A, c = free_system(P, code, params, held, idx, ny, n_rows)
+    m = idx.shape[0]
+    lam, V = np.linalg.eig(A.astype(np.complex128))
+    # a real matrix: pair each mode above the real axis with its conjugate exactly
+    top = 1.0
+    for k in range(m):
+        top = max(top, abs(lam[k]))
+    real_tol = 1e-14 * top
+    paired = np.zeros(m, dtype=np.bool_)
+    for k in range(m):
+        if paired[k] or lam[k].imag <= real_tol:
+            continue
+        best = -1
+        gap = np.inf
+        for j in range(m):
+            if j != k and not paired[j] and lam[j].imag < -real_tol and abs(lam[j] - np.conj(lam[k])) < gap:
+                best, gap = j, abs(lam[j] - np.conj(lam[k]))
+        if best >= 0:
+            lam[best] = np.conj(lam[k])
+            V[:, best] = np.conj(V[:, k])
+            paired[k] = True
+            paired[best] = True
+    grow = -np.inf
+    for k in range(m):
+        if not paired[k] and abs(lam[k].imag) <= real_tol:
+            lam[k] = lam[k].real
+        grow = max(grow, lam[k].real)
+    cond = np.linalg.cond(V)
+    if grow > 1e-12 * top or not cond <= FREE_MODES_COND:
+        return (np.zeros((0, ny), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128),
+                np.zeros((ny, 0), dtype=np.complex128), np.zeros(0, dtype=np.complex128), False)
+    order = np.argsort(-np.abs(lam), kind="mergesort")
+    lam = lam[order]
+    V = np.ascontiguousarray(V[:, order])
+    Winv = np.linalg.inv(V)
+    W = np.zeros((m, ny), dtype=np.complex128)
+    Vfull = np.zeros((ny, m), dtype=np.complex128)
+    for i in range(m):
+        for j in range(m):
+            W[i, idx[j]] = Winv[i, j]
+            Vfull[idx[i], j] = V[i, j]
+    margin = 1.0 + 1e-12 + 1e-14 * cond
+    return W, margin * (c.astype(np.complex128) @ V), Vfull, lam, True
+
 # numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
 jit_cache.seed(run)
