@@ -1744,9 +1744,6 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     return ints, floats, hist[:nh]
 
 
-FREE_MODES_COND = 1e8
-"""Largest condition number of the free phase's eigenvectors that :func:`free_modes` accepts."""
-
 
 @njit(cache=True)
 def free_system(P, code, params, held, idx, ny, n_rows):
