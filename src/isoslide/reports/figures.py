@@ -784,8 +784,11 @@ def _render(drawer, args, outputs, dpi: int) -> str:
     with matplotlib.rc_context(STYLE):
         fig, caption = drawer(*args)
         try:
-            for out in outputs:
+            for k, out in enumerate(outputs):
                 _save(fig, Path(out), caption, dpi=dpi)
+                if k == 0:
+                    # the layout the first file settled holds for the others: not computed again
+                    fig.set_layout_engine("none")
         finally:
             plt.close(fig)
     return caption
