@@ -1,0 +1,68 @@
+"""Where the planar steps go: slides too slow for an explicit step, and the slaved line that takes them.
+
+Run: ``python benchmarks/slow_slide.py`` (about a minute).  A block sliding in the plane with speed
+``s = |w|`` turns its direction towards the force driving it at the rate ``phi / s`` (``phi`` its
+friction per unit mass): just after a breakaway and just before a stop that rate is far faster
+than the motion, and an explicit Runge-Kutta step must stay below a few times ``s / phi`` however
+smooth the path is.  This prints, over the planar scenes of the bench
+(:data:`isoslide.accuracy.scenes.PLANAR_BUILDINGS` at each of
+:data:`~isoslide.accuracy.scenes.PLANAR_POINTS`):
+
+1. the accepted steps of free slides (the block's mode 1) and how many of them were stiff, i.e.
+   took ``h phi / s > 1`` with ``phi >= Pi2`` (the kinetic level; a Stribeck block's is higher at
+   low speed, so the count is a lower bound), from each solve's history;
+2. the Runge-Kutta steps, the time and the largest and median relative error of ``Pi1`` (against
+   ``solve(rtol=1e-12)``) when the slaved line, on which a slow slide keeps the direction of its
+   drive (:func:`isoslide.engine.planar_kernel.slaved_speed`), holds slides up to 1, 10, 100 and
+   1000 times its speed: what slaving the direction at zeroth order buys and what it costs.
+"""
+
+import time
+
+import numpy as np
+
+from isoslide import Scene, solve
+from isoslide.accuracy.scenes import PLANAR_BUILDINGS, PLANAR_EXCITATION, PLANAR_POINTS
+from isoslide.engine import planar_kernel
+from isoslide.engine.system import unassembled
+
+FACTORS = (1.0, 10.0, 100.0, 1000.0)
+"""Multiples of the slaved line's speed limit compared; the first is the solver's."""
+
+
+def stiff_steps(scene: Scene) -> tuple[int, int]:
+    """``(free, stiff)``: accepted steps of free slides in one solve, and those with ``h Pi2 / s > 1``."""
+    h = solve(scene, history=True).history
+    s = np.hypot(h.ud[:, 0], h.ud[:, 1])
+    free = np.flatnonzero((h.phase[:-1] == 1) & (h.phase[1:] == 1) & (s[:-1] > 0.0))
+    dt = np.diff(h.tau)[free]
+    return free.size, int(np.count_nonzero(dt * scene.pi2 > s[free]))
+
+
+def main() -> None:
+    scenes = [Scene(**{**pt, **kw}, **PLANAR_EXCITATION) for kw in PLANAR_BUILDINGS.values() for pt in PLANAR_POINTS]
+    counts = np.array([stiff_steps(sc) for sc in scenes])
+    total = sum(solve(sc).n_steps for sc in scenes)
+    print(f"{len(scenes)} planar scenes: {total} Runge-Kutta steps, {counts[:, 0].sum()} accepted steps of free "
+          f"slides, {counts[:, 1].sum()} of them stiff (h Pi2 / s > 1)")
+    exact = [solve(sc, rtol=1e-12).pi1 for sc in scenes]
+    default = planar_kernel.SLAVED_FACTOR
+    print(f"{'slaved speed':>12s} {'steps':>7s} {'ms':>8s} {'max err':>9s} {'med err':>9s}")
+    try:
+        for factor in FACTORS:
+            planar_kernel.SLAVED_FACTOR = default * factor
+            times = []
+            for _ in range(3):
+                copies = [unassembled(sc) for sc in scenes]
+                t0 = time.perf_counter()
+                sols = [solve(sc) for sc in copies]
+                times.append(time.perf_counter() - t0)
+            err = np.array([abs(s.pi1 - e) / e for s, e in zip(sols, exact, strict=True)])
+            print(f"{factor:11g}x {sum(s.n_steps for s in sols):7d} {1e3 * np.median(times):8.1f} "
+                  f"{err.max():9.1e} {np.median(err):9.1e}")
+    finally:
+        planar_kernel.SLAVED_FACTOR = default
+
+
+if __name__ == "__main__":
+    main()
