@@ -591,12 +591,9 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     if out.ints["contact"]:
         raise ContactError(CONTACT_TEXT[building_kernel.CONTACT_LOSSES[out.ints["contact"]]]
                            + f" at tau = {out.floats['tcontact']:.6g} for {scene}")
-    facets = dataclasses.replace(scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0),
-                                 contents="rocking" if rocking else "sliding")
-    sol = dataclasses.replace(_solution(scene, out, facets), peak_stage=out.ints["stage_max"])
-    if history:
-        sol = dataclasses.replace(sol, history=_building_history(out.hist, scene, rocking))
-    return sol
+    facets = scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0, rocking=rocking)
+    return _solution(scene, out, facets, _building_history(out.hist, scene, rocking) if history else None,
+                     peak_stage=out.ints["stage_max"])
 
 
 def _solve_horizontal(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
@@ -747,13 +744,14 @@ def _building_history(h: np.ndarray, scene: Scene, rocking: bool = False) -> His
 
 
 def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "integrated",
-                 solver: str = "exact") -> Facets:
+                 solver: str = "exact", rocking: bool | None = None) -> Facets:
     """The facets of a solve of ``scene`` (:class:`isoslide.models.Facets`) that integrated its model.
 
     The isolator, superstructure and floor are the scene's parts
     (:func:`isoslide.model.parts.building_of`: a base with ``Pi3 = 0`` is ``fixed-base``, a rigid
     superstructure carries the contents on the slab); ``friction``, ``oneway``, ``propagation`` and
-    ``solver`` say how it was solved.
+    ``solver`` say how it was solved, ``rocking`` whether the contents' model rocks (None: where
+    they tip before they can slide).
     """
     parts = building_of(scene)
     kind = parts.isolator.kind
@@ -766,10 +764,10 @@ def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "
                   floor="base" if k == 0 else ("roof" if k == top else "intermediate"),
                   friction=friction, coupling="one-way" if oneway else "two-way", propagation=propagation,
                   solver=solver, vertical="normal-force" if scene.vertical else "none",
-                  contents="rocking" if scene.tips else "sliding")
+                  contents="rocking" if (scene.tips if rocking is None else rocking) else "sliding")
 
 
-def _solution(scene, run: Run, facets: Facets, hist=None) -> Solution:
+def _solution(scene, run: Run, facets: Facets, hist=None, peak_stage: int = 0) -> Solution:
     pi1 = run.pi1
     res = run.floats["ures"]
     tpk = run.floats["tpeak"]
@@ -790,7 +788,7 @@ def _solution(scene, run: Run, facets: Facets, hist=None) -> Solution:
                     t_peak=tpk * Tp, settled=bool(run.ints["settled"]), model=facets.label(pi1 > 0.0),
                     tau_end=run.floats["tend"], n_steps=run.ints["steps"], n_events=run.ints["events"],
                     history=hist, facets=facets, peak_angle=angle, theta_max=run.floats.get("thmax", 0.0),
-                    overturned=bool(run.ints.get("overturned", 0)), modes=modes)
+                    overturned=bool(run.ints.get("overturned", 0)), modes=modes, peak_stage=peak_stage)
 
 
 def _from_peer(scene: Scene, res: PeerResult) -> Solution:
