@@ -181,7 +181,8 @@ PORTABLE_KEY = (PORTABLE_CPU, "")
 # the source files whose numba functions are cached (cache=True), by numba's file stem, in compile order
 KERNEL_SOURCES = {"pulses": "pulses.py", "kernel": "engine/kernel.py", "piecewise": "engine/piecewise.py",
                   "friction": "model/friction.py", "modes": "engine/modes.py", "free_phase": "engine/free_phase.py",
-                  "building_kernel": "engine/building_kernel.py", "planar_kernel": "engine/planar_kernel.py",
+                  "building_kernel": "engine/building_kernel.py", "exponential": "engine/exponential.py",
+                  "planar_kernel": "engine/planar_kernel.py",
                   "planar_piecewise": "engine/planar_piecewise.py"}
 KERNEL_MODULES = tuple(KERNEL_SOURCES)
 

@@ -72,7 +72,7 @@ FACETS = {
     "friction": FRICTION_MODELS,
     "coupling": ("two-way", "one-way"),
     "reduction": ("none", "bearing-stuck", "bearing-elastic", "demand-bound"),
-    "propagation": ("integrated", "piecewise", "none"),
+    "propagation": ("integrated", "piecewise", "none", "exponential"),
     "solver": ("exact",) + PEER_LABELS,
     "vertical": ("none", "normal-force"),
     "contact": ("line", "plane"),
@@ -89,7 +89,9 @@ the contact law integrated (``coulomb`` when friction does not depend on speed);
 ``reduction``: a proof that replaced the scene by a smaller model (a sliding bearing that never
 slips, a bilinear bearing that never yields, or a floor demand below the stick limit:
 ``demand-bound``, answered ``Pi1 = 0`` without integrating); ``propagation``: integrated, the
-exact piecewise propagation of a sampled record, or none; ``solver``: the exact solver or a peer;
+exact piecewise propagation of a sampled record, none, or the exact propagation of a linearly
+isolated flexible building between the contents' transitions (:mod:`isoslide.engine.exponential`);
+``solver``: the exact solver or a peer;
 ``vertical``: vertical ground motion acting through the normal forces, or none; ``contact``: the
 contents slide on a line (the 1-D model, along the excitation's direction) or in the plane;
 ``contents``: contents that only slide, or a block that can rock (it tips before it slides,

@@ -9,6 +9,8 @@ planner in :mod:`isoslide.solver` chooses; :mod:`isoslide.engine.planar_kernel` 
 same buildings with the contents sliding in the plane, from the inputs :mod:`isoslide.engine.planar`
 assembles, and :mod:`isoslide.engine.planar_piecewise` propagates a recorded pair's stick phases
 exactly between the planar kernel's slides; :mod:`isoslide.engine.free_phase` steps the free linear
-phase after the pulse exactly; :mod:`isoslide.engine.dop853` holds the Runge-Kutta tableau.
+phase after the pulse exactly, and :mod:`isoslide.engine.exponential` a linearly isolated flexible
+building between its contents' transitions; :mod:`isoslide.engine.dop853` holds the Runge-Kutta
+tableau.
 Nothing is imported here.
 """

@@ -1794,39 +1794,10 @@ def free_modes(P, code, params, held, idx, ny, n_rows):
     """
     A, c = free_system(P, code, params, held, idx, ny, n_rows)
     m = idx.shape[0]
-    lam, V = np.linalg.eig(A.astype(np.complex128))
-    # a real matrix: pair each mode above the real axis with its conjugate exactly
-    top = 1.0
-    for k in range(m):
-        top = max(top, abs(lam[k]))
-    real_tol = 1e-14 * top
-    paired = np.zeros(m, dtype=np.bool_)
-    for k in range(m):
-        if paired[k] or lam[k].imag <= real_tol:
-            continue
-        best = -1
-        gap = np.inf
-        for j in range(m):
-            if j != k and not paired[j] and lam[j].imag < -real_tol and abs(lam[j] - np.conj(lam[k])) < gap:
-                best, gap = j, abs(lam[j] - np.conj(lam[k]))
-        if best >= 0:
-            lam[best] = np.conj(lam[k])
-            V[:, best] = np.conj(V[:, k])
-            paired[k] = True
-            paired[best] = True
-    grow = -np.inf
-    for k in range(m):
-        if not paired[k] and abs(lam[k].imag) <= real_tol:
-            lam[k] = lam[k].real
-        grow = max(grow, lam[k].real)
-    cond = np.linalg.cond(V)
-    if grow > 1e-12 * top or not cond <= FREE_MODES_COND:
+    lam, V, Winv, cond, grows = free_phase.decompose(A)
+    if grows or not cond <= FREE_MODES_COND:
         return (np.zeros((0, ny), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128),
                 np.zeros((ny, 0), dtype=np.complex128), np.zeros(0, dtype=np.complex128), False)
-    order = np.argsort(-np.abs(lam), kind="mergesort")
-    lam = lam[order]
-    V = np.ascontiguousarray(V[:, order])
-    Winv = np.linalg.inv(V)
     W = np.zeros((m, ny), dtype=np.complex128)
     Vfull = np.zeros((ny, m), dtype=np.complex128)
     for i in range(m):

@@ -47,6 +47,49 @@ relative margin that :func:`isoslide.engine.building.modal_data` puts on ``C``."
 
 
 @njit(cache=True)
+def decompose(A):
+    """Modes of a real matrix: ``(lam, V, W, cond, grows)`` with ``A = V diag(lam) W``.
+
+    The modes are ordered from the fastest (largest ``|lambda|``) to the slowest, in a stable order,
+    and each complex mode's conjugate is a mode with exactly the conjugate eigenvalue and
+    eigenvector (as for a real matrix's own decomposition); ``W = V^-1``, ``cond`` is the 2-norm
+    condition number of ``V`` and ``grows`` whether a mode grows (``Re lambda > 1e-12 max(1,
+    |lambda|)``).
+    """
+    m = A.shape[0]
+    lam, V = np.linalg.eig(A.astype(np.complex128))
+    top = 1.0
+    for k in range(m):
+        top = max(top, abs(lam[k]))
+    real_tol = 1e-14 * top
+    paired = np.zeros(m, dtype=np.bool_)
+    for k in range(m):
+        if paired[k] or lam[k].imag <= real_tol:
+            continue
+        best = -1
+        gap = np.inf
+        for j in range(m):
+            if j != k and not paired[j] and lam[j].imag < -real_tol and abs(lam[j] - np.conj(lam[k])) < gap:
+                best, gap = j, abs(lam[j] - np.conj(lam[k]))
+        if best >= 0:
+            lam[best] = np.conj(lam[k])
+            V[:, best] = np.conj(V[:, k])
+            paired[k] = True
+            paired[best] = True
+    grow = -np.inf
+    for k in range(m):
+        if not paired[k] and abs(lam[k].imag) <= real_tol:
+            lam[k] = lam[k].real
+        grow = max(grow, lam[k].real)
+    order = np.argsort(-np.abs(lam), kind="mergesort")
+    lam = lam[order]
+    V = np.ascontiguousarray(V[:, order])
+    cond = np.linalg.cond(V)
+    W = np.ascontiguousarray(np.linalg.inv(V)) if cond < 1e300 else np.zeros((m, m), dtype=np.complex128)
+    return lam, V, W, cond, grow > 1e-12 * top
+
+
+@njit(cache=True)
 def modal_coordinates(W, y, o, a):
     """``a = W y[o : o + W.shape[1]]``: the complex modal coordinates of one axis, into ``a``."""
     for k in range(W.shape[0]):

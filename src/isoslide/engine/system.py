@@ -20,7 +20,7 @@ from functools import cached_property
 
 import numpy as np
 
-from . import building, kernel
+from . import building, exponential, kernel
 from . import building_kernel as bk
 from ..scene import Scene
 
@@ -87,6 +87,9 @@ class System:
         Most Runge-Kutta steps of one run (:func:`step_budget`).
     free_step : float
         Longest step after the pulse (:func:`isoslide.engine.building.free_step`), units of T_p.
+    linear : tuple of ndarray or None
+        The arrays of the exact propagation (:func:`isoslide.engine.exponential.arrays`) where it
+        applies (:func:`isoslide.engine.exponential.applies`), else None.
     """
 
     P: np.ndarray
@@ -97,6 +100,7 @@ class System:
     stop: float
     budget: int
     free_step: float
+    linear: tuple | None = None
 
     @cached_property
     def planar_modal(self) -> tuple:
@@ -138,9 +142,16 @@ def assemble(scene: Scene, pi8: float | None = None, coulomb: bool = False, rock
     if key not in systems:
         P = building.parameters(scene, pi8=pi8, coulomb=coulomb, rocking=rocking)
         start, end = scene.span
-        systems[key] = System(P=P, modal=building.modal_data(scene, P), breakpoints=breakpoints(scene),
-                              start=start, end=end, stop=horizon_end(scene, horizon),
-                              budget=step_budget(scene, horizon), free_step=building.free_step(scene))
+        modal = building.modal_data(scene, P)
+        linear = None
+        if not scene.bidirectional and exponential.applies(P, scene.pulse.code):
+            try:
+                linear = exponential.arrays(P, modal)
+            except ValueError:
+                linear = None   # modes not trustworthy: the Runge-Kutta kernel integrates it
+        systems[key] = System(P=P, modal=modal, breakpoints=breakpoints(scene), start=start, end=end,
+                              stop=horizon_end(scene, horizon), budget=step_budget(scene, horizon),
+                              free_step=building.free_step(scene), linear=linear)
     return systems[key]
 
 
