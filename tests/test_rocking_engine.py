@@ -276,6 +276,38 @@ def test_rocking_block_on_isolated_buildings_matches_the_two_way_peer(name):
     assert "rock" in sol.modes
 
 
+SLENDER = {
+    # a block on its pivot whose friction lets go just before the tipping angle, in a step that
+    # ends past it: it slides as it rocks, then overturns
+    "pivot slips near the tipping angle": dict(pi2=2.02391, pi18=0.520076, pi19=2.95334, pi21=1.86029, pi3=2.02249,
+                                               pi4=0.0253302, pi8=0.0252079, pulse="rectangular"),
+    # the slide of a slide-rocking block ends by an impact, not by stopping: its peak still counts
+    "slide-rock ended by an impact": dict(pi2=1.80455, pi18=0.685707, pi19=1.148, pi21=1.24736, pi3=1.31016, pi4=0.0,
+                                          pi8=0.0168818, pulse="makris_b"),
+    # the tilt peaks inside a step that a later event ends: theta_max there, not at the step's ends
+    "tilt peak before an event": dict(pi2=1.84042, pi18=0.536748, pi19=2.36118, pi21=1.02481, pi3=0.0,
+                                      pi8=0.000104096, pulse="makris_b"),
+    "slide-rock on a lead-rubber bearing": dict(pi2=0.464355, pi18=0.982347, pi19=1.68619, pi21=3.69991,
+                                                pi20=0.164444, pi3=2.24659, pi4=0.0352574, pi8=0.0463171,
+                                                pi9=0.0494288, pi10=0.0368771, pulse="antisymmetric_ricker"),
+}
+
+
+@pytest.mark.parametrize("name", SLENDER)
+def test_slender_blocks_that_slide_as_they_rock_match_the_two_way_peer(name):
+    """Slide-rock reached near the tipping angle or ended by an impact, a tilt peaking just before an
+    event: Pi1 (the largest |u| over the whole response), theta_max, the flag and the modes as the
+    independent peer's, to 1e-6."""
+    from isoslide.peers.rocking_building import solve as peer
+    scene = isoslide.Scene(pi5=1.0, **SLENDER[name])
+    sol = isoslide.solve(scene, rtol=1e-8)
+    ref = peer(scene)
+    assert "rock" in sol.modes and set(sol.modes) == set(ref.modes)
+    assert sol.overturned == ref.overturned
+    assert sol.theta_max == pytest.approx(ref.theta_max, rel=1e-6)
+    assert sol.pi1 == pytest.approx(ref.pi1, rel=1e-6, abs=1e-12)
+
+
 @pytest.mark.parametrize("pi20", [None, 0.85])
 def test_free_rocking_after_the_pulse_keeps_e_squared_of_the_energy_at_each_impact(pi20):
     """On a quiet fixed base each impact's outgoing angular speed is e times the previous one (energy ratio e^2)."""

@@ -1531,14 +1531,17 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                     best, hbest, herr_best = EV_BSPEED, hs, herr
                     copy_state(yb, ye)
             if corner(bm) != 0.0:
-                # the rocking block: impact, overturning and (below the tipping angle) its pivot slipping
-                pivot = base_slide(bm) == 0.0 and max(corner(bm) * y[Y_TH], corner(bm) * y1[Y_TH]) < alpha
+                # the rocking block: impact, overturning and (below the tipping angle) its pivot slipping,
+                # also in a step that ends past the tipping angle
+                pivot = base_slide(bm) == 0.0 and corner(bm) * y[Y_TH] < alpha
                 for ev in (EV_IMPACT, EV_OVER, EV_PIVOT, EV_FLIGHT):
                     if ev == EV_PIVOT and not pivot:
                         continue
                     found, hs, herr = _speed_candidate(ev, bm, im, tau, y, y1, h, t_end_step,
                                                        r_just if ev == EV_IMPACT else b_just, check, P, code, params,
                                                        atol, rtol, K, ye, work, cnt)
+                    if ev == EV_PIVOT and found and corner(bm) * ye[Y_TH] >= alpha:
+                        found = False
                     if found and hs < hbest:
                         best, hbest, herr_best = ev, hs, herr
                         copy_state(yb, ye)
@@ -1600,10 +1603,19 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
             if stalled > MAX_STALLED:
                 loss, tloss = 3, tau
                 break
+            if corner(bm) != 0.0 and corner(bm) * y[Y_TH + 1] > 0.0 and corner(bm) * yb[Y_TH + 1] < 0.0:
+                # the tilt's peak before the event, inside the step it ends
+                locate(EV_APEX, 0.0, bm, im, tau, y, 0.0, corner(bm) * y[Y_TH + 1], hbest,
+                       corner(bm) * yb[Y_TH + 1], -1.0, False, P, code, params, atol, rtol, K, ye, work, cnt)
+                thmax = max(thmax, abs(ye[Y_TH]))
             tau = tau + hbest
             copy_state(y, yb)
             xmax = max(xmax, abs(y[Y_X]))
             thmax = max(thmax, abs(y[Y_TH]))
+            if abs(y[Y_U]) > umax:
+                # the contents' peak also where a slide ends otherwise than by stopping (a slide-rocking
+                # block's impact, its pivot sticking, its overturning)
+                umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
             short = check
             if best == EV_BLOCK:
                 if rock_first:
@@ -1732,6 +1744,8 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
         if _held(im, P):
             y[Y_XD] = 0.0
         xmax = max(xmax, abs(y[Y_X]))
+        if abs(y[Y_U]) > umax:
+            umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
         hlast = h
         h = hnext
         nh = _record(hist, nh, hist_cap, tau, y, bm, im, stage, P, code, params)
