@@ -14,8 +14,8 @@ import time
 import numpy as np
 
 import isoslide.config
-from isoslide.studies import fragility_study as fs
 from isoslide import solver
+from isoslide.studies import fragility_study as fs
 
 
 def main() -> None:

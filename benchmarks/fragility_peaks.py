@@ -10,12 +10,12 @@ the relative error of the largest row alone, and of :func:`isoslide.studies.inte
 
 import numpy as np
 
-from isoslide.studies import fragility_study as fs
 from isoslide import solver
-from isoslide.store.history_io import history_table
-from isoslide.studies.intensity import floor_peaks
 from isoslide.records import sample
 from isoslide.scene import Scene
+from isoslide.store.history_io import history_table
+from isoslide.studies import fragility_study as fs
+from isoslide.studies.intensity import floor_peaks
 
 
 def main() -> None:

@@ -13,7 +13,6 @@ docs/measurements.csv`` rewrites this command's row of the documentation's table
 """
 
 import argparse
-import time
 from pathlib import Path
 
 import numpy as np
@@ -21,7 +20,7 @@ import numpy as np
 from isoslide import Scene, solve, solver
 from isoslide.accuracy.measurements import Measurement, machine_conditions, write_rows
 from isoslide.accuracy.scenes import PLANAR_BUILDINGS, PLANAR_EXCITATION, PLANAR_POINTS
-from isoslide.engine.system import unassembled
+from isoslide.accuracy.timing import timed_batch
 
 LENGTHS = (1e-4, 1e-3, 1e-2, 3e-2)
 """Restart lengths compared (units of T_p); the first is the solver's."""
@@ -42,18 +41,11 @@ def main() -> None:
     try:
         for length in LENGTHS:
             solver.H_RESTART = length
-            times = []
-            for _ in range(3):
-                copies = [unassembled(sc) for sc in scenes]
-                t0 = time.perf_counter()
-                sols = [solve(sc) for sc in copies]
-                times.append(time.perf_counter() - t0)
-            err = np.array([abs(s.pi1 - e) / e for s, e in zip(sols, exact, strict=True)])
-            steps.append(sum(s.n_steps for s in sols))
+            n, t_ms, err = timed_batch(scenes, exact)
+            steps.append(n)
             worst.append(err.max())
-            ms.append(1e3 * np.median(times))
-            print(f"{length:8.0e} {sum(s.n_steps for s in sols):7d} {1e3 * np.median(times):8.1f} "
-                  f"{err.max():9.1e} {np.median(err):9.1e}")
+            ms.append(t_ms)
+            print(f"{length:8.0e} {n:7d} {t_ms:8.1f} {err.max():9.1e} {np.median(err):9.1e}")
     finally:
         solver.H_RESTART = default
     if args.measurements:

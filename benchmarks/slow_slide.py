@@ -21,7 +21,6 @@ smooth the path is.  This prints, over the planar scenes of the bench
 """
 
 import argparse
-import time
 from pathlib import Path
 
 import numpy as np
@@ -29,8 +28,8 @@ import numpy as np
 from isoslide import Scene, solve
 from isoslide.accuracy.measurements import Measurement, machine_conditions, write_rows
 from isoslide.accuracy.scenes import PLANAR_BUILDINGS, PLANAR_EXCITATION, PLANAR_POINTS
+from isoslide.accuracy.timing import timed_batch
 from isoslide.engine import planar_kernel
-from isoslide.engine.system import unassembled
 
 FACTORS = (1.0, 10.0, 100.0, 1000.0)
 """Multiples of the slaved line's speed limit compared; the first is the solver's."""
@@ -63,16 +62,10 @@ def main() -> None:
     try:
         for factor in FACTORS:
             planar_kernel.SLAVED_FACTOR = default * factor
-            times = []
-            for _ in range(3):
-                copies = [unassembled(sc) for sc in scenes]
-                t0 = time.perf_counter()
-                sols = [solve(sc) for sc in copies]
-                times.append(time.perf_counter() - t0)
-            err = np.array([abs(s.pi1 - e) / e for s, e in zip(sols, exact, strict=True)])
-            steps.append(sum(s.n_steps for s in sols))
+            n, ms, err = timed_batch(scenes, exact)
+            steps.append(n)
             worst.append(err.max())
-            print(f"{factor:11g}x {steps[-1]:7d} {1e3 * np.median(times):8.1f} {err.max():9.1e} {np.median(err):9.1e}")
+            print(f"{factor:11g}x {n:7d} {ms:8.1f} {err.max():9.1e} {np.median(err):9.1e}")
     finally:
         planar_kernel.SLAVED_FACTOR = default
     if args.measurements:

@@ -37,6 +37,23 @@ def timed_solve(scene: Scene, **options) -> tuple:
     return time.perf_counter() - t0, sol
 
 
+def timed_batch(scenes: list, exact: list, repeats: int = 3) -> tuple:
+    """Solve new copies of ``scenes`` ``repeats`` times, all in a row.
+
+    Returns ``(steps, ms, errors)``: the steps of one pass (:attr:`isoslide.Solution.n_steps`
+    summed), the median time of a pass (ms) and each scene's relative error of ``Pi1`` against
+    ``exact`` (its reference answers, all positive).
+    """
+    times = []
+    for _ in range(repeats):
+        copies = [unassembled(sc) for sc in scenes]
+        t0 = time.perf_counter()
+        sols = [solve(sc) for sc in copies]
+        times.append(time.perf_counter() - t0)
+    err = np.array([abs(s.pi1 - e) / e for s, e in zip(sols, exact, strict=True)])
+    return sum(s.n_steps for s in sols), 1e3 * float(np.median(times)), err
+
+
 def assembly_times(scenes: list, repeats: int) -> np.ndarray:
     """Median time (s) of assembling each general scene as a solve does (:func:`isoslide.engine.system.assemble`).
 
