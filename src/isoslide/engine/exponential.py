@@ -50,8 +50,8 @@ from ..pulses import RECTANGULAR, SAMPLED, accel_at
 from . import building
 from . import building_kernel as bk
 from . import free_phase
-from .kernel import ROOT_AT_TRIAL, ROOT_OPEN, _hermite_max, _next_breakpoint, _step_target, bracket_open, \
-    bracket_step, hermite_root
+from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, _hermite_max, _next_breakpoint, _step_target, bracket_open,
+                     bracket_step, hermite_root)
 
 DEGREE = 7
 """Degree of the Chebyshev polynomial that interpolates the pulse on a step."""
