@@ -1664,15 +1664,11 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
                 # a slide-rocking block's pivot stops: it rocks on if friction holds it, else slides back
                 y[Y_UD] = 0.0
                 events += 1
-                if abs(y[Y_U]) > umax:
-                    umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
                 bm = _rock_start(corner(bm), im, tau, y, P, code, params)
                 b_just = base_slide(bm) != 0.0
             elif best == EV_BSPEED:
                 y[Y_UD] = 0.0
                 events += 1
-                if abs(y[Y_U]) > umax:
-                    umax, tpeak, upeak = abs(y[Y_U]), tau, y[Y_U]
                 free_i = _sticks(P) and im == 0.0
                 bm, ni_ = _select_modes(bm, im, True, free_i, tau, y, P, code, params)
                 if rock_first and bm != 0.0:
@@ -1758,30 +1754,49 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse,
     return ints, floats, hist[:nh]
 
 
+@njit(cache=True)
+def affine_rates(bm, P, code, params, idx, ny):
+    """``(A, e)``: the rates of the states ``y[idx]`` after any pulse, ``out[idx] = A y[idx] + e``.
+
+    In the block's mode ``bm`` with the isolator elastic or held; built column by column from
+    :func:`deriv` (affine in ``y``) at unit states; ``ny`` is the state's length (:func:`state_size`).
+    """
+    m = idx.shape[0]
+    A = np.zeros((m, m))
+    e = np.zeros(m)
+    y = np.zeros(ny)
+    out = np.zeros(ny)
+    late = 1e30   # after every pulse and record: p = 0
+    deriv(bm, 0.0, late, y, P, code, params, out)
+    for i in range(m):
+        e[i] = out[idx[i]]
+    for j in range(m):
+        y[:] = 0.0
+        y[idx[j]] = 1.0
+        deriv(bm, 0.0, late, y, P, code, params, out)
+        for i in range(m):
+            A[i, j] = out[idx[i]] - e[i]
+    return A, e
+
 
 @njit(cache=True)
 def free_system(P, code, params, held, idx, ny, n_rows):
     """The free linear system after the pulse: ``(A, c)`` with ``z' = A z`` for the moving states ``z = y[idx]``.
 
-    The block is stuck and the isolator stuck (``held``) or elastic; ``A`` is built column by column
-    from :func:`deriv` (affine in ``y``) at a time after any pulse, and the demands' rows ``c``
+    The block is stuck and the isolator stuck (``held``) or elastic; ``A`` is :func:`affine_rates`'s
+    (the constant part is zero), and the demands' rows ``c``
     (0: the block's floor acceleration; 1, when ``n_rows = 2``: the bilinear bearing's force, or
     the force holding a sliding bearing) from :func:`_floor_stuck` and :func:`_bearing_need`.
     ``ny`` is the state's length (:func:`state_size`).
     """
     n = int(P[P_N])
     m = idx.shape[0]
-    A = np.zeros((m, m))
+    A, _ = affine_rates(0.0, P, code, params, idx, ny)
     c = np.zeros((n_rows, m))
     y = np.zeros(ny)
-    out = np.zeros(ny)
-    late = 1e30   # after every pulse and record: p = 0
     for j in range(m):
         y[:] = 0.0
         y[idx[j]] = 1.0
-        deriv(0.0, 0.0, late, y, P, code, params, out)
-        for i in range(m):
-            A[i, j] = out[idx[i]]
         fh = y[ny - 1] if P[P_KIND] == KIND_BILINEAR else 0.0
         zp = y[Y_XS:Y_XS + n]
         zv = y[Y_XS + n:Y_XS + 2 * n]

@@ -102,6 +102,8 @@ def arrays(P: np.ndarray, modal: tuple) -> tuple:
     """
     n = int(P[bk.P_N])
     idx = np.array(building.free_states(P, False), dtype=np.int64)
+    # the moving states of an elastic linear isolator's building are the first ones (x, x', floors)
+    assert np.array_equal(idx, np.arange(idx.size))
     Wm, Vm, Lm = modal[0], modal[2], modal[3]
     if Lm.size != idx.size:
         raise ValueError("the stuck contents' configuration has no trustworthy modes")
@@ -117,24 +119,19 @@ def _configuration(P, idx, ny, bm):
     """``(A, b, e, row, c)`` of one configuration (``bm`` 0 stuck, 1 sliding forward).
 
     ``z' = A z + b p + e`` for the moving states ``z = y[idx]`` and the floor's absolute acceleration
-    ``row . z + c``, from :func:`isoslide.engine.building_kernel.deriv` and ``_accels`` (affine in
-    the state and the pulse): columns at unit states after any pulse, ``b`` under a rectangular
-    pulse's unit acceleration.
+    ``row . z + c``: ``A`` and ``e`` from :func:`isoslide.engine.building_kernel.affine_rates`, ``b``
+    from its :func:`~isoslide.engine.building_kernel.deriv` under a rectangular pulse's unit
+    acceleration, ``row`` from ``_accels`` at unit states (both affine in the state and the pulse).
     """
     m = idx.shape[0]
     n = int(P[bk.P_N])
-    A = np.zeros((m, m))
+    none = np.zeros(0)
+    A, e = bk.affine_rates(bm, P, RECTANGULAR, none, idx, ny)
     b = np.zeros(m)
-    e = np.zeros(m)
     row = np.zeros(m)
     y = np.zeros(ny)
     out = np.zeros(ny)
     floors = np.zeros(max(n, 1))
-    none = np.zeros(0)
-    late = 1e30   # after every pulse: p = 0
-    bk.deriv(bm, 0.0, late, y, P, RECTANGULAR, none, out)
-    for i in range(m):
-        e[i] = out[idx[i]]
     c = bk._accels(bm, 0.0, 0.0, 1.0, y, P, floors)[1]
     bk.deriv(bm, 0.0, 0.5, y, P, RECTANGULAR, none, out)   # the rectangular pulse: p = 1
     for i in range(m):
@@ -142,9 +139,6 @@ def _configuration(P, idx, ny, bm):
     for j in range(m):
         y[:] = 0.0
         y[idx[j]] = 1.0
-        bk.deriv(bm, 0.0, late, y, P, RECTANGULAR, none, out)
-        for i in range(m):
-            A[i, j] = out[idx[i]] - e[i]
         row[j] = bk._accels(bm, 0.0, 0.0, 1.0, y, P, floors)[1] - c
     return A, b, e, row, c
 
@@ -371,15 +365,6 @@ def _full_state(a, V, idx, u, ud, y):
 
 
 @njit(cache=True)
-def _modal(W, idx, y, a):
-    for k in range(W.shape[0]):
-        acc = 0.0 + 0.0j
-        for i in range(idx.shape[0]):
-            acc += W[k, i] * y[idx[i]]
-        a[k] = acc
-
-
-@njit(cache=True)
 def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol, settle, max_steps, idx, L0, V0, W0, beta0,
         L1, V1, W1, beta1, gamma1, rows, consts, Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh):
     """Propagate one scene of :func:`applies` from rest at ``tau_start`` (see the module docstring).
@@ -414,6 +399,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
     gam0 = np.zeros(m, dtype=np.complex128)
     wmax0 = np.max(np.abs(L0))
     wmax1 = np.max(np.abs(L1))
+    afc = consts[0]
     limits = np.array([thr, 0.0])
     offsets = np.zeros((2, 2))
     a_x = np.zeros(Wm.shape[0], dtype=np.complex128)
@@ -439,7 +425,6 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
         modes |= 1 << bk.block_mode(bm)
         lam, V, W, beta, gam, CF, Cv, Cd = (L0, V0, W0, beta0, gam0, CF0, Cv0, Cd0) if bm == 0.0 else \
             (L1, V1, W1, beta1, gamma1, CF1, Cv1, Cd1)
-        afc = consts[0]
         # --- the mode at the accepted point (round-off past a limit) ---------------------
         if bm == 0.0 and abs(_row(CF, a)) > thr:
             _full_state(a, V, idx, u, 0.0, y)
@@ -449,7 +434,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
                 events += 1
                 slipped = True
                 just = True
-                _modal(W1, idx, y, a)
+                free_phase.modal_coordinates(W1, y, 0, a)
                 continue
         if tau >= tau_end and bm == 0.0:
             _full_state(a, V, idx, u, 0.0, y)
@@ -465,7 +450,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
                                                a_y, tau, tau_stop, THETA / wmax0, False)
             if taken:
                 steps += 1
-                _modal(W0, idx, y, a)
+                free_phase.modal_coordinates(W0, y, 0, a)
                 xmax = max(xmax, abs(y[bk.Y_X]))
                 continue
         # --- the step: the pulse's polynomial within rtol, the step ending at a breakpoint --------
@@ -507,6 +492,9 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
             p1 = _poly(e, 1.0)
             AF1 = _row(CF, a1) + bm * afc
             dAF1 = _rate_row(CF, a1, lam, beta, gam, bm, p1)
+            if bm != 0.0:
+                Vg, Dg = _ground(e, 1.0, d)
+                ud1 = w0 - bm * phi * d - Vg - _row(Cv, a1)
             if bm == 0.0:
                 best = math.inf
                 for sig in (1.0, -1.0):
@@ -540,7 +528,6 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
                 if found >= 0:
                     t_found = best
             else:
-                ud1 = w0 - bm * phi * d - _ground(e, 1.0, d)[0] - _row(Cv, a1)
                 f1 = bm * ud1
                 if f1 <= 0.0:
                     f0 = bm * ud
@@ -572,7 +559,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
                                          e, psi, a)
                 tau = tau + i * d + t_found
                 u = u_e
-                xmax = max(xmax, abs(_x(V, idx, a)))
+                xmax = max(xmax, abs(_row(V[0], a)))
                 if found == 0:
                     _full_state(a, V, idx, u, 0.0, y)
                     bm = -sig_found
@@ -580,7 +567,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
                     events += 1
                     slipped = True
                     just = True
-                    _modal(W1, idx, y, a)
+                    free_phase.modal_coordinates(W1, y, 0, a)
                 else:
                     ud = 0.0
                     events += 1
@@ -590,20 +577,18 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
                     nb, _ = bk._select_modes(bm, 0.0, True, False, tau, y, P, code, params)
                     bm = nb
                     just = bm != 0.0
-                    _modal(W0 if bm == 0.0 else W1, idx, y, a)
+                    free_phase.modal_coordinates(W0 if bm == 0.0 else W1, y, 0, a)
                 h = min(h, H_START)
                 break
             # accept the sub-step
             if bm != 0.0:
-                Vg, Dg = _ground(e, 1.0, d)
-                ud_new = w0 - bm * phi * d - Vg - _row(Cv, a1)
                 u = u + w0 * d - 0.5 * bm * phi * d * d - Dg - (_row(Cd, a1) - dF0)
-                ud = ud_new
+                ud = ud1
                 vmax = max(vmax, abs(ud))
                 just = False
             for k in range(m):
                 a[k] = a1[k]
-            xmax = max(xmax, abs(_x(V, idx, a)))
+            xmax = max(xmax, abs(_row(V[0], a)))
         if found >= 0:
             continue
         tau = tau + h if tau + h < target else target
@@ -614,15 +599,6 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
                     dtype=np.int64)
     floats = np.array([umax, tpeak, u, tau, xmax, vmax, upeak, 0.0, math.nan])
     return ints, floats, np.zeros((0, ny + 4))
-
-
-@njit(cache=True)
-def _x(V, idx, a):
-    """The slab's displacement ``x`` from the modal coordinates (``idx[0]`` is ``x``)."""
-    acc = 0.0
-    for k in range(a.shape[0]):
-        acc += (V[0, k] * a[k]).real
-    return acc
 
 
 # numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
