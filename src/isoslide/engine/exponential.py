@@ -82,6 +82,9 @@ BUDGET = 0.25
 stays within this fraction of its limit (of the limit times the step on the sliding speed)."""
 MAX_HALVINGS = 40
 """Most halvings of a long sub-step (far more than any ratio of fastest to slowest mode needs)."""
+_COS = np.array([[math.cos(k * (math.pi * (j + 0.5) / (DEGREE + 1))) for k in range(DEGREE + 1)]
+                 for j in range(DEGREE + 1)])
+"""``cos(k theta_j)`` at the Chebyshev nodes ``theta_j = pi (j + 1/2)/(DEGREE + 1)`` (:func:`_chebyshev`)."""
 _FACT = np.array([math.factorial(k) for k in range(DEGREE + 3)], dtype=np.float64)
 SERIES_LIMIT = 4.0
 """``|lambda d|`` from which the ``phi`` functions come from ``exp`` by the recurrence upwards (:func:`_psi`)."""
@@ -207,10 +210,9 @@ def _chebyshev(code, params, tau, h, c):
     for k in range(q):
         c[k] = 0.0
     for j in range(q):
-        th = math.pi * (j + 0.5) / q
-        pj = accel_at(code, params, tau + 0.5 * h * (math.cos(th) + 1.0))
+        pj = accel_at(code, params, tau + 0.5 * h * (_COS[j, 1] + 1.0))
         for k in range(q):
-            c[k] += pj * math.cos(k * th)
+            c[k] += pj * _COS[j, k]
     for k in range(q):
         c[k] *= 2.0 / q
     c[0] *= 0.5
