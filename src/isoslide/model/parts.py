@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -215,20 +215,34 @@ class Superstructure:
     @cached_property
     def _modes(self) -> tuple:
         """``(masses, Ks, Cs, shortest period)`` of :meth:`matrices` and :attr:`shortest_period`."""
-        n = self.storeys
-        ws = 2.0 * math.pi / self.period
-        if n == 1:
-            return (np.array([self.mass]), np.array([[self.mass * ws * ws]]),
-                    np.array([[2.0 * self.damping * ws * self.mass]]), self.period)
-        w = np.full(n, 1.0 / n) if self.floor_masses is None else np.asarray(self.floor_masses)
-        r = np.ones(n) if self.storey_stiffnesses is None else np.asarray(self.storey_stiffnesses)
-        masses = self.mass * w
+        return _shear_modes(self)
+
+
+@lru_cache(maxsize=256)
+def _shear_modes(sup: Superstructure) -> tuple:
+    """``Superstructure._modes``, kept per superstructure: a study's scenes share theirs.
+
+    The stiffness shape's modes are those of ``Ks`` (a scalar multiple of it) with frequencies scaled
+    so that the first is ``2 pi/Pi12``.  The arrays are read-only.
+    """
+    n = sup.storeys
+    ws = 2.0 * math.pi / sup.period
+    if n == 1:
+        out = (np.array([sup.mass]), np.array([[sup.mass * ws * ws]]),
+               np.array([[2.0 * sup.damping * ws * sup.mass]]), sup.period)
+    else:
+        w = np.full(n, 1.0 / n) if sup.floor_masses is None else np.asarray(sup.floor_masses)
+        r = np.ones(n) if sup.storey_stiffnesses is None else np.asarray(sup.storey_stiffnesses)
+        masses = sup.mass * w
         shape = shear_building.stiffness_matrix(r)
-        omega, _ = shear_building.fixed_base_modes(masses, shape)
-        Ks = (ws / omega[0]) ** 2 * shape
-        omega, phi = shear_building.fixed_base_modes(masses, Ks)
-        return (masses, Ks, shear_building.classical_damping(masses, omega, phi, self.damping),
-                2.0 * math.pi / omega[-1])
+        omega, phi = shear_building.fixed_base_modes(masses, shape)
+        scale = ws / omega[0]
+        omega = omega * scale
+        out = (masses, scale * scale * shape, shear_building.classical_damping(masses, omega, phi, sup.damping),
+               2.0 * math.pi / omega[-1])
+    for a in out[:3]:
+        a.flags.writeable = False
+    return out
 
 
 @dataclass(frozen=True)

@@ -17,15 +17,8 @@ import numpy as np
 def stiffness_matrix(k) -> np.ndarray:
     """Fixed-base stiffness matrix ``(N, N)`` of a shear chain of storey stiffnesses ``k`` (bottom to top)."""
     k = np.asarray(k, dtype=float)
-    n = k.size
-    K = np.zeros((n, n))
-    for j in range(n):           # storey j + 1 joins floor j (0 the slab) and floor j + 1
-        K[j, j] += k[j]
-        if j > 0:
-            K[j - 1, j - 1] += k[j]
-            K[j - 1, j] -= k[j]
-            K[j, j - 1] -= k[j]
-    return K
+    above = np.append(k[1:], 0.0)      # storey j + 1 joins floor j (0 the slab) and floor j + 1
+    return np.diag(k + above) - np.diag(k[1:], 1) - np.diag(k[1:], -1)
 
 
 def fixed_base_modes(masses, K) -> tuple:
