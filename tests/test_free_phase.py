@@ -176,3 +176,23 @@ def test_a_long_free_tail_takes_few_exact_steps(monkeypatch):
     assert fast.pi1 == pytest.approx(slow.pi1, rel=1e-6)
     assert fast.settled and slow.settled
     assert fast.n_steps < 0.7 * slow.n_steps
+
+
+def test_a_matrix_is_decomposed_once_with_the_bits_of_a_fresh_decomposition(monkeypatch):
+    """free_phase.modes keeps each matrix's modes: an equal matrix gets the same (read-only) arrays,
+    bit for bit those of free_phase.decompose, and no more than MODES_KEPT matrices are kept."""
+    monkeypatch.setattr(free_phase, "_MODES", {})
+    monkeypatch.setattr(free_phase, "MODES_KEPT", 3)
+    rng = np.random.default_rng(2)
+    A = -np.eye(4) + 0.3 * rng.normal(size=(4, 4))
+    kept = free_phase.modes(A)
+    again = free_phase.modes(A.copy())
+    assert all(x is y for x, y in zip(kept, again, strict=True))
+    for x, y in zip(kept, free_phase.decompose(A), strict=True):
+        assert np.array_equal(x, y)
+    assert not any(x.flags.writeable for x in kept[:3])
+    for k in range(5):
+        free_phase.modes(A + 0.01 * (k + 1) * np.eye(4))
+    assert len(free_phase._MODES) == 3
+    assert free_phase.modes(A) is not kept    # the oldest was dropped: decomposed anew, the same bits
+    assert all(np.array_equal(x, y) for x, y in zip(free_phase.modes(A), kept, strict=True))

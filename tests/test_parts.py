@@ -66,3 +66,16 @@ def test_a_bilinear_bearing_follows_its_elastic_period():
 def test_an_unknown_isolator_kind_is_refused_naming_it():
     with pytest.raises(ValueError, match="kind = 'magnetic' is invalid"):
         Isolator("magnetic")
+
+
+def test_scenes_that_share_a_superstructure_share_its_read_only_matrices():
+    """Two scenes with the same shear building (other groups differing) get the same matrices, which
+    cannot be written, and the fundamental fixed-base period of the scaled stiffness is Pi12."""
+    kw = dict(pi11=0.6, pi12=0.3, pi13=0.02, storeys=4, storey_stiffnesses=(4.0, 3.0, 2.0, 1.0))
+    a = building_of(Scene(**BASE, **kw)).superstructure
+    b = building_of(Scene(**{**BASE, "pi2": 0.3, "pi3": 3.0}, **kw)).superstructure
+    masses, Ks, Cs = a.matrices()
+    assert all(x is y for x, y in zip(a.matrices(), b.matrices(), strict=True))
+    assert not any(x.flags.writeable for x in (masses, Ks, Cs))
+    w2 = np.linalg.eigvals(np.linalg.solve(np.diag(masses), Ks)).real
+    assert 2.0 * math.pi / math.sqrt(w2.min()) == pytest.approx(0.3, rel=1e-12)

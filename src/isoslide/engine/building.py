@@ -75,6 +75,7 @@ from dataclasses import replace
 import numpy as np
 
 from . import building_kernel as bk
+from . import free_phase
 from ..groups import GROUPS, TFP_NAMES
 from ..model.parts import building_of
 from ..pulses import SAMPLED
@@ -287,7 +288,8 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
     phase exactly.  Empty where the configuration cannot occur, has no moving state, or its
     eigenvectors are too ill-conditioned (condition number above
     :data:`isoslide.engine.building_kernel.FREE_MODES_COND`) for a trustworthy bound
-    (:func:`isoslide.engine.building_kernel.free_modes`).
+    (:func:`isoslide.engine.building_kernel.spread_modes`).  The system's matrix is decomposed once
+    for every scene that shares it (:func:`isoslide.engine.free_phase.modes`).
 
     Returns
     -------
@@ -305,5 +307,7 @@ def modal_data(scene: Scene, P: np.ndarray) -> tuple:
         if held != (kind in (bk.KIND_SLIDING, bk.KIND_FIXED, bk.KIND_TFP)) or not idx:
             out.extend(_empty_modal(ny))
             continue
-        out.extend(bk.free_modes(P, code, params, held, np.array(idx, dtype=np.int64), ny, n_rows)[:4])
+        idx = np.array(idx, dtype=np.int64)
+        A, c = bk.free_system(P, code, params, held, idx, ny, n_rows)
+        out.extend(bk.spread_modes(*free_phase.modes(A), c, idx, ny)[:4])
     return tuple(out)

@@ -1822,8 +1822,18 @@ def free_modes(P, code, params, held, idx, ny, n_rows):
     :data:`FREE_MODES_COND`.
     """
     A, c = free_system(P, code, params, held, idx, ny, n_rows)
-    m = idx.shape[0]
     lam, V, Winv, cond, grows = free_phase.decompose(A)
+    return spread_modes(lam, V, Winv, cond, grows, c, idx, ny)
+
+
+@njit(cache=True)
+def spread_modes(lam, V, Winv, cond, grows, c, idx, ny):
+    """:func:`free_modes`'s result from the modes ``(lam, V, Winv, cond, grows)`` of its system's matrix.
+
+    The modes as :func:`isoslide.engine.free_phase.decompose` (or ``modes``) gives them, ``c`` the
+    demands' rows of :func:`free_system` and ``idx`` its moving states.
+    """
+    m = idx.shape[0]
     if grows or not cond <= FREE_MODES_COND:
         return (np.zeros((0, ny), dtype=np.complex128), np.zeros((0, 0), dtype=np.complex128),
                 np.zeros((ny, 0), dtype=np.complex128), np.zeros(0, dtype=np.complex128), False)

@@ -116,7 +116,12 @@ def arrays(P: np.ndarray, modal: tuple) -> tuple:
     Returns
     -------
     tuple of ndarray
-        ``(idx, L0, V0, W0, beta0, L1, V1, W1, beta1, gamma1, rows, consts)`` (:func:`linear_arrays`).
+        ``(idx, L0, V0, W0, beta0, L1, V1, W1, beta1, gamma1, rows, consts)``: the moving states; the
+        stuck configuration's modes (``L0, V0, W0``) and the sliding one's (``L1, V1, W1``,
+        :func:`isoslide.engine.free_phase.modes`); the pulse's modal forcing in each (``beta0``,
+        ``beta1``) and a slide forward's friction's (``gamma1``); the rows of
+        :func:`linear_arrays`; the sliding floor acceleration's constant part and the friction level
+        ``phi`` (``consts``).
 
     Raises
     ------
@@ -126,16 +131,16 @@ def arrays(P: np.ndarray, modal: tuple) -> tuple:
     """
     n = int(P[bk.P_N])
     idx = np.array(building.free_states(P, False), dtype=np.int64)
-    # the moving states of an elastic linear isolator's building are the first ones (x, x', floors)
-    assert np.array_equal(idx, np.arange(idx.size))
     Wm, Vm, Lm = modal[0], modal[2], modal[3]
     if Lm.size != idx.size:
         raise ValueError("the stuck contents' configuration has no trustworthy modes")
     V0, W0 = np.ascontiguousarray(Vm[idx, :]), np.ascontiguousarray(Wm[:, idx])
-    L1, V1, W1, beta0, beta1, gamma1, rows, consts, ok = linear_arrays(P, idx, bk.state_size(n), W0)
-    if not ok:
+    A1, b0, b1, e1, rows, c1 = linear_arrays(P, idx, bk.state_size(n))
+    L1, V1, W1, cond, grows = free_phase.modes(A1)
+    if grows or not cond <= bk.FREE_MODES_COND:
         raise ValueError("the sliding contents' configuration has no trustworthy modes")
-    return idx, Lm, V0, W0, beta0, L1, V1, W1, beta1, gamma1, rows, consts
+    return (idx, Lm, V0, W0, W0 @ b0.astype(np.complex128), L1, V1, W1, W1 @ b1.astype(np.complex128),
+            W1 @ e1.astype(np.complex128), rows, np.array([c1, P[bk.P_THR]]))
 
 
 @njit(cache=True)
@@ -168,23 +173,19 @@ def _configuration(P, idx, ny, bm):
 
 
 @njit(cache=True)
-def linear_arrays(P, idx, ny, W0):
-    """The sliding configuration's modes and the modal forcing of both configurations.
+def linear_arrays(P, idx, ny):
+    """The sliding configuration's matrix and both configurations' forcing and rows.
 
-    ``W0`` is the stuck configuration's inverse eigenvectors (:func:`isoslide.engine.building.modal_data`
-    restricted to the moving states ``idx``).  Returns ``(L1, V1, W1, beta0, beta1, gamma1, rows,
-    consts, ok)``: the sliding configuration's modes (:func:`isoslide.engine.free_phase.decompose`),
-    the pulse's modal forcing stuck and sliding, a slide forward's friction's; ``rows`` (4, n_states)
-    the floor's absolute acceleration stuck and sliding (its linear part), its speed and its
-    displacement relative to the ground; ``consts`` the sliding floor acceleration's constant part (a
-    slide forward) and the friction level ``phi``; ``ok`` False where the sliding configuration's
-    modes are not trustworthy.
+    Returns ``(A1, b0, b1, e1, rows, c1)``: ``z' = A1 z + b1 p + e1`` with the contents sliding forward
+    (:func:`_configuration`; its modes are :func:`isoslide.engine.free_phase.modes`'), ``b0`` the
+    pulse's forcing with them stuck; ``rows`` (4, n_states) the floor's absolute acceleration stuck
+    and sliding (its linear part), its speed and its displacement relative to the ground; ``c1`` the
+    sliding floor acceleration's constant part (a slide forward).
     """
     m = idx.shape[0]
     n = int(P[bk.P_N])
     _, b0, _, row0, _ = _configuration(P, idx, ny, 0.0)
     A1, b1, e1, row1, c1 = _configuration(P, idx, ny, 1.0)
-    L1, V1, W1, cond, grows = free_phase.decompose(A1)
     rows = np.zeros((4, m))
     fl = int(P[bk.P_FLOOR]) - 1
     roof = P[bk.P_ROOF] != 0.0
@@ -196,11 +197,7 @@ def linear_arrays(P, idx, ny, W0):
             rows[2, i] = 1.0
         if s == bk.Y_X or (roof and s == bk.Y_XS + fl):
             rows[3, i] = 1.0
-    consts = np.array([c1, P[bk.P_THR]])
-    beta0 = W0 @ b0.astype(np.complex128)
-    beta1 = W1 @ b1.astype(np.complex128)
-    gamma1 = W1 @ e1.astype(np.complex128)
-    return L1, V1, W1, beta0, beta1, gamma1, rows, consts, (not grows) and cond <= bk.FREE_MODES_COND
+    return A1, b0, b1, e1, rows, c1
 
 
 @njit(cache=True)

@@ -56,8 +56,18 @@ def decompose(A):
     condition number of ``V`` and ``grows`` whether a mode grows (``Re lambda > 1e-12 max(1,
     |lambda|)``).
     """
-    m = A.shape[0]
     lam, V = np.linalg.eig(A.astype(np.complex128))
+    return arrange(lam, V)
+
+
+@njit(cache=True)
+def arrange(lam, V):
+    """The modes ``(lam, V)`` of a real matrix from an eigensolver, arranged as :func:`decompose` gives them.
+
+    ``lam`` and ``V`` (complex128) are changed in place: a complex mode's conjugate made exact, the
+    modes sorted from the fastest, ``W = V^-1``, the condition number and whether a mode grows.
+    """
+    m = lam.shape[0]
     top = 1.0
     for k in range(m):
         top = max(top, abs(lam[k]))
@@ -87,6 +97,31 @@ def decompose(A):
     cond = np.linalg.cond(V)
     W = np.ascontiguousarray(np.linalg.inv(V)) if cond < 1e300 else np.zeros((m, m), dtype=np.complex128)
     return lam, V, W, cond, grow > 1e-12 * top
+
+
+MODES_KEPT = 512
+"""How many matrices' modes :func:`modes` keeps (the oldest dropped first)."""
+_MODES: dict = {}
+
+
+def modes(A: np.ndarray) -> tuple:
+    """:func:`decompose` of a real matrix ``A``, kept per matrix.
+
+    The scenes of a study share their buildings' matrices (the contents' friction and the pulse
+    enter the forcing, not the matrix), so each is decomposed once; the same matrix gives the same
+    bits, kept or decomposed anew.  The arrays returned are read-only.
+    """
+    A = np.ascontiguousarray(A, dtype=np.float64)
+    key = (A.shape, A.tobytes())
+    kept = _MODES.get(key)
+    if kept is None:
+        kept = decompose(A)
+        for x in kept[:3]:
+            x.flags.writeable = False
+        if len(_MODES) >= MODES_KEPT:
+            del _MODES[next(iter(_MODES))]
+        _MODES[key] = kept
+    return kept
 
 
 @njit(cache=True)
