@@ -113,7 +113,8 @@ def test_the_buildings_section_splits_each_class_into_steps_cost_per_step_and_as
         us = 100.0 * (k + 1)
         rows[name] = {"times": [[us * 1e-6] * 3 for _ in range(points)], "pi1": [1.0] * points,
                       "conv": [1.0] * points, "models": ["m"] * points, "steps": [10 * (k + 1)] * points,
-                      "period": 1.0, "assembly_us": 0.0 if k == 0 else 25.0 * (k + 1)}
+                      "period": 1.0, "assembly_us": 0.0 if k == 0 else 25.0 * (k + 1),
+                      "assembly_cold_us": 0.0 if k == 0 else 40.0 * (k + 1)}
     out = io.StringIO()
     summ = bench.report_buildings({"rows": rows, "points": [{}] * points, "repeats": 3}, file=out)
     text = out.getvalue()
@@ -122,4 +123,4 @@ def test_the_buildings_section_splits_each_class_into_steps_cost_per_step_and_as
     assert summ[name]["step_cost_ratio"] == pytest.approx(1.0) and summ[name]["assembly_share"] == pytest.approx(0.25)
     assert f"at most {bench.TARGET_BUILDING_RATIO:g}x the paper model's cost" in text
     assert f"aim: {bench.TARGET_STOREYS} storeys at most {bench.TARGET_STOREYS_RATIO:g}x" in text
-    assert STOREYS_NAME.format(bench.TARGET_STOREYS) in summ and "assembly     75 us ( 25 %)" in text
+    assert STOREYS_NAME.format(bench.TARGET_STOREYS) in summ and "assembly     75 us ( 25 %),    120 us anew" in text

@@ -69,9 +69,10 @@ def test_building_rows_carry_the_paper_cost_and_every_ratio():
 def test_building_rows_say_what_limits_each_class():
     summary = {"paper": {"us": 140.0, "ratio": 1.0, "err_max": 1e-9},
                "flexible": {"us": 700.0, "ratio": 5.0, "err_max": 2e-9, "steps_ratio": 4.0, "step_cost_ratio": 1.25,
-                            "assembly_us": 175.0, "assembly_share": 0.25}}
+                            "assembly_us": 175.0, "assembly_share": 0.25, "assembly_cold_us": 410.0}}
     (row,) = ms.buildings_rows(summary, "paper", points=8, repeats=7)[1:-1]
-    assert row.conditions == "steps x4.00, cost per step x1.25, assembly 175 us (25 % of its cost)"
+    assert row.conditions == ("steps x4.00, cost per step x1.25, assembly 175 us (25 % of its cost; 410 us with "
+                              "nothing shared with another scene)")
 
 
 def test_rocking_rows_carry_the_ratio_what_limits_it_and_the_records_cost():

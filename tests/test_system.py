@@ -103,3 +103,18 @@ def test_an_assembled_scene_answers_as_a_new_one_bit_for_bit():
     assert (first.pi1, first.n_steps, first.tau_end) == (second.pi1, second.n_steps, second.tau_end) \
         == (fresh.pi1, fresh.n_steps, fresh.tau_end)
     assert first.peak_stage > 0
+
+
+def test_forgetting_what_scenes_share_derives_it_anew_with_the_same_bits():
+    """After forget_shared a new scene on the same building decomposes its matrices again, and its
+    modal data equal, bit for bit, those assembled while they were kept."""
+    from isoslide.engine import free_phase
+
+    sc = Scene(pi2=0.1, pi3=2.0, pi4=0.05, pi8=0.01, pi11=0.6, pi12=0.2, pi13=0.02, storeys=3, floor="roof")
+    kept = system.assemble(system.unassembled(sc), pi8=sc.pi8, coulomb=True)
+    assert free_phase._MODES
+    system.forget_shared()
+    assert not free_phase._MODES
+    anew = system.assemble(system.unassembled(sc), pi8=sc.pi8, coulomb=True)
+    for got, want in zip(anew.modal + anew.linear, kept.modal + kept.linear, strict=True):
+        assert np.array_equal(got, want)

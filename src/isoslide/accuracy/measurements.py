@@ -104,7 +104,8 @@ def buildings_rows(summary: dict, paper: str, points: int, repeats: int) -> list
     """The buildings section's figures: the paper model's cost per scene, every other class's ratio to it.
 
     ``summary`` is :func:`isoslide.bench.report_buildings`'s return (``us``, ``ratio``, what limits
-    each class: ``steps_ratio``, ``step_cost_ratio``, ``assembly_us`` and ``assembly_share``, and, for
+    each class: ``steps_ratio``, ``step_cost_ratio``, ``assembly_us``, ``assembly_share`` and
+    ``assembly_cold_us``, and, for
     the pendulums, ``pendulum_ratio`` per building), ``paper`` the paper model's row name.
     """
     base = summary[paper]
@@ -116,7 +117,8 @@ def buildings_rows(summary: dict, paper: str, points: int, repeats: int) -> list
         notes = []
         if "steps_ratio" in s:
             notes.append(f"steps x{s['steps_ratio']:.2f}, cost per step x{s['step_cost_ratio']:.2f}, assembly "
-                         f"{s['assembly_us']:.0f} us ({100.0 * s['assembly_share']:.0f} % of its cost)")
+                         f"{s['assembly_us']:.0f} us ({100.0 * s['assembly_share']:.0f} % of its cost; "
+                         f"{s['assembly_cold_us']:.0f} us with nothing shared with another scene)")
         if "pendulum_ratio" in s:
             notes.append(f"its ratio to the constant pendulum: {s['pendulum_ratio']:.2f}")
         rows.append(Measurement(f"{name}: cost ratio to the paper model", f"{s['ratio']:.2f}", "x", "; ".join(notes)))

@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from ..engine.system import assemble, unassembled
+from ..engine.system import assemble, forget_shared, unassembled
 from ..peers import WorkLimitError, solve_opensees, solve_reference, solve_regularized
 from ..scene import Scene
 from ..solver import StepBudgetError, solve
@@ -54,16 +54,21 @@ def timed_batch(scenes: list, exact: list, repeats: int = 3) -> tuple:
     return sum(s.n_steps for s in sols), 1e3 * float(np.median(times)), err
 
 
-def assembly_times(scenes: list, repeats: int) -> np.ndarray:
+def assembly_times(scenes: list, repeats: int, shared: bool = True) -> np.ndarray:
     """Median time (s) of assembling each general scene as a solve does (:func:`isoslide.engine.system.assemble`).
 
     Each assembly is of a new copy (:func:`~isoslide.engine.system.unassembled`): the parts, the
     kernel's arrays, the modal data, the breakpoints and the step budget, derived from the groups.
+    With ``shared``, what scenes on the same building share (its superstructure's matrices, its
+    modes) is kept from the scenes assembled before, as in a study; without, it is derived anew for
+    each (:func:`~isoslide.engine.system.forget_shared`), as for a study's first scene.
     """
     t = np.zeros((repeats, len(scenes)))
     for r in range(repeats):
         for k, sc in enumerate(scenes):
             sc = unassembled(sc)
+            if not shared:
+                forget_shared()
             t0 = time.perf_counter()
             assemble(sc, pi8=sc.pi8, coulomb=sc.rate_independent)
             t[r, k] = time.perf_counter() - t0

@@ -20,8 +20,9 @@ from functools import cached_property
 
 import numpy as np
 
-from . import building, exponential, kernel
+from . import building, exponential, free_phase, kernel
 from . import building_kernel as bk
+from ..model import parts
 from ..scene import Scene
 
 DEFAULT_HORIZON = 200.0
@@ -164,3 +165,13 @@ def unassembled(scene: Scene) -> Scene:
     solved again.
     """
     return replace(scene)
+
+
+def forget_shared() -> None:
+    """Forget what scenes that share a building share: its superstructure's matrices and its modes.
+
+    The next assembly derives them anew, as a study's first scene on a building does
+    (:func:`isoslide.engine.free_phase.modes`, :meth:`isoslide.model.parts.Superstructure.matrices`).
+    """
+    free_phase._MODES.clear()
+    parts.forget_shared()

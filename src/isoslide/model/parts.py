@@ -218,6 +218,11 @@ class Superstructure:
         return _shear_modes(self)
 
 
+def forget_shared() -> None:
+    """Forget the superstructures' matrices kept for the scenes that share them."""
+    _shear_modes.cache_clear()
+
+
 @lru_cache(maxsize=256)
 def _shear_modes(sup: Superstructure) -> tuple:
     """``Superstructure._modes``, kept per superstructure: a study's scenes share theirs.
