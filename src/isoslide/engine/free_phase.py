@@ -109,15 +109,14 @@ def modes(A: np.ndarray) -> tuple:
 
     The scenes of a study share their buildings' matrices (the contents' friction and the pulse
     enter the forcing, not the matrix), so each is decomposed once; the same matrix gives the same
-    bits, kept or decomposed anew.  The arrays returned are read-only.
+    bits, kept or decomposed anew.  The arrays returned are shared: they must not be changed (they
+    stay writable, so that the kernels compiled for the modal data take them as they are).
     """
     A = np.ascontiguousarray(A, dtype=np.float64)
     key = (A.shape, A.tobytes())
     kept = _MODES.get(key)
     if kept is None:
         kept = decompose(A)
-        for x in kept[:3]:
-            x.flags.writeable = False
         if len(_MODES) >= MODES_KEPT:
             del _MODES[next(iter(_MODES))]
         _MODES[key] = kept
