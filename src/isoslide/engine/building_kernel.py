@@ -1807,31 +1807,21 @@ def free_system(P, code, params, held, idx, ny, n_rows):
 
 
 FREE_MODES_COND = 1e8
-"""Largest condition number of the free phase's eigenvectors that :func:`free_modes` accepts."""
-
-
-@njit(cache=True)
-def free_modes(P, code, params, held, idx, ny, n_rows):
-    """Modal data of the free linear system of :func:`free_system` (:func:`isoslide.engine.building.modal_data`).
-
-    Returns ``(W, C, V, L, ok)``: ``A = V diag(L) W`` with the modes ordered from the fastest to the
-    slowest (stable order), the modes of a conjugate pair exact conjugates, ``W`` and ``V`` spread
-    over the whole state of length ``ny`` (zero columns and rows for the states that do not move),
-    ``C = margin c V`` with a relative margin for the round-off of the decomposition; ``ok`` False
-    (and empty arrays) where a mode grows or the eigenvectors' condition number exceeds
-    :data:`FREE_MODES_COND`.
-    """
-    A, c = free_system(P, code, params, held, idx, ny, n_rows)
-    lam, V, Winv, cond, grows = free_phase.decompose(A)
-    return spread_modes(lam, V, Winv, cond, grows, c, idx, ny)
+"""Largest condition number of the free phase's eigenvectors that :func:`spread_modes` accepts."""
 
 
 @njit(cache=True)
 def spread_modes(lam, V, Winv, cond, grows, c, idx, ny):
-    """:func:`free_modes`'s result from the modes ``(lam, V, Winv, cond, grows)`` of its system's matrix.
+    """Modal data of the free linear system of :func:`free_system` (:func:`isoslide.engine.building.modal_data`).
 
-    The modes as :func:`isoslide.engine.free_phase.decompose` (or ``modes``) gives them, ``c`` the
-    demands' rows of :func:`free_system` and ``idx`` its moving states.
+    From the modes ``(lam, V, Winv, cond, grows)`` of its matrix as
+    :func:`isoslide.engine.free_phase.decompose` (or ``modes``) gives them, ``c`` its demands' rows
+    and ``idx`` its moving states.  Returns ``(W, C, V, L, ok)``: ``A = V diag(L) W`` with the modes
+    ordered from the fastest to the slowest (stable order), the modes of a conjugate pair exact
+    conjugates, ``W`` and ``V`` spread over the whole state of length ``ny`` (zero columns and rows
+    for the states that do not move), ``C = margin c V`` with a relative margin for the round-off of
+    the decomposition; ``ok`` False (and empty arrays) where a mode grows or the eigenvectors'
+    condition number exceeds :data:`FREE_MODES_COND`.
     """
     m = idx.shape[0]
     if grows or not cond <= FREE_MODES_COND:

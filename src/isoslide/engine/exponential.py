@@ -357,6 +357,18 @@ def _mag(z):
     return math.sqrt(z.real * z.real + z.imag * z.imag)
 
 
+@njit(cache=True, inline="always")
+def _quasi_static(k, lam, beta, gam, bm, p):
+    """Mode ``k``'s quasi-static response ``q_k = -(beta_k p + bm gamma_k)/lambda_k`` to the pulse ``p`` and the friction."""
+    return -(beta[k] * p + bm * gam[k]) / lam[k]
+
+
+@njit(cache=True, inline="always")
+def _free_bound(k, q, a, absC, bl, var):
+    """``|C_k| (|a_k - q_k| + |beta_k/lambda_k| var)``: mode ``k``'s free vibration's bound on a row (:func:`_smooth`)."""
+    return absC[k] * (_mag(a[k] - q) + bl[k] * var)
+
+
 @njit(cache=True)
 def _smooth(C, absC, a, lam, beta, gam, bl, bm, s, p, dp, var, bound):
     """The row ``C`` of the modal state ``a`` with the free vibration of its ``s`` fastest modes set apart.
@@ -374,11 +386,11 @@ def _smooth(C, absC, a, lam, beta, gam, bl, bm, s, p, dp, var, bound):
     B = 0.0
     for k in range(a.shape[0]):
         if k < s:
-            q = -(beta[k] * p + bm * gam[k]) / lam[k]
+            q = _quasi_static(k, lam, beta, gam, bm, p)
             G += (C[k] * q).real
             R -= (C[k] * beta[k] * dp / lam[k]).real
             if bound:
-                B += absC[k] * (_mag(a[k] - q) + bl[k] * var)
+                B += _free_bound(k, q, a, absC, bl, var)
         else:
             G += (C[k] * a[k]).real
             R += (C[k] * (lam[k] * a[k] + beta[k] * p + bm * gam[k])).real
@@ -404,8 +416,7 @@ def _cut(bm, h, a, lam, beta, gam, bl, absC, e, budget, nsub):
     for k in range(m):
         if lam[k] == 0.0:
             break
-        q = -(beta[k] * e[0] + bm * gam[k]) / lam[k]
-        acc += absC[k] * (_mag(a[k] - q) + bl[k] * var)
+        acc += _free_bound(k, _quasi_static(k, lam, beta, gam, bm, e[0]), a, absC, bl, var)
         if acc > budget:
             break
         s = k + 1
@@ -666,12 +677,10 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, h_max, rtol,
         if s > 0:
             while h / (nc << nlev) * wmax > THETA:
                 nlev += 1
-            for lev in range(nlev):
-                have[lev] = False   # computed when first needed
+        have[:nlev + 1] = False   # each level's psi computed when first needed
         ntot = nc << nlev
         d = h / ntot
         psi_d = psi_tab[nlev]
-        have[nlev] = False
         # --- the sub-steps -----------------------------------------------------------------
         found = -1
         sig_found = 0.0

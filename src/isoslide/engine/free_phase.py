@@ -123,6 +123,11 @@ def modes(A: np.ndarray) -> tuple:
     return kept
 
 
+def forget() -> None:
+    """Forget every matrix's modes that :func:`modes` keeps."""
+    _MODES.clear()
+
+
 @njit(cache=True)
 def modal_coordinates(W, y, o, a):
     """``a = W y[o : o + W.shape[1]]``: the complex modal coordinates of one axis, into ``a``."""

@@ -173,5 +173,5 @@ def forget_shared() -> None:
     The next assembly derives them anew, as a study's first scene on a building does
     (:func:`isoslide.engine.free_phase.modes`, :meth:`isoslide.model.parts.Superstructure.matrices`).
     """
-    free_phase._MODES.clear()
+    free_phase.forget()
     parts.forget_shared()
