@@ -13,7 +13,7 @@ import xarray as xr
 
 import isoslide
 from isoslide import datasets
-from isoslide.models import (BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, PLANAR_LABELS,
+from isoslide.models import (BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, PLANAR_LABELS, TFP_SPEED_LABELS,
                              ROCKING_LABELS, VERTICAL_LABELS, Facets, label)
 from isoslide.pulses import sampled
 
@@ -67,8 +67,10 @@ def building_scene(name: str) -> isoslide.Scene:
         kw.update(pi9=0.05)
     elif parts[0] == "sliding-bearing-speed":
         kw.update(pi9=0.1, pi22=0.5, pi23=20.0)
-    elif parts[0] == "triple-friction-pendulum":
+    elif parts[0] in ("triple-friction-pendulum", "triple-friction-pendulum-speed"):
         kw.update(pi9=0.05, pi24=0.1, pi25=0.5, pi26=0.5, pi27=2.0, pi28=0.05, pi29=0.1, pi30=0.2)
+        if parts[0].endswith("-speed"):
+            kw.update(pi22=0.5, pi23=10.0)
     elif parts[0] == "fixed-base":
         kw.update(pi3=0.0)
     if "flexible" in parts:
@@ -93,6 +95,13 @@ def test_building_labels_name_their_scenes():
     """Each general-building label is the label of the scene built from its parts (vertical motion, the plane,
     a rocking block)."""
     for name in BUILDING_LABELS + VERTICAL_LABELS + PLANAR_LABELS + ROCKING_LABELS:
+        assert isoslide.solve(building_scene(name)).model == name
+
+
+@pytest.mark.slow
+def test_speed_dependent_triple_pendulum_labels_name_their_scenes():
+    """Each label of a triple pendulum whose friction rises with speed is the label of the scene built from its parts."""
+    for name in TFP_SPEED_LABELS:
         assert isoslide.solve(building_scene(name)).model == name
 
 

@@ -42,7 +42,7 @@ import math
 import sys
 
 from . import __version__
-from .groups import INPUTS, ROCKING
+from .groups import INPUTS, ROCKING, TFP_SPEED
 from .store.history_io import FORMATS, history_format, history_table, write_history
 from .pulses import PULSE_NAMES
 from .reports.quicklook import check_plot_path, plot_fit, plot_history
@@ -117,6 +117,10 @@ def _parser() -> argparse.ArgumentParser:
         s.add_argument(f"--{g.name}", type=float, default=None,
                        help=f"{g.definition}: {g.meaning}; {g.range_text.replace('value', g.name)} (default: none, "
                             "contents that only slide" + (", Housner's" if g.name == "pi20" else "") + ")")
+    for g in TFP_SPEED:
+        s.add_argument(f"--{g.name}", type=float, default=None,
+                       help=f"{g.definition}: {g.meaning}; {g.range_text.replace('value', g.name)} (default: none, "
+                            f"surface 1's {'pi22' if g.name in ('pi31', 'pi32') else 'pi23'})")
     _common(s)
     q = sub.add_parser("solve-physical", help="one scene in SI units")
     for name, unit, default in [("a-p", "m/s^2; default with --record: the fitted pulse's", None),
@@ -241,7 +245,7 @@ def _scene(args):
     if second is not None and not isinstance(second, str):
         info["record_y"] = _record_dict(second)
     if args.command == "solve":
-        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS + ROCKING}, pulse=excitation, floor=args.floor,
+        scene = Scene(**{g.name: getattr(args, g.name) for g in INPUTS + ROCKING + TFP_SPEED}, pulse=excitation, floor=args.floor,
                       storeys=args.storeys, pulse_z=args.pulse_z, pulse_y=second, angle=args.angle)
         if rec is not None:
             info["fitted_pulse"] = _fit_dict(rec.fit())
@@ -272,7 +276,7 @@ def _scene(args):
         fp = triple_friction_pendulum(args.tfp_L, args.tfp_mu, args.tfp_d, args.M_b, args.g,
                                       mu_slow=args.mu_b_slow, rate=args.rate)
         T_b, Q_d, D_y = fp["T_b"], fp["Q_d"], fp["D_y"]
-        bearing = {"tfp": fp["tfp"]}
+        bearing = {"tfp": fp["tfp"], "Q_slow": fp.get("Q_slow"), "rate": fp.get("rate", 0.0)}
     elif args.mu_b_slow is not None and args.R is None:
         raise ValueError("--mu-b-slow is given without a friction pendulum; allowed: with --R and --mu-b "
                          "(or --Q-slow with --Q-d)")
@@ -313,7 +317,7 @@ def _solve(args) -> int:
            "settled": sol.settled, "model": sol.model, "contact": sol.facets.contact,
            "n_steps": sol.n_steps, "n_events": sol.n_events, "peak_stage": sol.peak_stage,
            "theta_max": sol.theta_max, "overturned": sol.overturned, "modes": list(sol.modes),
-           "scene": {**scene.pis(), **{g.name: getattr(scene, g.name) for g in ROCKING}, "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name,
+           "scene": {**scene.pis(), **{g.name: getattr(scene, g.name) for g in ROCKING + TFP_SPEED}, "floor": scene.floor, "storeys": scene.storeys, "pulse": scene.pulse.name,
                      "pulse_y": None if scene.pulse_y is None else scene.pulse_y.name, "angle": scene.angle,
                      "planar": scene.planar,
                      "pulse_z": None if scene.pulse_z is None else scene.pulse_z.name}}

@@ -40,6 +40,10 @@ Pi27   mu3 / mu2            upper friction ratio of a triple pendulum   1 <= Pi2
 Pi28   d1 / (a_p T_p^2)     inner limit of a triple pendulum            0 <= Pi28 <= 1e6
 Pi29   d2 / (a_p T_p^2)     lower outer limit of a triple pendulum      0 <= Pi29 <= 1e6
 Pi30   d3 / (a_p T_p^2)     upper outer limit of a triple pendulum      0 <= Pi30 <= 1e6
+Pi31   mu_slow1 / mu1       inner breakaway-to-fast friction ratio      0 < Pi31 < 1
+Pi32   mu_slow3 / mu3       upper breakaway-to-fast friction ratio      0 < Pi32 < 1
+Pi33   a1 a_p T_p           inner friction rate group                   0 < Pi33 <= 1e12
+Pi34   a3 a_p T_p           upper friction rate group                   0 < Pi34 <= 1e12
 =====  ===================  ==========================================  ================
 
 ``M_b = m_b + m_st`` is the whole isolated mass (base slab and superstructure,
@@ -57,7 +61,10 @@ make a sliding bearing a triple friction pendulum (``Pi24 > 0``; OpenSees's
 lower and upper outer surfaces', ``mu1 <= mu2 <= mu3`` and ``d1, d2, d3`` their friction and
 displacement limits); with them ``Pi3 = 2 pi sqrt((L2 + L3)/g) / T_p`` is the period of its outer
 surfaces sliding together (regime III) and ``Pi9 = mu2 g / a_p`` (the bearing's weight ``M_b g``), so
-that equal frictions give the single pendulum of radius ``L2 + L3``.  Pi18 to Pi21 (:data:`ROCKING`)
+that equal frictions give the single pendulum of radius ``L2 + L3``.  With ``Pi22 < 1`` and ``Pi23 > 0``
+every surface of a triple pendulum follows that law of its own sliding speed: ``Pi22``, ``Pi23`` are
+surface 1's (``mu2``), Pi31 to Pi34 (:data:`TFP_SPEED`, each optional: ``None`` takes surface 1's)
+the inner surfaces' (``mu1``) and the upper one's (``mu3``).  Pi18 to Pi21 (:data:`ROCKING`)
 make the contents a rigid rectangular block that can rock (half-width ``b``, half-height ``h``,
 ``alpha = atan(b/h)``, ``R = sqrt(b^2 + h^2)``, ``p = sqrt(3 g / (4 R))``): ``Pi18 = b/h``, ``Pi19 = p
 T_p``, ``Pi20 = e`` the restitution of its angular velocity at impact and ``Pi21 = a_p/(g tan
@@ -284,7 +291,33 @@ ROCKING = (
 ROCKING_NAMES = tuple(g.name for g in ROCKING)
 """Names of the rocking block's groups (``("pi18", ..., "pi21")``)."""
 
-GROUPS = {g.name: g for g in (RESULT, *INPUTS, *ROCKING)}
+TFP_SPEED = (
+    Group("pi31", "mu_slow1 / mu1", "inner breakaway-to-fast friction ratio", r"\Pi_{31}", r"\mu_{slow,1}/\mu_1",
+          "Π₃₁", lo_in=False, hi=1.0, hi_in=False,
+          comment="breakaway friction of the inner surfaces of a triple friction pendulum over their fast value "
+                  "(mu1 = Pi26 Pi9 a_p/g), their law mu(v) = mu1 - (mu1 - mu_slow1) exp(-a1 |v|) of their own sliding "
+                  "speed; absent (None) = Pi22; read only with a triple pendulum whose friction rises with speed "
+                  "(Pi24 > 0, Pi22 < 1, Pi23 > 0)"),
+    Group("pi32", "mu_slow3 / mu3", "upper breakaway-to-fast friction ratio", r"\Pi_{32}", r"\mu_{slow,3}/\mu_3",
+          "Π₃₂", lo_in=False, hi=1.0, hi_in=False,
+          comment="breakaway friction of the upper outer surface (surface 4) of a triple friction pendulum over its "
+                  "fast value; absent (None) = Pi22; read only as Pi31"),
+    Group("pi33", "a1 a_p T_p", "inner friction rate group", r"\Pi_{33}", r"a_1\,a_p T_p", "Π₃₃",
+          lo_in=False, hi=1e12,
+          comment="rate a1 (s/m) of the inner surfaces' friction law times the pulse's velocity scale a_p T_p; "
+                  "absent (None) = Pi23; read only as Pi31"),
+    Group("pi34", "a3 a_p T_p", "upper friction rate group", r"\Pi_{34}", r"a_3\,a_p T_p", "Π₃₄",
+          lo_in=False, hi=1e12,
+          comment="rate a3 (s/m) of the upper outer surface's friction law times a_p T_p; absent (None) = Pi23; "
+                  "read only as Pi31"),
+)
+"""The groups of a triple pendulum's inner and upper surfaces whose friction rises with speed, each
+optional (``None``: surface 1's ``Pi22`` or ``Pi23``)."""
+
+TFP_SPEED_NAMES = tuple(g.name for g in TFP_SPEED)
+"""Names of those groups (``("pi31", ..., "pi34")``)."""
+
+GROUPS = {g.name: g for g in (RESULT, *INPUTS, *ROCKING, *TFP_SPEED)}
 """Every group by name, the result first."""
 
 INPUT_NAMES = tuple(g.name for g in INPUTS)

@@ -34,7 +34,8 @@ The general building (:mod:`isoslide.engine.building`) adds, in front of the fri
 ``bilinear``, ``sliding-bearing``, ``sliding-bearing-speed``, ``triple-friction-pendulum``, ``linear``
     The isolator integrated (``fixed-base`` for ``Pi3 = 0``); ``sliding-bearing-speed`` is a
     sliding bearing whose friction rises with its speed (``Pi22 < 1``, ``Pi23 > 0``),
-    ``triple-friction-pendulum`` one with an articulated slider (``Pi24 > 0``).
+    ``triple-friction-pendulum`` one with an articulated slider (``Pi24 > 0``), and
+    ``triple-friction-pendulum-speed`` that one with its surfaces' friction rising with speed.
 ``flexible``
     The superstructure is flexible (``Pi12 > 0``) and integrated; ``roof``: the contents
     sit on its top floor, ``intermediate``: on a floor between the slab and the roof.
@@ -66,7 +67,7 @@ PEER_LABELS = ("regularized", "reference")
 
 FACETS = {
     "isolator": ("linear", "fixed-base", "bilinear", "sliding-bearing", "sliding-bearing-speed",
-                 "triple-friction-pendulum"),
+                 "triple-friction-pendulum", "triple-friction-pendulum-speed"),
     "superstructure": ("rigid", "flexible"),
     "floor": ("base", "roof", "intermediate"),
     "friction": FRICTION_MODELS,
@@ -162,7 +163,7 @@ PIECEWISE_LABELS = _piecewise_labels()
 """Labels of the exact piecewise propagation (appended after the integrator's and the peers')."""
 
 ISOLATOR_PARTS = ("linear", "bilinear", "sliding-bearing", "fixed-base", "sliding-bearing-speed",
-                  "triple-friction-pendulum")
+                  "triple-friction-pendulum", "triple-friction-pendulum-speed")
 """Isolator parts of a general building's label (the last for ``Pi3 = 0``)."""
 
 BEARING_REDUCTIONS = ("bearing-stuck", "bearing-elastic")
@@ -176,7 +177,7 @@ def building_label(isolator: str, flexible: bool, floor, noslide: bool, friction
     Parameters
     ----------
     isolator : {"linear", "bilinear", "sliding-bearing", "fixed-base", "sliding-bearing-speed", \
-"triple-friction-pendulum"}
+"triple-friction-pendulum", "triple-friction-pendulum-speed"}
         The isolator integrated.
     flexible : bool
         A flexible superstructure was integrated.
@@ -207,10 +208,10 @@ def building_label(isolator: str, flexible: bool, floor, noslide: bool, friction
     return "+".join(parts)
 
 
-def _building_labels(floors=("base", "roof"), rigid: bool = True) -> tuple:
+def _building_labels(floors=("base", "roof"), rigid: bool = True, isolators=ISOLATOR_PARTS[:6]) -> tuple:
     out = []
     supers = (((False, "base"),) if rigid else ()) + tuple((True, f) for f in floors)
-    for iso in ISOLATOR_PARTS:
+    for iso in isolators:
         for flexible, floor in supers:
             if (iso == "linear" and not flexible) or (iso == "fixed-base" and floor == "base"):
                 continue   # the paper's model
@@ -220,7 +221,7 @@ def _building_labels(floors=("base", "roof"), rigid: bool = True) -> tuple:
                         name = building_label(iso, flexible, floor, noslide, friction, oneway)
                         if name not in out:
                             out.append(name)
-    if floors != ("base", "roof"):
+    if floors != ("base", "roof") or isolators != ISOLATOR_PARTS[:6]:
         return tuple(out)
     paper = [n for n in _exact_labels() + PIECEWISE_LABELS if "static-kinetic" not in n]
     for red in BEARING_REDUCTIONS:
@@ -256,6 +257,11 @@ ROCKING_LABELS = tuple(f"{n}+rocking{v}" for v in ("", "+vertical")
                        if "static-kinetic" not in n and "stribeck" not in n and "piecewise" not in n)
 """Labels of contents that can rock (Coulomb friction, in line, with and without vertical motion)."""
 MODEL_LABELS = MODEL_LABELS + ROCKING_LABELS
+TFP_SPEED_LABELS = tuple(f"{n}{v}" for v in ("", "+vertical")
+                         for n in _building_labels(("base", "roof", "intermediate"), isolators=ISOLATOR_PARTS[6:]))
+"""Labels of a triple pendulum whose friction rises with speed (:mod:`isoslide.engine.tfp_flow`; in line,
+contents that slide)."""
+MODEL_LABELS = MODEL_LABELS + TFP_SPEED_LABELS
 """Every label :func:`isoslide.solve` can produce."""
 
 

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .pulses import Pulse, get_pulse
-from .groups import INPUT_NAMES, INPUTS, ROCKING_NAMES, TFP_NAMES, group
+from .groups import INPUT_NAMES, INPUTS, ROCKING_NAMES, TFP_NAMES, TFP_SPEED, TFP_SPEED_NAMES, group
 from .model.shear_building import fundamental_period
 from .groups import defaults as _group_defaults
 from .model.rocking import housner_restitution
@@ -169,7 +169,13 @@ class Scene:
         ``Pi25 = L2/(L2 + L3)``, ``Pi26 = mu1/mu2``, ``Pi27 = mu3/mu2`` and the limits
         ``Pi28, Pi29, Pi30 = d1, d2, d3 / (a_p T_p^2)`` (> 0), in OpenSees's notation
         (:func:`triple_friction_pendulum`), with ``Pi3 = 2 pi sqrt((L2 + L3)/g)/T_p`` and ``Pi9 = mu2
-        g/a_p``.  Its surfaces' friction is constant (``Pi22 = 1`` or ``Pi23 = 0``).
+        g/a_p``.  With ``Pi22 < 1`` and ``Pi23 > 0`` every surface's friction rises with its own
+        sliding speed by the law above (``Pi22``, ``Pi23`` surface 1's, ``Pi31`` to ``Pi34`` the
+        others').
+    pi31, pi32, pi33, pi34 : float or None, default None
+        A triple pendulum whose friction rises with speed: ``mu_slow1/mu1`` of its inner surfaces,
+        ``mu_slow3/mu3`` of its upper one, and their rates ``a1 a_p T_p``, ``a3 a_p T_p``
+        (:data:`isoslide.groups.TFP_SPEED`); ``None`` takes surface 1's ``Pi22`` or ``Pi23``.
     pi18, pi19, pi20, pi21 : float or None, default None
         Contents that can rock: a rigid rectangular block of half-width ``b`` and half-height ``h``
         (``alpha = atan(b/h)``, ``R = sqrt(b^2 + h^2)``, ``p = sqrt(3 g / (4 R))``), rocking in the
@@ -226,12 +232,19 @@ class Scene:
     pi19: float | None = None
     pi20: float | None = None
     pi21: float | None = None
+    pi31: float | None = None
+    pi32: float | None = None
+    pi33: float | None = None
+    pi34: float | None = None
     angle: float = 0.0
     scale: PhysicalScale | None = field(default=None, compare=False)
 
     def __post_init__(self):
         for g in INPUTS:
             object.__setattr__(self, g.name, g.check(getattr(self, g.name)))
+        for g in TFP_SPEED:
+            if getattr(self, g.name) is not None:
+                object.__setattr__(self, g.name, g.check(getattr(self, g.name)))
         if self.pi12 > 0.0 and not 0.0 < self.pi11 < 1.0:
             raise ValueError(f"pi11 = {self.pi11!r} is out of range with a flexible superstructure "
                              f"(pi12 = {self.pi12!r} > 0); allowed range: 0 < value < 1")
@@ -258,6 +271,10 @@ class Scene:
             _check_contact(self.pi17, self.pulse_z)
         if self.pi24 > 0.0:
             _check_tfp(self)
+        elif any(getattr(self, n) is not None for n in TFP_SPEED_NAMES):
+            given = {n: getattr(self, n) for n in TFP_SPEED_NAMES if getattr(self, n) is not None}
+            raise ValueError(f"{given!r} given without a triple friction pendulum (pi24 = {self.pi24!r}); allowed: "
+                             "None, or pi24 > 0 with pi22 < 1 and pi23 > 0")
         _check_rocking(self)
 
     @classmethod
@@ -339,7 +356,9 @@ class Scene:
         tfp : tuple, optional
             A triple friction pendulum (:func:`triple_friction_pendulum`): ``(L1/(L2 + L3), L2/(L2 +
             L3), mu1/mu2, mu3/mu2, d1, d2, d3)`` (limits in m), with ``T_b = 2 pi sqrt((L2 + L3)/g)``
-            and ``Q_d = mu2 M_b g``; ``None``: a single friction pendulum.
+            and ``Q_d = mu2 M_b g``; ``None``: a single friction pendulum.  Its friction rises with
+            speed when ``Q_slow`` and ``rate`` (surface 1's law) are given and ``tfp`` ends with
+            ``(mu_slow1/mu1, mu_slow3/mu3, a1, a3)`` (``a`` in s/m) for the inner and upper surfaces.
         b, h : float, optional
             Half-width and half-height of the contents as a rigid rectangular block that can rock in
             the vertical plane of x, m (> 0, given together); ``None``: contents that only slide.
@@ -383,11 +402,15 @@ class Scene:
             Q_slow = check_range("Q_slow", Q_slow, 0.0, Q_d, False, True)
         shape = {}
         if tfp is not None:
-            if len(tfp) != 7:
+            if len(tfp) not in (7, 11):
                 raise ValueError(f"tfp = {tfp!r} has {len(tfp)} values; allowed: (L1/(L2 + L3), L2/(L2 + L3), "
-                                 "mu1/mu2, mu3/mu2, d1, d2, d3), as triple_friction_pendulum returns")
+                                 "mu1/mu2, mu3/mu2, d1, d2, d3), followed with friction rising with speed by "
+                                 "(mu_slow1/mu1, mu_slow3/mu3, a1, a3), as triple_friction_pendulum returns")
             length = a_p * T_p**2
-            shape = dict(zip(TFP_NAMES, (*tfp[:4], *(d / length for d in tfp[4:])), strict=True))
+            shape = dict(zip(TFP_NAMES, (*tfp[:4], *(d / length for d in tfp[4:7])), strict=True))
+            if len(tfp) == 11:
+                shape.update(zip(TFP_SPEED_NAMES, (tfp[7], tfp[8], tfp[9] * a_p * T_p, tfp[10] * a_p * T_p),
+                                 strict=True))
         if (b is None) != (h is None):
             raise ValueError(f"b = {b!r}, h = {h!r}; allowed: both (a block that can rock, m) or neither")
         if b is not None:
@@ -447,6 +470,22 @@ class Scene:
     def fixed_base(self) -> bool:
         """True for ``Pi3 = 0``: the floor moves with the ground."""
         return self.pi3 == 0.0
+
+    @property
+    def tfp_speed(self) -> tuple | None:
+        """A triple pendulum's friction laws ``((slow1, slow2, slow3), (rate1, rate2, rate3))`` when they rise with speed.
+
+        ``mu_slow/mu_fast`` and ``a a_p T_p`` of its inner surfaces (``Pi31``, ``Pi33``), surface 1
+        (``Pi22``, ``Pi23``) and the upper surface (``Pi32``, ``Pi34``), in OpenSees's order (``mu1, mu2,
+        mu3``); ``None`` for any other bearing or constant friction (``Pi22 = 1`` or ``Pi23 = 0``).
+        """
+        if self.pi24 == 0.0 or self.pi22 == 1.0 or self.pi23 == 0.0:
+            return None
+
+        def either(value, default):
+            return default if value is None else value
+        return ((either(self.pi31, self.pi22), self.pi22, either(self.pi32, self.pi22)),
+                (either(self.pi33, self.pi23), self.pi23, either(self.pi34, self.pi23)))
 
     @property
     def rate_independent(self) -> bool:
@@ -633,15 +672,20 @@ def tfp_bearing(scene) -> TripleFrictionPendulum:
 
     Radii ``(Pi24, Pi25, 1 - Pi25) L`` with ``L = L2 + L3 = (Pi3/(2 pi))^2``, frictions ``(Pi26, 1,
     Pi27) Pi9`` (``Pi9 Pi22`` with ``Pi23 = 0``), limits ``(Pi28, Pi29, Pi30)``, weight 1: the stiffnesses ``W/L_i`` (units ``M_b/T_p^2``)
-    and strengths ``mu_i W`` (units ``M_b a_p``) of the scene's bearing.  Every admissibility rule
+    and strengths ``mu_i W`` (units ``M_b a_p``) of the scene's bearing; a friction that rises with
+    speed (:attr:`Scene.tfp_speed`) gives every surface its slow value and rate (units ``1/(a_p
+    T_p)``).  Every admissibility rule
     of :mod:`isoslide.model.tfp` compares ``d/L`` with frictions, both proportional to ``a_p/g``, so
     the choice ``g/a_p = 1`` decides nothing.
     """
     L = (scene.pi3 / (2.0 * math.pi)) ** 2
     mu2 = scene.pi9 * (scene.pi22 if scene.pi23 == 0.0 else 1.0)
-    return TripleFrictionPendulum(L=(scene.pi24 * L, scene.pi25 * L, (1.0 - scene.pi25) * L),
-                                  mu=(scene.pi26 * mu2, mu2, scene.pi27 * mu2),
-                                  d=(scene.pi28, scene.pi29, scene.pi30), W=1.0)
+    mu = (scene.pi26 * mu2, mu2, scene.pi27 * mu2)
+    laws = scene.tfp_speed
+    speed = {} if laws is None else {"mu_slow": tuple(r * m for r, m in zip(laws[0], mu, strict=True)),
+                                     "rate": laws[1]}
+    return TripleFrictionPendulum(L=(scene.pi24 * L, scene.pi25 * L, (1.0 - scene.pi25) * L), mu=mu,
+                                  d=(scene.pi28, scene.pi29, scene.pi30), W=1.0, **speed)
 
 
 def _check_tfp(scene) -> None:
@@ -649,10 +693,13 @@ def _check_tfp(scene) -> None:
     if scene.pi9 == 0.0 or scene.pi10 != 0.0 or scene.pi3 == 0.0:
         raise ValueError(f"pi24 = {scene.pi24!r} > 0 needs a sliding bearing (pi3 > 0, pi9 > 0, pi10 = 0); got "
                          f"pi3 = {scene.pi3!r}, pi9 = {scene.pi9!r}, pi10 = {scene.pi10!r}")
-    if scene.pi22 != 1.0 and scene.pi23 != 0.0:
-        raise ValueError(f"pi22 = {scene.pi22!r}, pi23 = {scene.pi23!r} with a triple friction pendulum "
-                         "(pi24 > 0); allowed: constant friction on its surfaces (pi22 = 1 or pi23 = 0): friction "
-                         "that rises with speed is modelled for the single pendulum only")
+    given = {n: getattr(scene, n) for n in TFP_SPEED_NAMES if getattr(scene, n) is not None}
+    if given and scene.tfp_speed is None:
+        raise ValueError(f"{given!r} given with constant friction on the triple pendulum (pi22 = {scene.pi22!r}, "
+                         f"pi23 = {scene.pi23!r}); allowed: None, or with pi22 < 1 and pi23 > 0")
+    if scene.tfp_speed is not None and any(r >= 1.0 for r in scene.tfp_speed[0]):
+        raise ValueError(f"pi31, pi32 = {scene.pi31!r}, {scene.pi32!r} with pi22 = {scene.pi22!r} < 1 keep a surface "
+                         "constant while the others rise with speed; allowed: every ratio below 1")
     for name in ("pi28", "pi29", "pi30"):
         if getattr(scene, name) <= 0.0:
             raise ValueError(f"{name} = {getattr(scene, name)!r} is out of range with a triple friction pendulum "
@@ -834,10 +881,10 @@ def triple_friction_pendulum(L, mu, d, M_b, g=G_STANDARD, mu_slow=None, rate=0.0
     mu_slow : float or tuple of float, optional
         Friction at breakaway of surfaces whose friction rises with speed, one value or three; with
         ``rate = 0`` the constant friction of every surface (``mu_slow`` replaces ``mu``).
-    rate : float
-        ``a`` of the law ``mu(v) = mu - (mu - mu_slow) exp(-a |v|)``, s/m (>= 0).  Only 0: friction
-        that rises with speed is modelled for the single pendulum, so ``rate > 0`` is a
-        ``ValueError`` here.
+    rate : float or tuple of float
+        ``a`` of the law ``mu(v) = mu - (mu - mu_slow) exp(-a |v|)`` of each surface's own sliding
+        speed, s/m (>= 0), one value or three: all zero (constant friction) or all positive with
+        ``mu_slow < mu`` on every surface (:mod:`isoslide.engine.tfp_flow` integrates that bearing).
 
     Returns
     -------
@@ -846,32 +893,52 @@ def triple_friction_pendulum(L, mu, d, M_b, g=G_STANDARD, mu_slow=None, rate=0.0
         regime III), ``Q_d = mu2 M_b g`` (N), ``D_y = 0`` and ``tfp = (L1/(L2 + L3), L2/(L2 + L3),
         mu1/mu2, mu3/mu2, d1, d2, d3)``: keyword arguments for :meth:`Scene.from_physical`.  With
         equal frictions the bearing is the single friction pendulum of radius ``L2 + L3`` until
-        surface 1 reaches its restrainer.
+        surface 1 reaches its restrainer.  Friction that rises with speed adds surface 1's law,
+        ``Q_slow = mu_slow2 M_b g`` (N) and ``rate = a2`` (s/m), and ends ``tfp`` with
+        ``(mu_slow1/mu1, mu_slow3/mu3, a1, a3)``.
 
     Raises
     ------
     ValueError
         Naming the parameter, its value and the rule: non-positive radii or limits, friction
-        ordering or geometry outside what the series model reproduces (regimes I to V in order,
-        :class:`isoslide.model.tfp.TripleFrictionPendulum`), ``mu_slow > mu``.
+        ordering or geometry outside what the series model reproduces (regimes I to V in order, at
+        every speed: :class:`isoslide.model.tfp.TripleFrictionPendulum`), ``mu_slow > mu``, rates
+        that mix constant and rising friction.
     """
     M_b = check_range("M_b", M_b, 0.0, math.inf, False, False)
     g = check_range("g", g, 0.0, math.inf, False, False)
-    rate = check_range("rate", rate, 0.0, math.inf, True, False)
+    rates = _tfp_triple("rate", rate)
+    speed = {}
     if mu_slow is not None:
         checked = TripleFrictionPendulum(L, mu, d, mu_slow=mu_slow, rate=1.0)
-        if rate > 0.0:
-            raise ValueError(f"rate = {rate!r} > 0 for a triple friction pendulum; allowed: rate = 0 (constant "
-                             "friction on every surface): friction that rises with speed is modelled for the single "
-                             "friction pendulum only")
-        mu = checked.mu_slow
-    elif rate != 0.0:
+        if any(r > 0.0 for r in rates):
+            constant = [i for i in range(3) if rates[i] == 0.0 or checked.mu_slow[i] == checked.mu[i]]
+            if constant:
+                raise ValueError(f"mu_slow = {mu_slow!r}, rate = {rate!r} keep mu{constant[0] + 1} constant (rate 0 or "
+                                 "mu_slow = mu) while other surfaces' friction rises with speed; allowed: every "
+                                 "rate > 0 with mu_slow < mu, or every rate 0")
+            speed = {"mu_slow": checked.mu_slow, "rate": rates}
+        else:
+            mu = checked.mu_slow
+    elif any(r != 0.0 for r in rates):
         raise ValueError(f"rate = {rate!r} is given without mu_slow; allowed: rate = 0 when mu_slow is None "
                          "(constant friction)")
-    b = TripleFrictionPendulum(L, mu, d)
-    if b.mu[0] <= 0.0:
+    b = TripleFrictionPendulum(L, mu, d, **speed)
+    if (b.mu_slow or b.mu)[0] <= 0.0:
         raise ValueError(f"mu1 = {b.mu[0]!r} is out of range; allowed range: 0 < mu1 <= mu2 <= mu3")
     (L1, L2, L3), (mu1, mu2, mu3), (d1, d2, d3) = b.L, b.mu, b.d
     outer = L2 + L3
-    return {"T_b": 2.0 * math.pi * math.sqrt(outer / g), "Q_d": mu2 * M_b * g, "D_y": 0.0,
-            "tfp": (L1 / outer, L2 / outer, mu1 / mu2, mu3 / mu2, d1, d2, d3)}
+    out = {"T_b": 2.0 * math.pi * math.sqrt(outer / g), "Q_d": mu2 * M_b * g, "D_y": 0.0,
+           "tfp": (L1 / outer, L2 / outer, mu1 / mu2, mu3 / mu2, d1, d2, d3)}
+    if speed:
+        (s1, s2, s3), (a1, a2, a3) = b.mu_slow, b.rate
+        out.update(Q_slow=s2 * M_b * g, rate=a2, tfp=(*out["tfp"], s1 / mu1, s3 / mu3, a1, a3))
+    return out
+
+
+def _tfp_triple(name: str, value) -> tuple:
+    """Three values ``>= 0`` of a triple pendulum's surfaces (one value is repeated), named in errors."""
+    vals = tuple(value) if isinstance(value, (tuple, list, np.ndarray)) else (value,) * 3
+    if len(vals) != 3:
+        raise ValueError(f"{name} = {value!r} must be one value or three; got {len(vals)}")
+    return tuple(check_range(f"{name}{i}", v, 0.0, math.inf, True, False) for i, v in enumerate(vals, start=1))

@@ -59,7 +59,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .engine import building, building_kernel, exponential, kernel, piecewise, planar_kernel, planar_piecewise
+from .engine import building, building_kernel, exponential, kernel, piecewise, planar_kernel, planar_piecewise, tfp_flow
 from .engine.planar import excitation, pair_grid
 from .engine.system import (DEFAULT_HORIZON, STEPS_PER_PERIOD, assemble, excitation_end, horizon_end,  # noqa: F401
                             step_budget)
@@ -569,6 +569,8 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
     if model == "static-kinetic":
         raise ValueError("model = 'static-kinetic' is available for the paper's model only "
                          "(pi9 = 0 and pi12 = 0)")
+    if scene.tfp_speed is not None:
+        return _solve_tfp_flow(scene, rtol, history, horizon, coulomb, settle)
     pi8 = scene.pi8
     rocking = scene.rocks and (scene.tips or model == "full")
     system = assemble(scene, pi8=pi8, coulomb=coulomb, rocking=rocking, horizon=horizon)
@@ -592,16 +594,47 @@ def _solve_building(scene: Scene, rtol: float, history: bool, horizon: float, mo
         return _checked(Run.of(building_kernel, res), scene, horizon, system.budget, "Runge-Kutta steps", rtol)
 
     out = _refined(run(integrator_rtol(scene, rtol, horizon)), run, scene, rtol, horizon, demand_integrated=True)
-    if out.ints["capacity"]:
-        raise CapacityError(f"the triple friction pendulum reaches its displacement capacity (an inner surface on "
-                            f"its restrainer) at tau = {out.floats['tend']:.6g} for {scene}; the model of rigid "
-                            "restrainers does not go past it")
+    _check_capacity(out, scene)
     if out.ints["contact"]:
         raise ContactError(CONTACT_TEXT[building_kernel.CONTACT_LOSSES[out.ints["contact"]]]
                            + f" at tau = {out.floats['tcontact']:.6g} for {scene}")
     facets = scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=pi8 == 0.0, rocking=rocking,
                           propagation="exponential" if exact else "integrated")
     return _solution(scene, out, facets, _building_history(out.hist, scene, rocking) if history else None,
+                     peak_stage=out.ints["stage_max"])
+
+
+def _check_capacity(out: Run, scene: Scene) -> None:
+    """:class:`CapacityError` when a triple pendulum's run reached its displacement capacity."""
+    if out.ints["capacity"]:
+        raise CapacityError(f"the triple friction pendulum reaches its displacement capacity (an inner surface on "
+                            f"its restrainer) at tau = {out.floats['tend']:.6g} for {scene}; the model of rigid "
+                            "restrainers does not go past it")
+
+
+def _solve_tfp_flow(scene: Scene, rtol: float, history: bool, horizon: float, coulomb: bool,
+                    settle: bool) -> Solution:
+    """:func:`solve` for a triple pendulum whose friction rises with speed (:mod:`isoslide.engine.tfp_flow`).
+
+    The building and the contents are the general building's (any floor, storeys, Stribeck or
+    Coulomb contents, vertical motion through the normal forces); the bearing's surfaces are
+    integrated implicitly (Radau) at :data:`isoslide.engine.tfp_flow.RTOL_FACTOR` of ``rtol``.
+    """
+    if scene.tips:
+        raise ValueError(f"a rocking block (pi18 = {scene.pi18!r}) on a triple friction pendulum whose friction rises "
+                         f"with speed (pi22 = {scene.pi22!r}, pi23 = {scene.pi23!r}) is not modelled; allowed: "
+                         "contents that slide (pi18 = None, or a block that slides before it tips), or constant "
+                         "bearing friction (pi22 = 1 or pi23 = 0)")
+    system = assemble(scene, pi8=scene.pi8, coulomb=coulomb, rocking=False, horizon=horizon)
+    surfaces = tfp_flow.Surfaces.of(system.P, *building_of(scene).isolator.surface_laws())
+    pulse = scene.pulse
+    res = tfp_flow.run(system.P, pulse.code, pulse.param_array, system.breakpoints, pulse.tau_start, system.end,
+                       system.stop, surfaces, rtol, settle, system.modal, 200_000 if history else 0)
+    out = Run.of(building_kernel, res)
+    _check_capacity(out, scene)
+    facets = scene_facets(scene, friction="coulomb" if coulomb else "stribeck", oneway=scene.pi8 == 0.0,
+                          rocking=False)
+    return _solution(scene, out, facets, _building_history(out.hist, scene) if history else None,
                      peak_stage=out.ints["stage_max"])
 
 
@@ -764,11 +797,12 @@ def scene_facets(scene: Scene, friction: str, oneway: bool, propagation: str = "
     """
     parts = building_of(scene)
     kind = parts.isolator.kind
-    if kind == "sliding" and parts.isolator.speed_dependent:
-        kind = "sliding-speed"
+    if kind in ("sliding", "tfp") and parts.isolator.speed_dependent:
+        kind += "-speed"
     k, top = parts.contents.floor, parts.superstructure.storeys
     return Facets(isolator={"fixed": "fixed-base", "sliding": "sliding-bearing",
-                            "sliding-speed": "sliding-bearing-speed", "tfp": "triple-friction-pendulum"}.get(kind, kind),
+                            "sliding-speed": "sliding-bearing-speed", "tfp": "triple-friction-pendulum",
+                            "tfp-speed": "triple-friction-pendulum-speed"}.get(kind, kind),
                   superstructure="flexible" if parts.superstructure.flexible else "rigid",
                   floor="base" if k == 0 else ("roof" if k == top else "intermediate"),
                   friction=friction, coupling="one-way" if oneway else "two-way", propagation=propagation,

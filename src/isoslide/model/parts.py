@@ -68,6 +68,10 @@ class Isolator:
         A triple pendulum's ``(Pi24, Pi25, Pi26, Pi27, Pi28, Pi29, Pi30)``: radius ratios
         ``L1/(L2 + L3)``, ``L2/(L2 + L3)``, friction ratios ``mu1/mu2``, ``mu3/mu2`` (``strength`` is
         ``mu2``'s) and limits ``d1, d2, d3`` (units ``a_p T_p^2``); empty for any other kind.
+    laws : tuple
+        A triple pendulum whose friction rises with speed: ``((slow1, slow2, slow3), (rate1, rate2,
+        rate3))``, each surface group's ``mu_slow/mu_fast`` and ``a a_p T_p``
+        (:attr:`isoslide.Scene.tfp_speed`); empty for constant friction or any other kind.
 
     A sliding bearing's friction level (units ``M_b a_p``, before the normal-force factor) at the
     slab's speed ``v`` (units ``a_p T_p``) is ``strength (1 - (1 - slow) exp(-rate v))``
@@ -83,6 +87,7 @@ class Isolator:
     slow: float = 1.0
     rate: float = 0.0
     shape: tuple = ()
+    laws: tuple = ()
 
     def __post_init__(self):
         if self.kind not in ISOLATOR_KINDS:
@@ -99,9 +104,20 @@ class Isolator:
         kd, q = self.stiffness, self.strength
         return ((kd / r2, kd / r1, kd / r1, kd / (1.0 - r2)), (q, q * f1, q * f1, q * f3), (d2, d1, d1, d3))
 
+    def surface_laws(self) -> tuple:
+        """A triple pendulum's slow strengths (units ``M_b a_p``) and rates, bottom to top (:meth:`surfaces`' order).
+
+        Only for one whose friction rises with speed (:attr:`laws`).
+        """
+        (s1, s2, s3), (a1, a2, a3) = self.laws
+        q = self.surfaces()[1]
+        return (q[0] * s2, q[1] * s1, q[2] * s1, q[3] * s3), (a2, a1, a1, a3)
+
     @property
     def speed_dependent(self) -> bool:
-        """True for a sliding bearing whose friction rises with its speed (``rate > 0``, ``slow < 1``)."""
+        """True for a sliding bearing (or triple pendulum) whose friction rises with its speed (``rate > 0``, ``slow < 1``)."""
+        if self.kind == "tfp":
+            return bool(self.laws)
         return self.rate > 0.0 and self.slow < 1.0
 
     @property
@@ -109,10 +125,11 @@ class Isolator:
         """Force that first moves the slab from rest (units ``M_b a_p``).
 
         ``Pi9 Pi22`` of a sliding bearing, ``mu1``'s strength ``Pi9 Pi26`` of a triple pendulum (its
-        inner surfaces), the strength of any other kind.
+        inner surfaces; their slow strength when its friction rises with speed), the strength of any
+        other kind.
         """
         if self.kind == "tfp":
-            return self.strength * self.shape[2]
+            return self.surface_laws()[0][1] if self.laws else self.strength * self.shape[2]
         return self.strength * self.slow
 
     def level(self, v: float) -> float:
@@ -348,7 +365,8 @@ def _assembled(scene, rocking: bool) -> Building:
                                yield_displacement=scene.pi10),
               "sliding": _sliding(scene), "tfp": {}}[kind]
     if kind == "tfp":
-        groups = {**_sliding(scene), "shape": tuple(getattr(scene, f"pi{i}") for i in range(24, 31))}
+        groups = {**_sliding(scene), "shape": tuple(getattr(scene, f"pi{i}") for i in range(24, 31)),
+                  "laws": scene.tfp_speed or ()}
     iso = Isolator(kind, **groups)
     flexible = scene.pi12 > 0.0
     sup = Superstructure(scene.pi11, scene.pi12, scene.pi13, scene.storeys, scene.floor_masses,
