@@ -13,8 +13,8 @@ import xarray as xr
 
 import isoslide
 from isoslide import datasets
-from isoslide.models import (BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, PLANAR_LABELS, TFP_SPEED_LABELS,
-                             ROCKING_LABELS, VERTICAL_LABELS, Facets, label)
+from isoslide.models import (BUILDING_LABELS, FACETS, MODEL_LABELS, PEER_LABELS, PIECEWISE_LABELS, PLANAR_LABELS,
+                             ROCKING_LABELS, TFP_SPEED_LABELS, VERTICAL_LABELS, Facets, label)
 from isoslide.pulses import sampled
 
 CODES_FILE = Path(__file__).parent / "data" / "facet_codes.json"
@@ -121,7 +121,8 @@ def pinned_codes() -> dict:
 
 
 def test_every_listed_label_is_produced_by_some_solve(produced):
-    assert sorted(produced) == sorted(MODEL_LABELS)
+    """Every label but a speed-dependent triple pendulum's (seconds per solve: the slow test above) comes from PATHS."""
+    assert sorted(produced) == sorted(n for n in MODEL_LABELS if n not in TFP_SPEED_LABELS)
 
 
 def test_the_label_is_derived_from_the_facets_and_whether_the_contents_slid(solutions):

@@ -246,8 +246,8 @@ def test_triple_friction_pendulum_gives_the_scene_groups():
     (dict(L=(0.0, 2.1, 2.4), mu=(0.02, 0.06, 0.1), d=(0.08, 0.4, 0.6)), "L1 = 0.0 is out of range"),
     (dict(L=(0.3, 2.1, 2.4), mu=(0.02, 0.06, 0.1), d=(0.08, 0.4, -1.0)), "d3 = -1.0 is out of range"),
     (dict(L=(0.3, 2.1, 2.4), mu=(0.02, 0.06, 0.1), d=(0.08, 0.4, 0.6), mu_slow=0.07), "mu_slow1 = 0.07 exceeds"),
-    (dict(L=(0.3, 2.1, 2.4), mu=(0.02, 0.06, 0.1), d=(0.08, 0.4, 0.6), mu_slow=0.01, rate=20.0),
-     "rate = 20.0 > 0 for a triple friction pendulum"),
+    (dict(L=(0.3, 2.1, 2.4), mu=(0.02, 0.06, 0.1), d=(0.08, 0.4, 0.6), mu_slow=0.02, rate=20.0),
+     "keep mu1 constant"),
 ])
 def test_triple_friction_pendulum_refuses_what_it_cannot_represent(kw, match):
     with pytest.raises(ValueError, match=match):
@@ -257,7 +257,7 @@ def test_triple_friction_pendulum_refuses_what_it_cannot_represent(kw, match):
 @pytest.mark.parametrize("kw, match", [
     ({"pi10": 0.01}, "needs a sliding bearing"),
     ({"pi28": 0.0}, "pi28 = 0.0 is out of range with a triple friction pendulum"),
-    ({"pi22": 0.5, "pi23": 10.0}, "modelled for the single pendulum only"),
+    ({"pi22": 0.5, "pi23": 10.0, "pi31": 1.0}, "pi31 = 1.0 is out of range"),
     ({"pi29": 0.001}, "d2 = 0.001 is too small"),
     ({"pi25": 1.0}, "pi25 = 1.0 is out of range"),
     ({"pi26": 1.5}, "pi26 = 1.5 is out of range"),

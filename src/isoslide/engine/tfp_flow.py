@@ -59,7 +59,7 @@ from scipy.integrate import solve_ivp
 
 from . import building_kernel as bk
 
-RTOL_FACTOR = 1e-3
+RTOL_FACTOR = 1e-2
 """Radau's relative tolerance over the solve's ``rtol`` (its error estimate filters the stiff split of
 the surfaces' speeds, which a looser tolerance can step over as the surfaces slow down)."""
 RTOL_FLOOR = 1e-12

@@ -1281,8 +1281,8 @@ def _triple_finding(ds: xr.Dataset) -> tuple:
     start = ds["tfp_regime_start"].values
     cap = float(ds.attrs["tfp_capacity"])
     head = (f"The triple friction pendulum (L1 = {L1:.3f} m, L2 = L3 = {L2:.3f} m, μ1 = {m1:.4f}, μ2 = {m2:.4f}, "
-            f"μ3 = {m3:.4f}, d1 = {d1:.3f} m, d2 = d3 = {d2:.3f} m; constant friction: friction rising with speed is "
-            f"modelled for the single pendulum only) shares T_eff = {float(ds['T_eff'].sel(isolator=TRIPLE)):.3f} s "
+            f"μ3 = {m3:.4f}, d1 = {d1:.3f} m, d2 = d3 = {d2:.3f} m; constant friction on its surfaces in this "
+            f"study) shares T_eff = {float(ds['T_eff'].sel(isolator=TRIPLE)):.3f} s "
             f"and β_eff = {float(ds['beta_eff'].sel(isolator=TRIPLE)):.3f} with the other bearings at D = {D:g} m, "
             f"where it is in regime III; its inner slider breaks away at μ1 g = {m1 * G:.3f} m/s² of floor "
             f"acceleration, against μ g = {float(ds['Q_over_W'].sel(isolator='friction_pendulum')) * G:.3f} m/s² for "
