@@ -954,3 +954,7 @@ def warm_up(records: bool = False, building: bool = False) -> None:
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi11=0.5, pi12=0.2, floor="roof"))
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse_y="antisymmetric_ricker", pi14=0.5))
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.7, pi6=1e3, pi9=0.05, pi10=0.01))
+        # a triple pendulum whose friction rises with speed: its surfaces' flow, and the building's
+        # right-hand side, events and modes called from Python
+        solve(Scene(pi2=0.2, pi3=2.0, pi9=0.05, pi24=0.1, pi26=0.5, pi27=2.0, pi28=0.05, pi29=0.1, pi30=0.2,
+                    pi22=0.5, pi23=10.0), rtol=1e-3)

@@ -57,6 +57,7 @@ import numpy as np
 from numba import njit
 from scipy.integrate import solve_ivp
 
+from .. import jit_cache
 from . import building_kernel as bk
 
 RTOL_FACTOR = 1e-2
@@ -145,13 +146,13 @@ def speeds(s: Surfaces, f: float, u, stops) -> np.ndarray:
     restrainer, whose event then ends the integration).
     """
     v = np.zeros(4)
-    _speeds(s.table, np.asarray(stops, dtype=float), float(f), np.asarray(u, dtype=float), v)
+    _speeds(s.table, _writable(stops), float(f), _writable(u), v)
     return v
 
 
 def band(s: Surfaces, u, stops) -> tuple:
     """``(f_lo, f_hi)``: the force within which every surface sticks at ``u`` (``-inf``/``inf`` where none can move)."""
-    return _band(s.table, np.asarray(stops, dtype=float), np.asarray(u, dtype=float))
+    return _band(s.table, _writable(stops), _writable(u))
 
 
 def force(s: Surfaces, u, xd: float, sig: float, stops) -> float:
@@ -162,7 +163,13 @@ def force(s: Surfaces, u, xd: float, sig: float, stops) -> float:
     round-off excursions backwards before it stops.  NaN for a state that is not finite (a trial
     of the implicit integrator).
     """
-    return _force(s.table, np.asarray(stops, dtype=float), np.asarray(u, dtype=float), float(xd), float(sig))
+    return _force(s.table, _writable(stops), _writable(u), float(xd), float(sig))
+
+
+def _writable(a) -> np.ndarray:
+    """``a`` as a writable, contiguous float array: the one signature the compiled functions are cached for."""
+    a = np.ascontiguousarray(a, dtype=float)
+    return a if a.flags.writeable else a.copy()
 
 
 @njit(cache=True)
@@ -376,7 +383,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, surfaces: Su
     r_tol = max(RTOL_FLOOR, RTOL_FACTOR * rtol)
     a_tol = ATOL_FACTOR * r_tol
     code = int(code)
-    params = np.ascontiguousarray(params, dtype=float)
+    params = np.array(params, dtype=float)
     bps = sorted({float(b) for b in breakpoints if tau_start < b < tau_stop} | {float(tau_end), float(tau_stop)})
     st = _Run(tau=float(tau_start), z=np.zeros(ny + 3), tpeak=float(tau_start))
     y = np.zeros(ny)
@@ -631,3 +638,7 @@ def _slab_rate(bm, im, t, z, f, Pc, code, params, full, out):
     """The slab's acceleration relative to the ground ``x''`` under the bearing force ``f``."""
     bk.deriv(bm, im, t, full(z, f), Pc, code, params, out)
     return out[bk.Y_XD]
+
+
+# numba reads the compiled code shipped with the package (isoslide.jit_cache) before compiling any of it
+jit_cache.seed(_force)
