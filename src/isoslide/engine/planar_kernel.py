@@ -81,9 +81,10 @@ from . import free_phase
 from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_QA, P_QS, P_ROOF, P_THR,
                               _stiffness, _storey_force, bearing_level, friction, normal)
-from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, C, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
+from .kernel import A as RK_A  # noqa: I001
+from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
                      _step_factor, _step_target, bracket_open, bracket_step, copy_state, doubling_error,
-                     end_state, hermite_root, scaled_error, stage_state)
+                     _error_norm, end_state, error_scale, hermite_root, scaled_error, stage_state)
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
@@ -114,6 +115,13 @@ SLAVED_FACTOR = 0.1
 :func:`slaved_speed`)."""
 FD_STEP = 1e-6
 """Relative step of the central differences that give the rates of a sliding bearing's events."""
+SPEED_TIME = 1.0
+"""A free slide steps in its own time ``lambda`` (``dtau = |w| dlambda``, :func:`rk_step_speed`) where a
+step ``h`` of ``tau`` would have ``h Pi2 / |w|`` above this (its direction's relaxation stiff)."""
+RESTART_ERROR = 0.01
+"""Scaled local error aimed at by the first step after a transition (:func:`restart_step`)."""
+RESTART_ORDER = 8.0
+"""Order of the local error model of :func:`restart_step` (DOP853's error estimator)."""
 
 
 def slaved_speed(rtol: float) -> float:
@@ -529,6 +537,80 @@ def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
     return scaled_error(K, y, ynew, h, atol, rtol, U, ny)
 
 
+@njit(cache=True, _nrt=False)
+def _speed_rates(md, tau, y, P, ex, out, tmp):
+    """The state's rates in the slide's own time, ``|w| d/dtau``, into ``out``; returns ``|w|``."""
+    U = y.shape[0] - 4
+    sp = math.sqrt(y[U + 2] * y[U + 2] + y[U + 3] * y[U + 3])
+    deriv(md, tau, y, P, ex, out, tmp)
+    for i in range(y.shape[0]):
+        out[i] *= sp
+    return sp
+
+
+@njit(cache=True, _nrt=False)
+def rk_step_speed(md, tau, y, h, P, ex, atol, rtol, K, ynew, sv):
+    """One DOP853 step of length ``h`` in the free slide's own time ``lambda``; returns ``(err, dtau)``.
+
+    A block sliding at the speed ``s = |w|`` turns towards its drive at the rate ``|D| / s`` (units
+    of 1/T_p), a stiffness that holds an explicit step of ``tau`` to a few ``s / |D|`` however
+    smooth the slide.  In ``lambda`` (``dtau = s dlambda``, units of ``T_p / (a_p T_p)``) the same
+    equations, all rates multiplied by ``s``, relax at the rate ``|D|`` and the slide's speed grows
+    or decays as a power or an exponential of ``lambda``: smooth, and never through zero, so a
+    step cannot cross the slide's stop.  ``tau`` is integrated with the state (``tau' = s``, its
+    own stages ``sv``, length ``NS + 1``) and its error enters the norm (scale ``atol + rtol
+    max(1, |tau|)``).  ``K`` as :func:`rk_step`, its rows the rates in ``lambda``.
+    """
+    ny = y.shape[0]
+    U = ny - 4
+    ys = K[NS + 1]
+    tmp = K.reshape(K.size)[(NS + 2) * ny:(NS + 5) * ny]
+    sv[0] = _speed_rates(md, tau, y, P, ex, K[0], tmp)
+    for st in range(1, NS):
+        stage_state(y, h, K, st, ys)
+        acc = 0.0
+        for j in range(st):
+            acc += RK_A[st, j] * sv[j]
+        sv[st] = _speed_rates(md, tau + h * acc, ys, P, ex, K[st], tmp)
+    end_state(y, h, K, ynew)
+    dt = 0.0
+    for j in range(NS):
+        dt += B[j] * sv[j]
+    dt *= h
+    sv[NS] = _speed_rates(md, tau + dt, ynew, P, ex, K[NS], tmp)
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(ny):
+        sc = error_scale(i, U, ny, y[i], ynew[i], atol, rtol)
+        a5 = 0.0
+        a3 = 0.0
+        for j in range(NS + 1):
+            a5 += E5[j] * K[j, i]
+            a3 += E3[j] * K[j, i]
+        e5 += (a5 / sc) ** 2
+        e3 += (a3 / sc) ** 2
+    sc = atol + rtol * max(1.0, abs(tau))
+    a5 = 0.0
+    a3 = 0.0
+    for j in range(NS + 1):
+        a5 += E5[j] * sv[j]
+        a3 += E3[j] * sv[j]
+    e5 += (a5 / sc) ** 2
+    e3 += (a3 / sc) ** 2
+    return _error_norm(e5, e3, h), dt
+
+
+@njit(cache=True)
+def verify_speed(md, tau, y, h, ycand, P, ex, atol, rtol, K, sv):
+    """Richardson check of one step of :func:`rk_step_speed`: scaled error of ``ycand`` against two half steps."""
+    ny = y.shape[0]
+    ya = np.empty(ny)
+    yb = np.empty(ny)
+    _, dt = rk_step_speed(md, tau, y, 0.5 * h, P, ex, atol, rtol, K, ya, sv)
+    rk_step_speed(md, tau + dt, ya, 0.5 * h, P, ex, atol, rtol, K, yb, sv)
+    return doubling_error(y, yb, ycand, atol, rtol, ny - 4, ny)
+
+
 @njit(cache=True)
 def verify(md, tau, y, h, ycand, P, ex, atol, rtol, K):
     """Richardson check of one step: scaled error of ``ycand`` against two half steps."""
@@ -924,6 +1006,107 @@ def _slow_cap(which, md, tau, y, P, ex, work, slaved):
     return math.inf
 
 
+@njit(cache=True, _nrt=False)
+def _scaled_norm(a, y, atol, rtol, lo, hi, scale):
+    """Root-mean-square of ``scale a_i`` over the error scales of the state ``y`` (:func:`error_scale`)."""
+    acc = 0.0
+    for i in range(y.shape[0]):
+        v = scale * a[i] / error_scale(i, lo, hi, y[i], y[i], atol, rtol)
+        acc += v * v
+    return math.sqrt(acc / y.shape[0])
+
+
+@njit(cache=True, _nrt=False)
+def _series_cap(which, md, y, f0, f1, h0, slaved, nb):
+    """Longest first step of a slide starting on its slaved line, from the series of its speed (units of T_p).
+
+    ``which``: the block (0) or a sliding bearing (1), in mode ``+-2`` at rest or slow.  Over the
+    first short interval the signed speed is ``sigma(s) = sigma_0 + a0 s + a1 s^2 / 2`` with ``a0``,
+    ``a1`` its rate and the rate's difference quotient over ``h0`` (from ``f0``, ``f1``, the state's
+    rates at the start and after ``h0``, along the fallback direction in ``md``); the step ends
+    where that series reaches ``2 slaved``, the speed at which the slide leaves its line
+    (:func:`_line_switch`).  ``inf`` where the series does not reach it.
+    """
+    U = y.shape[0] - 4
+    iv, jv = (U + 2, U + 3) if which == 0 else (1, nb + 1)
+    mi, di = (M_BM, M_E0) if which == 0 else (M_IM, M_I0)
+    sg = 0.5 * md[mi]
+    dx, dy = md[di], md[di + 1]
+    sig = sg * (y[iv] * dx + y[jv] * dy)
+    a0 = sg * (f0[iv] * dx + f0[jv] * dy)
+    a1 = (sg * (f1[iv] * dx + f1[jv] * dy) - a0) / h0
+    gap = max(2.0 * slaved - sig, 0.5 * slaved)
+    # the positive root of a1 s^2 / 2 + a0 s - gap = 0, written to avoid cancellation
+    disc = a0 * a0 + 2.0 * a1 * gap
+    if disc < 0.0:
+        return math.inf if a0 <= 0.0 else gap / a0
+    root = a0 + math.sqrt(disc)
+    return 2.0 * gap / root if root > 0.0 else math.inf
+
+
+@njit(cache=True, _nrt=False)
+def restart_step(md, tau, y, P, ex, atol, rtol, h_restart, hmax, slaved, K):
+    """Length of the first step after a transition at ``(tau, y)`` in the modes ``md`` (units of T_p).
+
+    From the local derivatives (Hairer, Norsett and Wanner's initial step, ``hinit``): the rates
+    ``f0`` at the point and ``f1`` a probe step ``h_restart`` along them give the second
+    derivative's norm ``d2``; with ``d1 = |f0|`` (both scaled by the tolerances of
+    :func:`isoslide.engine.kernel.error_scale`) the step ``(RESTART_ERROR / max(d1, d2))^(1 /
+    RESTART_ORDER)``, kept within ``[h_restart, hmax]``.  A slide starting on its slaved line (mode
+    ``+-2``, a breakaway from rest) is further held by the series of its speed to the step that
+    leaves the line near ``2 slaved`` (:func:`_series_cap`).  ``K`` (the stepper's stage array) is
+    scratch space.
+    """
+    ny = y.shape[0]
+    U = ny - 4
+    nb = U // 2
+    f0 = K[0]
+    ys = K[1]
+    f1 = K[2]
+    tmp = K.reshape(K.size)[(NS + 2) * ny:(NS + 5) * ny]
+    h0 = h_restart
+    deriv(md, tau, y, P, ex, f0, tmp)
+    for i in range(ny):
+        ys[i] = y[i] + h0 * f0[i]
+    deriv(md, tau + h0, ys, P, ex, f1, tmp)
+    for i in range(ny):
+        ys[i] = f1[i] - f0[i]
+    d1 = _scaled_norm(f0, y, atol, rtol, U, ny, 1.0)
+    d2 = _scaled_norm(ys, y, atol, rtol, U, ny, 1.0 / h0)
+    big = max(d1, d2)
+    h = hmax if big <= 0.0 else (RESTART_ERROR / big) ** (1.0 / RESTART_ORDER)
+    h = min(hmax, max(h_restart, h))
+    if RESTART_MODE == 3:
+        h = hmax
+    for which in range(2):
+        mode = md[M_BM] if which == 0 else md[M_IM]
+        if RESTART_MODE == 3 and not (mode == 2.0 or mode == -2.0):
+            continue
+        if RESTART_MODE != 4 and (which == 0 or _sliding_bearing(P)) and (mode == 2.0 or mode == -2.0):
+            h = min(h, max(h0, _series_cap(which, md, y, f0, f1, h0, slaved, nb)))
+    return h
+
+
+RESTART_MODE = 0
+"""Candidate first step after a transition (measured by ``benchmarks/planar_restart.py``): 0 ``h_restart``;
+1 :func:`restart_step` (the local derivatives, held on a slaved start by the series of its speed);
+2 half the last step; 3 the series alone on a slaved start; 4 the local derivatives alone."""
+USE_LAM = False
+"""Candidate: a stiff free slide steps in its own time (:func:`rk_step_speed`)."""
+
+
+@njit(cache=True, _nrt=False)
+def _restart_choice(md, tau, y, P, ex, atol, rtol, h_restart, hmax, slaved, K, hlast):
+    """The first step after a transition of the candidate :data:`RESTART_MODE` (units of T_p)."""
+    if RESTART_MODE == 0:
+        return h_restart
+    if RESTART_MODE == 2:
+        return max(h_restart, 0.5 * hlast)
+    if RESTART_MODE == 3 and md[M_BM] != 2.0 and md[M_BM] != -2.0 and md[M_IM] != 2.0 and md[M_IM] != -2.0:
+        return h_restart
+    return restart_step(md, tau, y, P, ex, atol, rtol, h_restart, hmax, slaved, K)
+
+
 @njit(cache=True)
 def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol, hist_cap,
         h_restart, settle, max_steps, Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh, y0, md0, slaved, stop_on_stick, final):
@@ -957,6 +1140,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     ye = np.empty(ny)
     yb = np.empty(ny)
     K = np.empty((NS + 5, ny))
+    sv = np.empty(NS + 1)
     work = np.empty(5 * ny)
     cnt = np.zeros(1, dtype=np.int64)
     hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 3))
@@ -979,7 +1163,9 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     just_b = False
     just_i = False
     hold = False
+    no_lam = False
     h = h_restart
+    hlast = h_restart
     ib = 0
     nh = _record(hist, 0, hist_cap, tau, y, md)
     a_x = np.empty(max(Wm.shape[0], Wh.shape[0]), dtype=np.complex128)
@@ -1031,6 +1217,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         hmax = h_max_pulse if tau < tau_end or not watch else h_max_free
         h = min(h, hmax)
         finished = -1
+        cap_b = math.inf
         for which in range(2):
             mode = md[M_BM] if which == 0 else md[M_IM]
             if which == 1 and not bearing:
@@ -1042,7 +1229,10 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                     finished = which
                     h = d_stop
                     break
-                h = min(h, STOP_FRACTION * d_stop)
+                if which == 0:
+                    cap_b = STOP_FRACTION * d_stop
+                else:
+                    h = min(h, STOP_FRACTION * d_stop)
             elif mode != 0.0:
                 # a slow slide leaves its slaved line near the speed it was set for
                 h = min(h, _slow_cap(which, md, tau, y, P, ex, work, slaved))
@@ -1062,18 +1252,42 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             if md[M_IM] != im0:
                 iso_events += 1
                 just_i = True
-            h = h_restart
+            h = _restart_choice(md, tau, y, P, ex, atol, rtol, h_restart, h_max_pulse, slaved, K, hlast)
             nh = _record(hist, nh, hist_cap, tau, y, md)
             continue
         target = _step_target(breakpoints, ib, tau_stop)
+        # a slow free slide whose direction's relaxation would hold the step steps in its own time
+        s_b = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
+        lam = (USE_LAM and not no_lam and not hold and md[M_BM] == 1.0 and s_b > 0.0
+               and h * P[P_PI2] > SPEED_TIME * s_b and tau + h < target)
+        no_lam = False
+        hl = 0.0
+        if lam:
+            hl = h / s_b
+        else:
+            h = min(h, cap_b)
         hit_target = False
         if tau + h >= target:
             h = target - tau
             hit_target = True
         # --- attempt until accepted ------------------------------------------------------
         while True:
-            err = rk_step(md, tau, y, h, P, ex, atol, rtol, K, y1)
-            steps += 1
+            if lam:
+                err, dt = rk_step_speed(md, tau, y, hl, P, ex, atol, rtol, K, y1, sv)
+                steps += 1
+                if not (err == err and dt == dt and hl > 1e-300):
+                    lam = False
+                    h = min(h, cap_b)
+                    continue
+                if not (0.0 < dt < min(target - tau, hmax)):
+                    # past the next breakpoint or the longest step: shorter
+                    rejected += 1
+                    hl *= max(0.1, 0.5 * min(target - tau, hmax) / dt) if dt > 0.0 else 0.5
+                    continue
+                h = dt
+            else:
+                err = rk_step(md, tau, y, h, P, ex, atol, rtol, K, y1)
+                steps += 1
             if err <= 1.0:
                 if md[M_BM] == 1.0 and y[U + 2] * y1[U + 2] + y[U + 3] * y1[U + 3] < 0.0:
                     err = 4.0
@@ -1083,14 +1297,24 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                     s0 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
                     s1 = math.sqrt(y1[U + 2] ** 2 + y1[U + 3] ** 2)
                     if min(s0, s1) < zone:
-                        err = max(err, verify(md, tau, y, h, y1, P, ex, atol, rtol, K))
+                        if lam:
+                            err = max(err, verify_speed(md, tau, y, hl, y1, P, ex, atol, rtol, K, sv))
+                        else:
+                            err = max(err, verify(md, tau, y, h, y1, P, ex, atol, rtol, K))
                         steps += 2
             if err <= 1.0:
                 break
             rejected += 1
-            h *= _step_factor(err) if err < 4.0 else 0.5
+            if lam:
+                hl *= _step_factor(err) if err < 4.0 else 0.5
+            else:
+                h *= _step_factor(err) if err < 4.0 else 0.5
             hit_target = False
-        hnext = _next_step(h, err)
+        if lam:
+            hnext = _next_step(hl, err) * math.sqrt(y1[U + 2] ** 2 + y1[U + 3] ** 2)
+        else:
+            hnext = _next_step(h, err)
+        hlast = h
         tnew = target if hit_target else tau + h
         t_end_step = _left_limit(tnew)
         # --- transitions inside the step: the earliest ------------------------------------
@@ -1129,6 +1353,11 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             if found and hs < hbest:
                 best, hbest, herr_best = kind, hs, herr
                 copy_state(yb, ye)
+        if lam and (best >= 0 or (y[U] * y[U + 2] + y[U + 1] * y[U + 3] > 0.0
+                                   and y1[U] * y1[U + 2] + y1[U + 1] * y1[U + 3] < 0.0)):
+            # a transition or a peak of |u| inside: the step again in tau, where they are located
+            no_lam = True
+            continue
         if best >= 0:
             if herr_best > 1.0:
                 h = 0.5 * hbest
@@ -1180,7 +1409,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             else:
                 just_i = False
             xmax = max(xmax, math.sqrt(y[0] ** 2 + y[nb_] ** 2))
-            h = h_restart
+            h = _restart_choice(md, tau, y, P, ex, atol, rtol, h_restart, h_max_pulse, slaved, K, hlast)
             nh = _record(hist, nh, hist_cap, tau, y, md)
             continue
         if md[M_BM] != 0.0:
