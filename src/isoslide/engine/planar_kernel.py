@@ -49,12 +49,28 @@ Locating the stop.  A sliding block stops only while the force driving it is bel
 then its direction turns towards the driving force as ``(tau* - tau)^{a/c}`` and its speed falls
 as ``c (tau* - tau)`` to first order (``c`` the net deceleration), so ``|w|`` reaches zero without
 a sign change and the speed's Taylor prediction ``d = |w| / (-|w|')`` underestimates the time
-left.  Each step of a decelerating slide is therefore limited to ``0.9 d``: the steps approach
+left.  Each step of ``tau`` of a decelerating slide is therefore limited to ``0.9 d``: the steps approach
 the stop geometrically (each takes about nine tenths of the time left), none crosses it, and
 once ``d`` is below ``1e-13 max(1, |tau|)`` one last step of length ``d`` ends the slide (the
 distance it leaves out is below ``|w| d``).  The stop time is thus found to about ``1e-13``, like
 every transition of the 1-D kernels.  A step whose velocity turns by more than a right angle is
 rejected and halved.
+
+Slow free slides.  A free slide at the speed ``s`` turns towards its drive at the rate ``|D| /
+s``; where a step ``h`` of ``tau`` would have ``h Pi2 / s > SPEED_TIME`` the slide steps in its own
+time ``lambda``, ``dtau = s dlambda`` (:func:`rk_step_speed`, ``tau`` integrated with the state).
+The stiffness ratio is the same in either time, but in ``lambda`` the speed decays towards a stop
+without reaching it, so such a step needs no cap before the stop; measured on the bench's planar
+scenes it takes fewer steps at the same accuracy.  A step of ``lambda`` holding a transition, a peak
+of ``|u|`` or a breakpoint is taken again in ``tau``, where those are located as above.
+
+The first step after every transition is ``h_restart``.  After a breakaway the slide starts on its
+slaved line and its steps are held to leave it near ``2 slaved`` (:func:`_slow_cap`), so the first
+step decides only where the free slide starts.  A first step from the local derivatives (Hairer
+and Wanner's ``hinit``) or half the last step (the 1-D kernels' rule) saves steps only by carrying
+the slide further along its slaved line, which costs accuracy where the drive turns fast; the
+same held by the series of the slide's speed to the line's exit saves none
+(``benchmarks/planar_restart.py`` at the commit of its rows in ``docs/measurements.csv``).
 
 The peak of ``|u|``.  The path curves, so ``|u|`` can peak inside a slide: where ``u . w``
 changes sign from positive to negative, located by safeguarded Newton on the step length
@@ -81,10 +97,10 @@ from . import free_phase
 from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_QA, P_QS, P_ROOF, P_THR,
                               _stiffness, _storey_force, bearing_level, friction, normal)
-from .kernel import A as RK_A  # noqa: I001
-from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, B, C, E3, E5, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
-                     _step_factor, _step_target, bracket_open, bracket_step, copy_state, doubling_error,
-                     _error_norm, end_state, error_scale, hermite_root, scaled_error, stage_state)
+from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, B, C, E3, E5, NS, _error_norm, _hermite_max, _left_limit,
+                     _next_breakpoint, _next_step, _step_factor, _step_target, bracket_open, bracket_step,
+                     copy_state, doubling_error, end_state, error_scale, hermite_root, scaled_error, stage_state)
+from .kernel import (A as RK_A)
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
@@ -118,10 +134,6 @@ FD_STEP = 1e-6
 SPEED_TIME = 1.0
 """A free slide steps in its own time ``lambda`` (``dtau = |w| dlambda``, :func:`rk_step_speed`) where a
 step ``h`` of ``tau`` would have ``h Pi2 / |w|`` above this (its direction's relaxation stiff)."""
-RESTART_ERROR = 0.01
-"""Scaled local error aimed at by the first step after a transition (:func:`restart_step`)."""
-RESTART_ORDER = 8.0
-"""Order of the local error model of :func:`restart_step` (DOP853's error estimator)."""
 
 
 def slaved_speed(rtol: float) -> float:
@@ -1006,107 +1018,6 @@ def _slow_cap(which, md, tau, y, P, ex, work, slaved):
     return math.inf
 
 
-@njit(cache=True, _nrt=False)
-def _scaled_norm(a, y, atol, rtol, lo, hi, scale):
-    """Root-mean-square of ``scale a_i`` over the error scales of the state ``y`` (:func:`error_scale`)."""
-    acc = 0.0
-    for i in range(y.shape[0]):
-        v = scale * a[i] / error_scale(i, lo, hi, y[i], y[i], atol, rtol)
-        acc += v * v
-    return math.sqrt(acc / y.shape[0])
-
-
-@njit(cache=True, _nrt=False)
-def _series_cap(which, md, y, f0, f1, h0, slaved, nb):
-    """Longest first step of a slide starting on its slaved line, from the series of its speed (units of T_p).
-
-    ``which``: the block (0) or a sliding bearing (1), in mode ``+-2`` at rest or slow.  Over the
-    first short interval the signed speed is ``sigma(s) = sigma_0 + a0 s + a1 s^2 / 2`` with ``a0``,
-    ``a1`` its rate and the rate's difference quotient over ``h0`` (from ``f0``, ``f1``, the state's
-    rates at the start and after ``h0``, along the fallback direction in ``md``); the step ends
-    where that series reaches ``2 slaved``, the speed at which the slide leaves its line
-    (:func:`_line_switch`).  ``inf`` where the series does not reach it.
-    """
-    U = y.shape[0] - 4
-    iv, jv = (U + 2, U + 3) if which == 0 else (1, nb + 1)
-    mi, di = (M_BM, M_E0) if which == 0 else (M_IM, M_I0)
-    sg = 0.5 * md[mi]
-    dx, dy = md[di], md[di + 1]
-    sig = sg * (y[iv] * dx + y[jv] * dy)
-    a0 = sg * (f0[iv] * dx + f0[jv] * dy)
-    a1 = (sg * (f1[iv] * dx + f1[jv] * dy) - a0) / h0
-    gap = max(2.0 * slaved - sig, 0.5 * slaved)
-    # the positive root of a1 s^2 / 2 + a0 s - gap = 0, written to avoid cancellation
-    disc = a0 * a0 + 2.0 * a1 * gap
-    if disc < 0.0:
-        return math.inf if a0 <= 0.0 else gap / a0
-    root = a0 + math.sqrt(disc)
-    return 2.0 * gap / root if root > 0.0 else math.inf
-
-
-@njit(cache=True, _nrt=False)
-def restart_step(md, tau, y, P, ex, atol, rtol, h_restart, hmax, slaved, K):
-    """Length of the first step after a transition at ``(tau, y)`` in the modes ``md`` (units of T_p).
-
-    From the local derivatives (Hairer, Norsett and Wanner's initial step, ``hinit``): the rates
-    ``f0`` at the point and ``f1`` a probe step ``h_restart`` along them give the second
-    derivative's norm ``d2``; with ``d1 = |f0|`` (both scaled by the tolerances of
-    :func:`isoslide.engine.kernel.error_scale`) the step ``(RESTART_ERROR / max(d1, d2))^(1 /
-    RESTART_ORDER)``, kept within ``[h_restart, hmax]``.  A slide starting on its slaved line (mode
-    ``+-2``, a breakaway from rest) is further held by the series of its speed to the step that
-    leaves the line near ``2 slaved`` (:func:`_series_cap`).  ``K`` (the stepper's stage array) is
-    scratch space.
-    """
-    ny = y.shape[0]
-    U = ny - 4
-    nb = U // 2
-    f0 = K[0]
-    ys = K[1]
-    f1 = K[2]
-    tmp = K.reshape(K.size)[(NS + 2) * ny:(NS + 5) * ny]
-    h0 = h_restart
-    deriv(md, tau, y, P, ex, f0, tmp)
-    for i in range(ny):
-        ys[i] = y[i] + h0 * f0[i]
-    deriv(md, tau + h0, ys, P, ex, f1, tmp)
-    for i in range(ny):
-        ys[i] = f1[i] - f0[i]
-    d1 = _scaled_norm(f0, y, atol, rtol, U, ny, 1.0)
-    d2 = _scaled_norm(ys, y, atol, rtol, U, ny, 1.0 / h0)
-    big = max(d1, d2)
-    h = hmax if big <= 0.0 else (RESTART_ERROR / big) ** (1.0 / RESTART_ORDER)
-    h = min(hmax, max(h_restart, h))
-    if RESTART_MODE == 3:
-        h = hmax
-    for which in range(2):
-        mode = md[M_BM] if which == 0 else md[M_IM]
-        if RESTART_MODE == 3 and not (mode == 2.0 or mode == -2.0):
-            continue
-        if RESTART_MODE != 4 and (which == 0 or _sliding_bearing(P)) and (mode == 2.0 or mode == -2.0):
-            h = min(h, max(h0, _series_cap(which, md, y, f0, f1, h0, slaved, nb)))
-    return h
-
-
-RESTART_MODE = 0
-"""Candidate first step after a transition (measured by ``benchmarks/planar_restart.py``): 0 ``h_restart``;
-1 :func:`restart_step` (the local derivatives, held on a slaved start by the series of its speed);
-2 half the last step; 3 the series alone on a slaved start; 4 the local derivatives alone."""
-USE_LAM = False
-"""Candidate: a stiff free slide steps in its own time (:func:`rk_step_speed`)."""
-
-
-@njit(cache=True, _nrt=False)
-def _restart_choice(md, tau, y, P, ex, atol, rtol, h_restart, hmax, slaved, K, hlast):
-    """The first step after a transition of the candidate :data:`RESTART_MODE` (units of T_p)."""
-    if RESTART_MODE == 0:
-        return h_restart
-    if RESTART_MODE == 2:
-        return max(h_restart, 0.5 * hlast)
-    if RESTART_MODE == 3 and md[M_BM] != 2.0 and md[M_BM] != -2.0 and md[M_IM] != 2.0 and md[M_IM] != -2.0:
-        return h_restart
-    return restart_step(md, tau, y, P, ex, atol, rtol, h_restart, hmax, slaved, K)
-
-
 @njit(cache=True)
 def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_free, rtol, atol, hist_cap,
         h_restart, settle, max_steps, Wm, Cm, Vm, Lm, Wh, Ch, Vh, Lh, y0, md0, slaved, stop_on_stick, final):
@@ -1165,7 +1076,6 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     hold = False
     no_lam = False
     h = h_restart
-    hlast = h_restart
     ib = 0
     nh = _record(hist, 0, hist_cap, tau, y, md)
     a_x = np.empty(max(Wm.shape[0], Wh.shape[0]), dtype=np.complex128)
@@ -1252,13 +1162,13 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             if md[M_IM] != im0:
                 iso_events += 1
                 just_i = True
-            h = _restart_choice(md, tau, y, P, ex, atol, rtol, h_restart, h_max_pulse, slaved, K, hlast)
+            h = h_restart
             nh = _record(hist, nh, hist_cap, tau, y, md)
             continue
         target = _step_target(breakpoints, ib, tau_stop)
         # a slow free slide whose direction's relaxation would hold the step steps in its own time
         s_b = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
-        lam = (USE_LAM and not no_lam and not hold and md[M_BM] == 1.0 and s_b > 0.0
+        lam = (not no_lam and not hold and md[M_BM] == 1.0 and s_b > 0.0
                and h * P[P_PI2] > SPEED_TIME * s_b and tau + h < target)
         no_lam = False
         hl = 0.0
@@ -1314,7 +1224,6 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             hnext = _next_step(hl, err) * math.sqrt(y1[U + 2] ** 2 + y1[U + 3] ** 2)
         else:
             hnext = _next_step(h, err)
-        hlast = h
         tnew = target if hit_target else tau + h
         t_end_step = _left_limit(tnew)
         # --- transitions inside the step: the earliest ------------------------------------
@@ -1409,7 +1318,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             else:
                 just_i = False
             xmax = max(xmax, math.sqrt(y[0] ** 2 + y[nb_] ** 2))
-            h = _restart_choice(md, tau, y, P, ex, atol, rtol, h_restart, h_max_pulse, slaved, K, hlast)
+            h = h_restart
             nh = _record(hist, nh, hist_cap, tau, y, md)
             continue
         if md[M_BM] != 0.0:
