@@ -134,6 +134,10 @@ FD_STEP = 1e-6
 SPEED_TIME = 1.0
 """A free slide steps in its own time ``lambda`` (``dtau = |w| dlambda``, :func:`rk_step_speed`) where a
 step ``h`` of ``tau`` would have ``h Pi2 / |w|`` above this (its direction's relaxation stiff)."""
+SPEED_FIRST = 4.0
+"""The step of ``lambda`` that follows a step of ``tau`` is at most this over ``Pi2``: a few times the time
+``1 / |D|`` (units of ``lambda``) in which the direction relaxes, so that it is not rejected several
+times over, as the step of ``tau`` carried over from a slaved start is."""
 
 
 def slaved_speed(rtol: float) -> float:
@@ -1173,7 +1177,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         no_lam = False
         hl = 0.0
         if lam:
-            hl = h / s_b
+            hl = min(h / s_b, SPEED_FIRST / P[P_PI2])
         else:
             h = min(h, cap_b)
         hit_target = False
