@@ -49,12 +49,28 @@ Locating the stop.  A sliding block stops only while the force driving it is bel
 then its direction turns towards the driving force as ``(tau* - tau)^{a/c}`` and its speed falls
 as ``c (tau* - tau)`` to first order (``c`` the net deceleration), so ``|w|`` reaches zero without
 a sign change and the speed's Taylor prediction ``d = |w| / (-|w|')`` underestimates the time
-left.  Each step of a decelerating slide is therefore limited to ``0.9 d``: the steps approach
+left.  Each step of ``tau`` of a decelerating slide is therefore limited to ``0.9 d``: the steps approach
 the stop geometrically (each takes about nine tenths of the time left), none crosses it, and
 once ``d`` is below ``1e-13 max(1, |tau|)`` one last step of length ``d`` ends the slide (the
 distance it leaves out is below ``|w| d``).  The stop time is thus found to about ``1e-13``, like
 every transition of the 1-D kernels.  A step whose velocity turns by more than a right angle is
 rejected and halved.
+
+Slow free slides.  A free slide at the speed ``s`` turns towards its drive at the rate ``|D| /
+s``; where a step ``h`` of ``tau`` would have ``h Pi2 / s > SPEED_TIME`` the slide steps in its own
+time ``lambda``, ``dtau = s dlambda`` (:func:`rk_step_speed`, ``tau`` integrated with the state).
+The stiffness ratio is the same in either time, but in ``lambda`` the speed decays towards a stop
+without reaching it, so such a step needs no cap before the stop; measured on the bench's planar
+scenes it takes fewer steps at the same accuracy.  A step of ``lambda`` holding a transition, a peak
+of ``|u|`` or a breakpoint is taken again in ``tau``, where those are located as above.
+
+The first step after every transition is ``h_restart``.  After a breakaway the slide starts on its
+slaved line and its steps are held to leave it near ``2 slaved`` (:func:`_slow_cap`), so the first
+step decides only where the free slide starts.  A first step from the local derivatives (Hairer
+and Wanner's ``hinit``) or half the last step (the 1-D kernels' rule) saves steps only by carrying
+the slide further along its slaved line, which costs accuracy where the drive turns fast; the
+same held by the series of the slide's speed to the line's exit saves none
+(``benchmarks/planar_restart.py`` at the commit of its rows in ``docs/measurements.csv``).
 
 The peak of ``|u|``.  The path curves, so ``|u|`` can peak inside a slide: where ``u . w``
 changes sign from positive to negative, located by safeguarded Newton on the step length
@@ -81,9 +97,10 @@ from . import free_phase
 from .building_kernel import (KIND_BILINEAR, KIND_FIXED, KIND_SLIDING, P_ARRAYS, P_CB, P_COULOMB, P_FLEX, P_FLOOR,
                               P_KD, P_KE, P_KIND, P_M, P_MB, P_N, P_PI2, P_PI6, P_Q, P_QA, P_QS, P_ROOF, P_THR,
                               _stiffness, _storey_force, bearing_level, friction, normal)
-from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, C, NS, _hermite_max, _left_limit, _next_breakpoint, _next_step,
-                     _step_factor, _step_target, bracket_open, bracket_step, copy_state, doubling_error,
-                     end_state, hermite_root, scaled_error, stage_state)
+from .kernel import (ROOT_AT_TRIAL, ROOT_OPEN, B, C, E3, E5, NS, _error_norm, _hermite_max, _left_limit,
+                     _next_breakpoint, _next_step, _step_factor, _step_target, bracket_open, bracket_step,
+                     copy_state, doubling_error, end_state, error_scale, hermite_root, scaled_error, stage_state)
+from .kernel import (A as RK_A)
 
 G_PI14, G_PI15, G_PI16, G_COS, G_SIN, G_HAS_Y = range(6)
 """Indices of the excitation's array ``G``."""
@@ -114,6 +131,13 @@ SLAVED_FACTOR = 0.1
 :func:`slaved_speed`)."""
 FD_STEP = 1e-6
 """Relative step of the central differences that give the rates of a sliding bearing's events."""
+SPEED_TIME = 1.0
+"""A free slide steps in its own time ``lambda`` (``dtau = |w| dlambda``, :func:`rk_step_speed`) where a
+step ``h`` of ``tau`` would have ``h Pi2 / |w|`` above this (its direction's relaxation stiff)."""
+SPEED_FIRST = 4.0
+"""The step of ``lambda`` that follows a step of ``tau`` is at most this over ``Pi2``: a few times the time
+``1 / |D|`` (units of ``lambda``) in which the direction relaxes, so that it is not rejected several
+times over, as the step of ``tau`` carried over from a slaved start is."""
 
 
 def slaved_speed(rtol: float) -> float:
@@ -527,6 +551,80 @@ def rk_step(md, tau, y, h, P, ex, atol, rtol, K, ynew):
     end_state(y, h, K, ynew)
     deriv(md, t_left, ynew, P, ex, K[NS], tmp)
     return scaled_error(K, y, ynew, h, atol, rtol, U, ny)
+
+
+@njit(cache=True, _nrt=False)
+def _speed_rates(md, tau, y, P, ex, out, tmp):
+    """The state's rates in the slide's own time, ``|w| d/dtau``, into ``out``; returns ``|w|``."""
+    U = y.shape[0] - 4
+    sp = math.sqrt(y[U + 2] * y[U + 2] + y[U + 3] * y[U + 3])
+    deriv(md, tau, y, P, ex, out, tmp)
+    for i in range(y.shape[0]):
+        out[i] *= sp
+    return sp
+
+
+@njit(cache=True, _nrt=False)
+def rk_step_speed(md, tau, y, h, P, ex, atol, rtol, K, ynew, sv):
+    """One DOP853 step of length ``h`` in the free slide's own time ``lambda``; returns ``(err, dtau)``.
+
+    A block sliding at the speed ``s = |w|`` turns towards its drive at the rate ``|D| / s`` (units
+    of 1/T_p), a stiffness that holds an explicit step of ``tau`` to a few ``s / |D|`` however
+    smooth the slide.  In ``lambda`` (``dtau = s dlambda``, units of ``T_p / (a_p T_p)``) the same
+    equations, all rates multiplied by ``s``, relax at the rate ``|D|`` and the slide's speed grows
+    or decays as a power or an exponential of ``lambda``: smooth, and never through zero, so a
+    step cannot cross the slide's stop.  ``tau`` is integrated with the state (``tau' = s``, its
+    own stages ``sv``, length ``NS + 1``) and its error enters the norm (scale ``atol + rtol
+    max(1, |tau|)``).  ``K`` as :func:`rk_step`, its rows the rates in ``lambda``.
+    """
+    ny = y.shape[0]
+    U = ny - 4
+    ys = K[NS + 1]
+    tmp = K.reshape(K.size)[(NS + 2) * ny:(NS + 5) * ny]
+    sv[0] = _speed_rates(md, tau, y, P, ex, K[0], tmp)
+    for st in range(1, NS):
+        stage_state(y, h, K, st, ys)
+        acc = 0.0
+        for j in range(st):
+            acc += RK_A[st, j] * sv[j]
+        sv[st] = _speed_rates(md, tau + h * acc, ys, P, ex, K[st], tmp)
+    end_state(y, h, K, ynew)
+    dt = 0.0
+    for j in range(NS):
+        dt += B[j] * sv[j]
+    dt *= h
+    sv[NS] = _speed_rates(md, tau + dt, ynew, P, ex, K[NS], tmp)
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(ny):
+        sc = error_scale(i, U, ny, y[i], ynew[i], atol, rtol)
+        a5 = 0.0
+        a3 = 0.0
+        for j in range(NS + 1):
+            a5 += E5[j] * K[j, i]
+            a3 += E3[j] * K[j, i]
+        e5 += (a5 / sc) ** 2
+        e3 += (a3 / sc) ** 2
+    sc = atol + rtol * max(1.0, abs(tau))
+    a5 = 0.0
+    a3 = 0.0
+    for j in range(NS + 1):
+        a5 += E5[j] * sv[j]
+        a3 += E3[j] * sv[j]
+    e5 += (a5 / sc) ** 2
+    e3 += (a3 / sc) ** 2
+    return _error_norm(e5, e3, h), dt
+
+
+@njit(cache=True)
+def verify_speed(md, tau, y, h, ycand, P, ex, atol, rtol, K, sv):
+    """Richardson check of one step of :func:`rk_step_speed`: scaled error of ``ycand`` against two half steps."""
+    ny = y.shape[0]
+    ya = np.empty(ny)
+    yb = np.empty(ny)
+    _, dt = rk_step_speed(md, tau, y, 0.5 * h, P, ex, atol, rtol, K, ya, sv)
+    rk_step_speed(md, tau + dt, ya, 0.5 * h, P, ex, atol, rtol, K, yb, sv)
+    return doubling_error(y, yb, ycand, atol, rtol, ny - 4, ny)
 
 
 @njit(cache=True)
@@ -957,6 +1055,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     ye = np.empty(ny)
     yb = np.empty(ny)
     K = np.empty((NS + 5, ny))
+    sv = np.empty(NS + 1)
     work = np.empty(5 * ny)
     cnt = np.zeros(1, dtype=np.int64)
     hist = np.empty((hist_cap if hist_cap > 0 else 1, ny + 3))
@@ -979,6 +1078,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
     just_b = False
     just_i = False
     hold = False
+    no_lam = False
     h = h_restart
     ib = 0
     nh = _record(hist, 0, hist_cap, tau, y, md)
@@ -1031,6 +1131,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
         hmax = h_max_pulse if tau < tau_end or not watch else h_max_free
         h = min(h, hmax)
         finished = -1
+        cap_b = math.inf
         for which in range(2):
             mode = md[M_BM] if which == 0 else md[M_IM]
             if which == 1 and not bearing:
@@ -1042,7 +1143,10 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                     finished = which
                     h = d_stop
                     break
-                h = min(h, STOP_FRACTION * d_stop)
+                if which == 0:
+                    cap_b = STOP_FRACTION * d_stop
+                else:
+                    h = min(h, STOP_FRACTION * d_stop)
             elif mode != 0.0:
                 # a slow slide leaves its slaved line near the speed it was set for
                 h = min(h, _slow_cap(which, md, tau, y, P, ex, work, slaved))
@@ -1066,14 +1170,38 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             nh = _record(hist, nh, hist_cap, tau, y, md)
             continue
         target = _step_target(breakpoints, ib, tau_stop)
+        # a slow free slide whose direction's relaxation would hold the step steps in its own time
+        s_b = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
+        lam = (not no_lam and not hold and md[M_BM] == 1.0 and s_b > 0.0
+               and h * P[P_PI2] > SPEED_TIME * s_b and tau + h < target)
+        no_lam = False
+        hl = 0.0
+        if lam:
+            hl = min(h / s_b, SPEED_FIRST / P[P_PI2])
+        else:
+            h = min(h, cap_b)
         hit_target = False
         if tau + h >= target:
             h = target - tau
             hit_target = True
         # --- attempt until accepted ------------------------------------------------------
         while True:
-            err = rk_step(md, tau, y, h, P, ex, atol, rtol, K, y1)
-            steps += 1
+            if lam:
+                err, dt = rk_step_speed(md, tau, y, hl, P, ex, atol, rtol, K, y1, sv)
+                steps += 1
+                if not (err == err and dt == dt and hl > 1e-300):
+                    lam = False
+                    h = min(h, cap_b)
+                    continue
+                if not (0.0 < dt < min(target - tau, hmax)):
+                    # past the next breakpoint or the longest step: shorter
+                    rejected += 1
+                    hl *= max(0.1, 0.5 * min(target - tau, hmax) / dt) if dt > 0.0 else 0.5
+                    continue
+                h = dt
+            else:
+                err = rk_step(md, tau, y, h, P, ex, atol, rtol, K, y1)
+                steps += 1
             if err <= 1.0:
                 if md[M_BM] == 1.0 and y[U + 2] * y1[U + 2] + y[U + 3] * y1[U + 3] < 0.0:
                     err = 4.0
@@ -1083,14 +1211,23 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
                     s0 = math.sqrt(y[U + 2] ** 2 + y[U + 3] ** 2)
                     s1 = math.sqrt(y1[U + 2] ** 2 + y1[U + 3] ** 2)
                     if min(s0, s1) < zone:
-                        err = max(err, verify(md, tau, y, h, y1, P, ex, atol, rtol, K))
+                        if lam:
+                            err = max(err, verify_speed(md, tau, y, hl, y1, P, ex, atol, rtol, K, sv))
+                        else:
+                            err = max(err, verify(md, tau, y, h, y1, P, ex, atol, rtol, K))
                         steps += 2
             if err <= 1.0:
                 break
             rejected += 1
-            h *= _step_factor(err) if err < 4.0 else 0.5
+            if lam:
+                hl *= _step_factor(err) if err < 4.0 else 0.5
+            else:
+                h *= _step_factor(err) if err < 4.0 else 0.5
             hit_target = False
-        hnext = _next_step(h, err)
+        if lam:
+            hnext = _next_step(hl, err) * math.sqrt(y1[U + 2] ** 2 + y1[U + 3] ** 2)
+        else:
+            hnext = _next_step(h, err)
         tnew = target if hit_target else tau + h
         t_end_step = _left_limit(tnew)
         # --- transitions inside the step: the earliest ------------------------------------
@@ -1129,6 +1266,11 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, h_max_pulse, h_max_fre
             if found and hs < hbest:
                 best, hbest, herr_best = kind, hs, herr
                 copy_state(yb, ye)
+        if lam and (best >= 0 or (y[U] * y[U + 2] + y[U + 1] * y[U + 3] > 0.0
+                                   and y1[U] * y1[U + 2] + y1[U + 1] * y1[U + 3] < 0.0)):
+            # a transition or a peak of |u| inside: the step again in tau, where they are located
+            no_lam = True
+            continue
         if best >= 0:
             if herr_best > 1.0:
                 h = 0.5 * hbest
