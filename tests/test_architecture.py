@@ -98,8 +98,8 @@ def test_the_atomic_write_module_imports_nothing_of_the_package():
 def test_scene_fields_are_the_registry_input_groups_with_their_defaults():
     fields = {f.name: f for f in dataclasses.fields(isoslide.Scene)}
     pi_fields = [n for n in fields if n.startswith("pi")]
-    assert pi_fields == list(groups.INPUT_NAMES + groups.ROCKING_NAMES)
-    assert all(fields[n].default is None for n in groups.ROCKING_NAMES)
+    assert pi_fields == list(groups.INPUT_NAMES + groups.ROCKING_NAMES + groups.TFP_SPEED_NAMES)
+    assert all(fields[n].default is None for n in groups.ROCKING_NAMES + groups.TFP_SPEED_NAMES)
     for g in groups.INPUTS:
         f = fields[g.name]
         if g.default is None:
@@ -118,7 +118,7 @@ def test_scene_errors_quote_the_registry_range():
 
 DUMMY = """
 import isoslide.groups as g
-dummy = g.Group("pi31", "Q / (M_b a_p)", "dummy strength", r"\\Pi_{31}", r"Q/(M_b a_p)", "Π₃₁", default=0.5,
+dummy = g.Group("pi99", "Q / (M_b a_p)", "dummy strength", r"\\Pi_{99}", r"Q/(M_b a_p)", "Π₉₉", default=0.5,
                 comment="a group added for the test")
 g.INPUTS = g.INPUTS + (dummy,)
 g.GROUPS = {x.name: x for x in (g.RESULT, *g.INPUTS)}
@@ -129,12 +129,12 @@ help_text = io.StringIO()
 with contextlib.redirect_stdout(help_text), contextlib.suppress(SystemExit):
     cli.main(["solve", "--help"])
 print(json.dumps({
-    "attrs": datasets.pi_attrs("pi31"),
-    "label": figures.LABELS["pi31"],
-    "definition": list(similarity.DEFINITIONS["pi31"]),
-    "sweep": "pi31" in sweep.PI_NAMES and "pi31" in sweep.SWEEPABLE,
-    "range": list(scene.PI_RANGES["pi31"]),
-    "cli": "--pi31" in help_text.getvalue() and "dummy strength" in help_text.getvalue(),
+    "attrs": datasets.pi_attrs("pi99"),
+    "label": figures.LABELS["pi99"],
+    "definition": list(similarity.DEFINITIONS["pi99"]),
+    "sweep": "pi99" in sweep.PI_NAMES and "pi99" in sweep.SWEEPABLE,
+    "range": list(scene.PI_RANGES["pi99"]),
+    "cli": "--pi99" in help_text.getvalue() and "dummy strength" in help_text.getvalue(),
 }))
 """
 
@@ -146,9 +146,9 @@ def test_a_group_added_to_the_registry_appears_everywhere():
 
     out = subprocess.run([sys.executable, "-c", DUMMY], capture_output=True, text=True, check=True)
     got = json.loads(out.stdout.strip().splitlines()[-1])
-    assert got["attrs"]["long_name"] == "Pi31 = Q / (M_b a_p): dummy strength"
+    assert got["attrs"]["long_name"] == "Pi99 = Q / (M_b a_p): dummy strength"
     assert got["attrs"]["units"] == "1" and got["attrs"]["comment"] == "a group added for the test"
-    assert got["label"] == r"$\Pi_{31} = Q/(M_b a_p)$"
+    assert got["label"] == r"$\Pi_{99} = Q/(M_b a_p)$"
     assert got["definition"] == ["Q / (M_b a_p)", "Q / (M_b a_p)"]
     assert got["sweep"] and got["cli"]
     assert got["range"][:2] == [0.0, float("inf")]

@@ -62,11 +62,12 @@ def _same_run(a, b):
 def test_constant_friction_is_the_constant_run_bit_for_bit():
     """rate = 0 (friction mu_slow at every speed) and mu_slow = mu (mu at every speed) are the constant peer.
 
-    The scene with restrainers: its Pi1 is today's 0.08290516704451625 exactly; mu_slow = mu with a
+    The scene with restrainers: its Pi1 is today's 0.08290516704451625 (to the last bits, which the
+    processor's vector paths may move); mu_slow = mu with a
     rate, and rate = 0 with mu = 2 mu_slow, give the same vertices to the bit.
     """
     today = _run(d=STOPS, slow=None)
-    assert today.pi1 == 0.08290516704451625
+    assert today.pi1 == pytest.approx(0.08290516704451625, rel=1e-14)
     same_mu = run_tfp(TFPBuilding(**_kw(d=STOPS), mu_slow=MU, rate=(50.0, 80.0, 20.0)))
     _same_run(today, same_mu)
     kw = _kw(d=STOPS)
