@@ -174,7 +174,7 @@ TARGET = select_target()
 
 SHIPPED_DIR = Path(__file__).resolve().parent / "data" / "kernel_cache"
 ENV_SWITCH = "ISOSLIDE_SHIPPED_KERNELS"
-WARM_UP = "from isoslide.solver import warm_up; warm_up(records=True, building=True)"
+WARM_UP = "from isoslide.solver import warm_up; warm_up(records=True, building=True, speed_bearing=True)"
 """Python code that compiles every kernel signature the pipeline uses (run in a child interpreter)."""
 PORTABLE_KEY = (PORTABLE_CPU, "")
 """The (processor, features) part of numba's cache key of every shipped entry."""
