@@ -35,7 +35,7 @@ from .groups import INPUT_NAMES, INPUTS, ROCKING_NAMES, TFP_NAMES, TFP_SPEED, TF
 from .model.shear_building import fundamental_period
 from .groups import defaults as _group_defaults
 from .model.rocking import housner_restitution
-from .model.tfp import TripleFrictionPendulum
+from .model.tfp import TripleFrictionPendulum, _triple
 from .model.validation import check_range
 
 _DEFAULTS = _group_defaults()
@@ -907,7 +907,7 @@ def triple_friction_pendulum(L, mu, d, M_b, g=G_STANDARD, mu_slow=None, rate=0.0
     """
     M_b = check_range("M_b", M_b, 0.0, math.inf, False, False)
     g = check_range("g", g, 0.0, math.inf, False, False)
-    rates = _tfp_triple("rate", rate)
+    rates = _triple("rate", rate, 0.0, True)
     speed = {}
     if mu_slow is not None:
         checked = TripleFrictionPendulum(L, mu, d, mu_slow=mu_slow, rate=1.0)
@@ -934,11 +934,3 @@ def triple_friction_pendulum(L, mu, d, M_b, g=G_STANDARD, mu_slow=None, rate=0.0
         (s1, s2, s3), (a1, a2, a3) = b.mu_slow, b.rate
         out.update(Q_slow=s2 * M_b * g, rate=a2, tfp=(*out["tfp"], s1 / mu1, s3 / mu3, a1, a3))
     return out
-
-
-def _tfp_triple(name: str, value) -> tuple:
-    """Three values ``>= 0`` of a triple pendulum's surfaces (one value is repeated), named in errors."""
-    vals = tuple(value) if isinstance(value, (tuple, list, np.ndarray)) else (value,) * 3
-    if len(vals) != 3:
-        raise ValueError(f"{name} = {value!r} must be one value or three; got {len(vals)}")
-    return tuple(check_range(f"{name}{i}", v, 0.0, math.inf, True, False) for i, v in enumerate(vals, start=1))
