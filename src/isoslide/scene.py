@@ -271,10 +271,9 @@ class Scene:
             _check_contact(self.pi17, self.pulse_z)
         if self.pi24 > 0.0:
             _check_tfp(self)
-        elif any(getattr(self, n) is not None for n in TFP_SPEED_NAMES):
-            given = {n: getattr(self, n) for n in TFP_SPEED_NAMES if getattr(self, n) is not None}
-            raise ValueError(f"{given!r} given without a triple friction pendulum (pi24 = {self.pi24!r}); allowed: "
-                             "None, or pi24 > 0 with pi22 < 1 and pi23 > 0")
+        elif _speed_groups_given(self):
+            raise ValueError(f"{_speed_groups_given(self)!r} given without a triple friction pendulum (pi24 = "
+                             f"{self.pi24!r}); allowed: None, or pi24 > 0 with pi22 < 1 and pi23 > 0")
         _check_rocking(self)
 
     @classmethod
@@ -688,12 +687,17 @@ def tfp_bearing(scene) -> TripleFrictionPendulum:
                                   d=(scene.pi28, scene.pi29, scene.pi30), W=1.0, **speed)
 
 
+def _speed_groups_given(scene) -> dict:
+    """The speed-dependent triple pendulum's optional groups (``Pi31`` .. ``Pi34``) that ``scene`` sets."""
+    return {n: getattr(scene, n) for n in TFP_SPEED_NAMES if getattr(scene, n) is not None}
+
+
 def _check_tfp(scene) -> None:
     """``ValueError`` unless a scene with ``Pi24 > 0`` is a triple friction pendulum the model represents."""
     if scene.pi9 == 0.0 or scene.pi10 != 0.0 or scene.pi3 == 0.0:
         raise ValueError(f"pi24 = {scene.pi24!r} > 0 needs a sliding bearing (pi3 > 0, pi9 > 0, pi10 = 0); got "
                          f"pi3 = {scene.pi3!r}, pi9 = {scene.pi9!r}, pi10 = {scene.pi10!r}")
-    given = {n: getattr(scene, n) for n in TFP_SPEED_NAMES if getattr(scene, n) is not None}
+    given = _speed_groups_given(scene)
     if given and scene.tfp_speed is None:
         raise ValueError(f"{given!r} given with constant friction on the triple pendulum (pi22 = {scene.pi22!r}, "
                          f"pi23 = {scene.pi23!r}); allowed: None, or with pi22 < 1 and pi23 > 0")
