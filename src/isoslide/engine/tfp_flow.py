@@ -125,12 +125,11 @@ class Surfaces:
         return np.ascontiguousarray(np.vstack((self.stiffness, self.fast, self.slow, self.rate, self.limit)))
 
 
-def slopes(s: Surfaces, u) -> tuple:
+def slopes(s: Surfaces, u) -> np.ndarray:
     """``f - q_i`` of the four surfaces at the displacements ``u`` (the load's slope on each)."""
-    k = s.stiffness
-    s0 = k[0] * u[0]
-    s3 = k[3] * u[3]
-    return s0, s0 + k[1] * u[1], s3 + k[2] * u[2], s3
+    sl = np.empty(4)
+    _slopes(s.table, _writable(u), sl)
+    return sl
 
 
 def on_stops(s: Surfaces, u) -> np.ndarray:
@@ -302,10 +301,12 @@ def stage(s: Surfaces, u, v) -> int:
     if not np.any(v != 0.0):
         return 0
 
+    stops = on_stops(s, u)
+
     def status(i):
         if v[i] != 0.0:
             return "slide"
-        return "stop" if abs(u[i]) >= s.limit[i] * (1.0 - 1e-12) else "free"
+        return "stop" if stops[i] != 0.0 else "free"
 
     pair = {status(0), status(3)}
     if pair == {"stop"}:
@@ -569,7 +570,7 @@ def _events(s: Surfaces, st: _Run, Pc, code, params, ny, full, bearing_force, y,
         add(lambda t, z: im * z[bk.Y_XD] if t > t0 else 1.0, -1, ("stop",))
         for i in range(4):
             for sg in (1.0, -1.0):
-                if sg * u0[i] < s.limit[i] * (1.0 - 1e-12):
+                if st.stops[i] != sg:     # not resting on its restrainer on that side
                     add(lambda t, z, i=i, sg=sg: s.limit[i] - sg * z[ny - 1 + i], -1, ("restrainer", i, sg))
         # a surface's reaction crossing its breakaway level: a kink of its law
         f0 = bearing_force(z0, im)
