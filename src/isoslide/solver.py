@@ -59,7 +59,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .engine import building, building_kernel, exponential, kernel, piecewise, planar_kernel, planar_piecewise, tfp_flow
+from .engine import (building, building_kernel, exponential, kernel, piecewise, planar_kernel, planar_piecewise, tfp_flow,
+                     tfp_plane)
 from .engine.planar import excitation, pair_grid
 from .engine.system import (DEFAULT_HORIZON, STEPS_PER_PERIOD, assemble, excitation_end, horizon_end,  # noqa: F401
                             step_budget)
@@ -638,6 +639,42 @@ def _solve_tfp_flow(scene: Scene, rtol: float, history: bool, horizon: float, co
                      peak_stage=out.ints["stage_max"])
 
 
+def _solve_tfp_plane(scene: Scene, rtol: float, history: bool, horizon: float, settle: bool) -> Solution:
+    """:func:`solve` in the plane on a triple pendulum whose friction rises with speed (:mod:`isoslide.engine.tfp_plane`).
+
+    The building and the contents are the planar kernel's (any floor, storeys, Stribeck or Coulomb
+    contents, vertical motion through the normal forces); the bearing's four surfaces have circular
+    friction and circular restrainers, integrated implicitly (Radau) at
+    :data:`isoslide.engine.tfp_flow.RTOL_FACTOR` of ``rtol``.
+    """
+    parts = building_of(scene)
+    if not parts.isolator.speed_dependent:
+        raise ValueError(f"a triple friction pendulum of constant friction (pi22 = {scene.pi22!r}, pi23 = "
+                         f"{scene.pi23!r}) under two horizontal ground components that are not along one line is "
+                         "not modelled (its surfaces' sliding sets in the plane); allowed: friction that rises with "
+                         "speed (pi22 < 1 and pi23 > 0), an excitation along one line, or a single friction "
+                         "pendulum (pi24 = 0)")
+    if scene.tips:
+        raise ValueError(f"a rocking block (pi18 = {scene.pi18!r}) on a triple friction pendulum in the plane is "
+                         "not modelled; allowed: contents that slide (pi18 = None, or a block that slides before "
+                         "it tips)")
+    coulomb = scene.rate_independent
+    system = assemble(scene, pi8=scene.pi8, coulomb=coulomb, rocking=False, horizon=horizon)
+    surfaces = tfp_flow.Surfaces.of(system.P, *parts.isolator.surface_laws())
+    res = tfp_plane.run(system.P, excitation(scene), system.breakpoints, system.start, system.end, system.stop,
+                        surfaces, rtol, settle, system.planar_modal, 200_000 if history else 0)
+    out = Run.of(tfp_plane, res)
+    _check_capacity(out, scene)
+    facets = dataclasses.replace(scene_facets(scene, friction="coulomb" if coulomb else "stribeck",
+                                              oneway=scene.pi8 == 0.0), contact="plane")
+    sol = _solution(scene, out, facets, peak_stage=out.ints["stage_max"])
+    if history:
+        n = int(system.P[building_kernel.P_N])
+        h = _planar_history(out.hist, n, scene, hyst=True)
+        sol = dataclasses.replace(sol, history=dataclasses.replace(h, stage=out.hist[:, -1].astype(np.int8)))
+    return sol
+
+
 def _solve_horizontal(scene: Scene, rtol: float, history: bool, horizon: float, model: str, max_step: float,
                       settle: bool, piecewise_path: bool) -> Solution:
     """:func:`solve` (exact, arguments checked) for an excitation that is not the main pulse along x alone.
@@ -651,10 +688,7 @@ def _solve_horizontal(scene: Scene, rtol: float, history: bool, horizon: float, 
                          "(pi9 = 0, pi12 = 0, the main pulse alone along x)")
     if scene.planar or model == "full":
         if scene.isolator == "tfp":
-            raise ValueError(f"a triple friction pendulum (pi24 = {scene.pi24!r} > 0) under two horizontal ground "
-                             "components that are not along one line is not modelled yet (its surfaces' circular "
-                             "friction and restrainers in the plane); allowed: an excitation along one line, or a "
-                             "single friction pendulum (pi24 = 0)")
+            return _solve_tfp_plane(scene, rtol, history, horizon, settle)
         return _solve_planar(scene, rtol, history, horizon, model, max_step, settle)
     line, lam, theta = along_line(scene)
     sol = solve(line, rtol=rtol, history=history, horizon=horizon, model=model, max_step=max_step,
