@@ -183,7 +183,8 @@ KERNEL_SOURCES = {"pulses": "pulses.py", "kernel": "engine/kernel.py", "piecewis
                   "friction": "model/friction.py", "modes": "engine/modes.py", "free_phase": "engine/free_phase.py",
                   "building_kernel": "engine/building_kernel.py", "exponential": "engine/exponential.py",
                   "planar_kernel": "engine/planar_kernel.py",
-                  "planar_piecewise": "engine/planar_piecewise.py", "tfp_flow": "engine/tfp_flow.py"}
+                  "planar_piecewise": "engine/planar_piecewise.py", "tfp_flow": "engine/tfp_flow.py",
+                  "tfp_plane": "engine/tfp_plane.py"}
 KERNEL_MODULES = tuple(KERNEL_SOURCES)
 
 

@@ -972,8 +972,9 @@ def warm_up(records: bool = False, building: bool = False, speed_bearing: bool =
     ``records=True`` also readies the piecewise-exact path of record-driven scenes (a recorded pair's
     in the plane too), ``building=True`` the general building's kernel
     (:mod:`isoslide.engine.building_kernel`) and the planar kernel, ``speed_bearing=True`` a triple
-    pendulum whose friction rises with speed (:mod:`isoslide.engine.tfp_flow`, its compiled functions
-    and the building kernel's called from Python; a solve of some seconds).
+    pendulum whose friction rises with speed along a line and in the plane
+    (:mod:`isoslide.engine.tfp_flow`, :mod:`isoslide.engine.tfp_plane`: their compiled functions and the
+    building and planar kernels' called from Python; solves of some seconds).
     """
     scenes = [Scene(pi2=0.2, pi3=1.0, pi4=0.1), Scene(pi2=0.2, pi3=0.0, pi5=0.5, pi6=10.0),
               Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi7=1.0)]
@@ -991,5 +992,7 @@ def warm_up(records: bool = False, building: bool = False, speed_bearing: bool =
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pulse_y="antisymmetric_ricker", pi14=0.5))
         solve(Scene(pi2=0.2, pi3=1.0, pi4=0.1, pi5=0.7, pi6=1e3, pi9=0.05, pi10=0.01))
     if speed_bearing:
-        solve(Scene(pi2=0.2, pi3=2.0, pi9=0.05, pi24=0.1, pi26=0.5, pi27=2.0, pi28=0.05, pi29=0.1, pi30=0.2,
-                    pi22=0.5, pi23=10.0), rtol=1e-3)
+        bearing = dict(pi2=0.2, pi3=2.0, pi9=0.05, pi24=0.1, pi26=0.5, pi27=2.0, pi28=0.05, pi29=0.1, pi30=0.2,
+                       pi22=0.5, pi23=10.0)
+        solve(Scene(**bearing), rtol=1e-3)
+        solve(Scene(**bearing, pulse_y="antisymmetric_ricker", pi14=0.5), rtol=1e-3)
