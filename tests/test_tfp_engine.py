@@ -267,8 +267,9 @@ def test_scene_refuses_a_triple_pendulum_it_cannot_represent(kw, match):
         Scene(**{**BASE, **kw})
 
 
-def test_a_triple_pendulum_in_the_plane_is_refused_by_name():
-    with pytest.raises(ValueError, match="triple friction pendulum .* not modelled yet"):
+def test_a_constant_friction_triple_pendulum_in_the_plane_is_refused_by_name():
+    """Constant friction under two components not along one line: a ValueError naming pi22 and pi23."""
+    with pytest.raises(ValueError, match=r"triple friction pendulum of constant friction \(pi22 = .*pi23 = .*not modelled"):
         solve(Scene(**BASE, pulse_y="antisymmetric_ricker", pi14=0.8))
 
 

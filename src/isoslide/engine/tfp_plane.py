@@ -71,7 +71,7 @@ speed is below this (units of ``a_p T_p``)."""
 START_SPEED = 1e-20
 """The slab's speed (units of ``a_p T_p``) below which the force is taken at this speed along the
 direction the slab starts in: the edge of ``S`` it leaves from (the limit of the root as ``x' -> 0``)."""
-W_IMPLICIT = 1e-4
+W_IMPLICIT = 1e-7
 """While the slab or a sliding block is slower than this (units of ``a_p T_p``) the phase is stepped
 explicitly (DOP853): their friction turns with their velocity, whose direction at the start of a slide
 the implicit method's trial states cannot resolve; past it, the implicit method (Radau) steps the
