@@ -291,6 +291,15 @@ def _force(T, stops, u, xd, sig):
     return f
 
 
+def phase_end(t0: float, breakpoints, tau_end: float) -> float:
+    """End of the integration starting at ``t0``: the next of the sorted ``breakpoints`` after it.
+
+    After the excitation's end ``tau_end``, at most :data:`H_SETTLE` on (how often settlement is tested).
+    """
+    t1 = next(b for b in breakpoints if b > t0)
+    return min(t1, t0 + H_SETTLE) if t0 >= tau_end else t1
+
+
 def stage(s: Surfaces, u, v) -> int:
     """Fenz and Constantinou's regime by the outer surfaces 1 and 4: 0 none sliding, 1..5 I..V.
 
@@ -445,9 +454,7 @@ def run(P, code, params, breakpoints, tau_start, tau_end, tau_stop, surfaces: Su
                 if settle:
                     break
         t0 = st.tau
-        t1 = next(b for b in bps if b > t0)
-        if t0 >= tau_end:
-            t1 = min(t1, t0 + H_SETTLE)
+        t1 = phase_end(t0, bps, tau_end)
         evs, kinds = _events(s, st, Pc, code, params, ny, full, bearing_force, y, work, u0, sides)
         sides = {}
 

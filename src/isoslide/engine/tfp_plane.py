@@ -60,8 +60,9 @@ from scipy.integrate import solve_ivp
 from .. import jit_cache
 from . import building_kernel as bk
 from . import planar_kernel as pk
-from .tfp_flow import (ATOL_FACTOR, GAP_FLOOR, H_MAX, H_SETTLE, JAC_STEP, MAX_PHASES, RTOL_FACTOR, RTOL_FLOOR,
-                       Surfaces, _law_speed, stage)
+from .tfp_flow import (ATOL_FACTOR, GAP_FLOOR, H_MAX, JAC_STEP, MAX_PHASES, RTOL_FACTOR, RTOL_FLOOR, Surfaces,
+                       _law_speed, phase_end, stage)
+from .tfp_flow import _slopes as _chain
 
 STOP_SPEED = 1e-10
 """A slide whose speed falls below this (units of ``a_p T_p``) has stopped (as in the planar kernel)."""
@@ -95,13 +96,12 @@ FLOAT_RESULTS = pk.FLOAT_RESULTS
 
 @njit(cache=True)
 def _slopes(T, u, sl):
-    """Slopes ``s_i`` ((4, 2)) of the surfaces at the displacements ``u`` ((4, 2)); ``T`` the laws' table."""
-    k = T[0]
+    """Slopes ``s_i`` ((4, 2)) of the surfaces at the displacements ``u`` ((4, 2)); ``T`` the laws' table.
+
+    Each component is the line's chain (:func:`isoslide.engine.tfp_flow._slopes`).
+    """
     for c in range(2):
-        sl[0, c] = k[0] * u[0, c]
-        sl[3, c] = k[3] * u[3, c]
-        sl[1, c] = sl[0, c] + k[1] * u[1, c]
-        sl[2, c] = sl[3, c] + k[2] * u[2, c]
+        _chain(T, u[:, c], sl[:, c])
 
 
 @njit(cache=True)
@@ -205,11 +205,17 @@ def _flow(T, rim, o, sl, fx, fy, vs, J):
 
 
 @njit(cache=True)
-def _gap(T, i, rim, ox, oy, qx, qy):
-    """How far surface ``i``'s reaction ``q`` lies inside its fast level (the law's ``Q_fast - |q|``)."""
+def _load(rim, ox, oy, qx, qy):
+    """The part of a surface's reaction ``q`` its friction carries: ``|q|``, or ``|q . t|`` on its restrainer pushed outward."""
     if rim and qx * ox + qy * oy >= 0.0:
-        return T[1, i] - abs(-qx * oy + qy * ox)
-    return T[1, i] - math.hypot(qx, qy)
+        return abs(-qx * oy + qy * ox)
+    return math.hypot(qx, qy)
+
+
+@njit(cache=True)
+def _gap(T, i, rim, ox, oy, qx, qy):
+    """How far surface ``i``'s reaction ``q`` lies inside its fast level (the law's ``Q_fast - |q|``, :func:`_load`)."""
+    return T[1, i] - _load(rim, ox, oy, qx, qy)
 
 
 @njit(cache=True)
@@ -482,13 +488,7 @@ def _excess(T, rim, u, fx, fy):
     _outward(u, rim, o)
     worst = -math.inf
     for i in range(4):
-        qx = fx - sl[i, 0]
-        qy = fy - sl[i, 1]
-        if rim[i] and qx * o[i, 0] + qy * o[i, 1] >= 0.0:
-            r = abs(-qx * o[i, 1] + qy * o[i, 0])
-        else:
-            r = math.hypot(qx, qy)
-        worst = max(worst, r - T[2, i])
+        worst = max(worst, _load(rim[i], o[i, 0], o[i, 1], fx - sl[i, 0], fy - sl[i, 1]) - T[2, i])
     return worst
 
 
@@ -780,9 +780,7 @@ def run(P, ex, breakpoints, tau_start, tau_end, tau_stop, surfaces: Surfaces, rt
             if settle:
                 break
         t0 = st.tau
-        t1 = next(tb for tb in bps if tb > t0)
-        if t0 >= tau_end:
-            t1 = min(t1, t0 + H_SETTLE)
+        t1 = phase_end(t0, bps, tau_end)
 
         def rhs(t, z, bm=bm, im=im, e=e, d=d):
             dz = np.empty(ny + 8)
