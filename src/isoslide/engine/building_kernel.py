@@ -179,7 +179,7 @@ _stribeck = njit(cache=True)(stribeck)
 jit_cache.seed(_stribeck)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def friction(v, P):
     """Friction level ``phi(|v|)`` (units of a_p) and its derivative ``d phi / d|v|``."""
     thr = P[P_THR]
@@ -188,7 +188,7 @@ def friction(v, P):
     return _stribeck(v, thr, P[P_PI2], P[P_PI6], P[P_PI7], 1.0)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def bearing_level(w, P):
     """A sliding bearing's friction level at the speed ``w`` along its sliding direction, and ``d/dw``.
 
@@ -205,14 +205,14 @@ def bearing_level(w, P):
     return P[P_Q] - e, a * e
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def _held(im, P):
     """True while the slab is held to the ground (stuck sliding bearing or triple pendulum, or a fixed base)."""
     kind = P[P_KIND]
     return kind == KIND_FIXED or ((kind == KIND_SLIDING or kind == KIND_TFP) and im == 0.0)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def _sticks(P):
     """True for an isolator that holds the slab with true stick (a sliding bearing or a triple pendulum)."""
     return P[P_KIND] == KIND_SLIDING or P[P_KIND] == KIND_TFP
@@ -398,7 +398,7 @@ def tfp_moved(u0, r, dx, P, u):
             u[i] = d if u[i] > 0.0 else -d
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def normal(tau, P):
     """Normal force over its static value, ``1 + Pi17 p_z(tau)``, and its tau-rate (1, 0 without vertical motion).
 
@@ -414,19 +414,19 @@ def normal(tau, P):
     return 1.0 + amp * accel_at(code, zp, tau), amp * jerk_at(code, zp, tau)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def _pendulum(P):
     """1 for a sliding bearing (a friction pendulum's stiffness scales with its normal force), else 0."""
     return 1.0 if P[P_KIND] == KIND_SLIDING else 0.0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def _stiffness(nz, P):
     """Isolator stiffness under the normal-force factor ``nz`` (a friction pendulum's scales with it)."""
     return P[P_KD] * nz if P[P_KIND] == KIND_SLIDING else P[P_KD]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def _hysteretic(im, nz, y, P):
     """Hysteretic isolator force of a moving slab.
 
@@ -443,7 +443,7 @@ def _hysteretic(im, nz, y, P):
     return 0.0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def _storey_force(j, zp, zv, P):
     """Force of the superstructure on floor ``j`` (0-based), negated: ``G_j = (Ks zp + Cs zv)_j``.
 
@@ -504,7 +504,7 @@ def _tilt(bm, y, P):
     return s, psi, s * y[Y_XS + 2 * n + 1], math.atan(P[P_ROCK]) - psi
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")
 def _block_load(bm, nz, y, P):
     """How the block of mode ``bm`` loads its floor: ``(a1, f, ac)``.
 
@@ -595,6 +595,10 @@ def _accels(bm, im, p, nz, y, P, A):
     return Ab, AF, a - AF, fh, R, s * psdd
 
 
+_accels_inline = njit(cache=True, _nrt=False, inline="always")(getattr(_accels, "py_func", _accels))
+""":func:`_accels` compiled into its caller (the right-hand side's hot path)."""
+
+
 @njit(cache=True, _nrt=False)
 def contact(bm, nz, y, AF, ac, P):
     """The rocking block's contact force per unit mass ``(H, V)`` at its pivot (units of a_p).
@@ -618,7 +622,7 @@ def deriv(bm, im, tau, y, P, code, params, out):
     p = accel_at(code, params, tau)
     nz, _ = normal(tau, P)
     A = out[Y_XS + n:Y_XS + 2 * n]
-    Ab, AF, udd, fh, R, thdd = _accels(bm, im, p, nz, y, P, A)
+    Ab, AF, udd, fh, R, thdd = _accels_inline(bm, im, p, nz, y, P, A)
     if _held(im, P):
         out[Y_X] = 0.0
         out[Y_XD] = 0.0
@@ -811,7 +815,7 @@ def verify(bm, im, tau, y, h, ycand, P, code, params, atol, rtol, K):
 # --- events -------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def locate(kind, sig, bm, im, tau, y, ha, ga, hb, gb, h0, check, P, code, params, atol, rtol, K, yout, work,
            cnt):
     """Find ``h`` in ``(ha, hb]`` where the event ``kind`` vanishes (``ga``, ``gb`` of opposite sign).
@@ -842,7 +846,7 @@ def locate(kind, sig, bm, im, tau, y, ha, ga, hb, gb, h0, check, P, code, params
     return res, err
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code, params, atol, rtol, check, K, ye,
                   work, cnt, d0, d1):
     """First root of a demand event ``kind`` (EV_BLOCK or EV_BEAR, sign ``sig``) in the accepted step.
@@ -877,7 +881,7 @@ def _demand_event(kind, peak, limit, sig, bm, im, tau, y, y1, h, t_end, P, code,
     return True, hs, herr
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False, inline="always")
 def _earliest_demand_event(kind, peak, limit, bm, im, tau, y, y1, h, t_end, P, code, params, atol, rtol, check, K,
                            ye, yb, work, cnt, best, best_sig, hbest, herr_best, d0, d1):
     """The earliest of :func:`_demand_event` in both directions, if before the best event so far.
@@ -895,7 +899,7 @@ def _earliest_demand_event(kind, peak, limit, bm, im, tau, y, y1, h, t_end, P, c
     return best, best_sig, hbest, herr_best
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, _nrt=False, inline="always")
 def _speed_candidate(kind, bm, im, tau, y, y1, h, t_end, just_started, check, P, code, params, atol, rtol, K, ye,
                      work, cnt):
     """:func:`_speed_event` where the speed event ``kind`` is not positive at the step's end ``(t_end, y1)``.
@@ -910,7 +914,7 @@ def _speed_candidate(kind, bm, im, tau, y, y1, h, t_end, just_started, check, P,
     return True, hs, herr
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _speed_event(kind, bm, im, tau, y, h, g1, r1, just_started, check, P, code, params, atol, rtol, K, ye, work,
                  cnt):
     """End of a sliding (or yielding) phase inside the accepted step: ``g1 <= 0`` (rate ``r1``) at its end.

@@ -241,6 +241,22 @@ def _local(c, alpha, beta, e, t0, t1, t2):
             t1[l] = t2[l]
 
 
+@njit(cache=True, inline="always")
+def _series_terms(az2):
+    """Terms of the series of ``phi_{DEGREE+1}(z)`` that reach round-off for ``|z|^2 = az2 < SERIES_LIMIT^2``.
+
+    The term ``i`` is ``z^i/(i + DEGREE + 1)!``; the counts (for ``|z|`` up to 1/2, 1, 2 and 4) make
+    the first term left out smaller than ``1e-17`` times the first.
+    """
+    if az2 <= 0.25:
+        return 13
+    if az2 <= 1.0:
+        return 16
+    if az2 <= 4.0:
+        return 20
+    return 26
+
+
 @njit(cache=True)
 def _psi(lam, d, psi):
     """``psi[k, l] = l! d phi_{l+1}(lam_k d)`` for ``l = 0 .. DEGREE`` and ``psi[k, DEGREE + 1] = exp(lam_k d)``.
@@ -263,12 +279,9 @@ def _psi(lam, d, psi):
         if az2 < SERIES_LIMIT * SERIES_LIMIT:
             term = (1.0 + 0.0j) / _FACT[q]
             acc = term
-            for i in range(1, _TERMS):
+            for i in range(1, _series_terms(az2)):
                 term = term * z * _INV[i]
                 acc += term
-                if term.real * term.real + term.imag * term.imag <= 1e-34 * (acc.real * acc.real
-                                                                           + acc.imag * acc.imag):
-                    break
             phi = acc
             for l in range(q - 1, -1, -1):
                 psi[k, l] = _FACT[l] * d * phi
@@ -288,6 +301,10 @@ def _advance(a0, lam, beta, gam, s, e, r, psi, a):
     """Modal coordinates ``a`` after ``r`` of a sub-step whose pulse is ``sum_l e_l (t/d)^l`` (``psi`` at ``r d``)."""
     q = DEGREE + 1
     for k in range(a0.shape[0]):
+        if k > 0 and lam[k] == np.conj(lam[k - 1]):
+            # the twin of a conjugate pair (free_phase.decompose): its coordinate is the conjugate
+            a[k] = np.conj(a[k - 1])
+            continue
         f = 0.0 + 0.0j
         rl = 1.0
         for l in range(q):
