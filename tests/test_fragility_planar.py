@@ -9,7 +9,7 @@ import pytest
 import xarray as xr
 
 import isoslide.config
-from isoslide import solver
+from isoslide import datasets, solver
 from isoslide.datasets import write_netcdf
 from isoslide.pulses import sampled
 from isoslide.records import G, suite
@@ -244,6 +244,8 @@ def test_the_planar_settings_leave_out_the_1d_records_and_the_1d_settings_leave_
     ({"floors": ["roof"]}, {}, r"'roof' with a rigid superstructure"),
     ({"angles": [0.0, 0.0]}, {}, r"fragility\.planar\.angles = \[0\.0, 0\.0\] is invalid; allowed: distinct"),
     ({"stripes": {"levels": [8.0, 3.0]}}, {}, r"fragility\.planar\.stripes\.levels"),
+    ({}, {"building": {"tfp": {"L": [0.3, 2.0, 2.0], "mu": [0.02, 0.06, 0.1], "d": [0.05, 0.4, 0.4]}}},
+     r"fragility\.building\.tfp = .* has constant friction, .*allowed: mu_slow below mu and rate > 0"),
 ])
 def test_bad_settings_are_refused_naming_the_key(planar, fragility, pattern):
     with pytest.raises(ValueError, match=pattern):
@@ -279,6 +281,26 @@ def test_a_lead_rubber_bearing_runs_in_the_plane_and_its_slides_do_not_depend_on
     for name in ("u_max", "pfa", "pfv"):
         np.testing.assert_allclose(ds[name].values[o == 1], ds[name].values[o == 0], rtol=2e-3, atol=1e-6)
     assert ds.u_max.max() > 0.0
+
+
+def test_a_triple_friction_pendulum_whose_friction_rises_with_speed_is_the_planar_scenes_bearing():
+    """``building.tfp`` with friction rising with speed: every isolated analysis, planar and one-component, is
+    the scene of :func:`isoslide.triple_friction_pendulum` (the planar triple-pendulum model's groups), the
+    fixed base stays a fixed base, and the datasets state the bearing."""
+    tfp = {"L": [0.3, 2.0, 2.0], "mu": [0.02, 0.06, 0.10], "d": [0.05, 0.4, 0.4], "mu_slow": [0.01, 0.03, 0.05],
+           "rate": 30.0}
+    s = _settings({"pairs": 2, "angles": [30.0], "suites": ["fema-p695-near-field-pulse"]},
+                  building={"tfp": tfp, "xi_b": 0.0})
+    study = fp.check_settings(s)
+    px, py = (sampled(np.sin(np.linspace(0.0, 3.0, 301)), 0.01) for _ in range(2))
+    kw = isoslide.triple_friction_pendulum(tfp["L"], tfp["mu"], tfp["d"], 1.0e6, mu_slow=tfp["mu_slow"], rate=30.0)
+    want = Scene.from_physical(a_p=3.0, T_p=fp.T_SCALE, M_b=1.0e6, xi_b=0.0, m_ec=500.0, mu_s=0.2, mu_k=0.2, pulse=px,
+                               pulse_y=py, angle=0.5, **kw)
+    got = fp._scene(study, "isolated", "base", 3.0, 0.2, px, py, 0.5)
+    assert got == want and got.isolator == "tfp" and got.pi22 == 0.5 and got.pi23 > 0.0
+    assert fp._scene(study, "fixed_base", "base", 3.0, 0.2, px).pi3 == 0.0
+    attrs = fp.design_attrs(study, "isolated")
+    assert attrs["tfp_rate"].tolist() == [30.0] * 3 and attrs["T_b"] == kw["T_b"]
 
 
 # ---- floors of a building of several storeys ---------------------------------------------------------

@@ -217,6 +217,12 @@ def test_scatter_shares_of_constructed_outcomes(study):
     ({"records": ["Northridge_1994_PAC-175", "PAC-175"]}, r"fragility\.records = .*distinct records"),
     ({"contents": {"mass": 2e9}}, r"fragility\.contents\.mass = 2000000000\.0 .*mass / building\.M_b <= 1000"),
     ({"building": {"T_s": 0.5}}, r"fragility\.building\.m_st = 0\.0 .*0 < m_st < M_b"),
+    ({"building": {"tfp": {"L": [0.3, 2.0, 2.0], "mu": [0.06, 0.02, 0.1], "d": [0.05, 0.4, 0.4]}}},
+     r"fragility\.building\.tfp = .* is invalid: .*mu"),
+    ({"building": {"tfp": {"L": [0.3, -2.0, 2.0], "mu": [0.02, 0.06, 0.1], "d": [0.05, 0.4, 0.4]}}},
+     r"fragility\.building\.tfp = .* is invalid: .*L2"),
+    ({"building": {"Q_d": 1.0e5, "tfp": {"L": [0.3, 2.0, 2.0], "mu": [0.02, 0.06, 0.1], "d": [0.05, 0.4, 0.4]}}},
+     r"fragility\.building\.Q_d = 100000\.0 is set beside fragility\.building\.tfp"),
 ])
 def test_bad_settings_name_the_key_value_and_range(override, match):
     with pytest.raises(ValueError, match=match):
@@ -246,6 +252,43 @@ def test_a_friction_pendulum_building_runs_through_the_building_solver():
     assert models and all(m.startswith("sliding-bearing+flexible+roof") for m in models), models
     sc = fs._scene(st, sample("Northridge_1994_PAC-175").as_pulse(), 3.0, 0.2, "isolated")
     assert (sc.isolator, sc.flexible, sc.floor) == ("sliding", True, "roof")
+
+
+TFP = {"L": [0.3, 2.0, 2.0], "mu": [0.02, 0.06, 0.10], "d": [0.05, 0.4, 0.4]}
+"""A triple friction pendulum of OpenSees's proportions: inner radius 0.3 m, outer 2 m, regime III period 4 s."""
+
+
+def test_a_triple_friction_pendulum_building_is_the_bearings_scene_and_says_its_geometry():
+    """With ``building.tfp`` every isolated analysis is the scene of :func:`isoslide.triple_friction_pendulum`
+    (constant friction: the triple-pendulum model), its period and strength are the dataset's ``T_b`` and
+    ``Q_d``, its geometry rides along, and the fixed base stays a fixed base."""
+    cfg = _settings(building={"tfp": TFP, "xi_b": 0.0}, stripes={"im": "pga", "levels": [3.0, 6.0]},
+                    friction_samples=1)
+    st = fs.check_settings(cfg)
+    pulse = sample("Northridge_1994_PAC-175").as_pulse()
+    want = Scene.from_physical(a_p=3.0, T_p=fs.T_SCALE, M_b=1.0e6, xi_b=0.0, m_ec=500.0, mu_s=0.2, mu_k=0.2,
+                               pulse=pulse, **isoslide.triple_friction_pendulum(TFP["L"], TFP["mu"], TFP["d"], 1.0e6))
+    assert fs._scene(st, pulse, 3.0, 0.2, "isolated") == want
+    assert fs._scene(st, pulse, 3.0, 0.2, "fixed_base").pi3 == 0.0
+    out = fs.solve_analyses(st, [0, 1], "isolated", floor=False)
+    models = set(datasets.model_labels(out, result="u_max").values.tolist())
+    assert models and all(m.startswith("triple-friction-pendulum") for m in models), models
+    attrs = fs.design_attrs(st, "isolated")
+    tfp = isoslide.triple_friction_pendulum(TFP["L"], TFP["mu"], TFP["d"], 1.0e6)
+    assert (attrs["T_b"], attrs["Q_d"]) == (tfp["T_b"], tfp["Q_d"])
+    np.testing.assert_array_equal(attrs["tfp_L"], TFP["L"])
+    assert "tfp_rate" not in attrs and "tfp_L" not in fs.design_attrs(fs.check_settings(_settings()), "isolated")
+
+
+def test_a_triple_friction_pendulum_past_its_capacity_names_the_analysis():
+    """A bearing whose restrainers the record reaches stops the study with the record, the stripe and the
+    keys that size them, rather than a number past the model."""
+    small = dict(TFP, d=[0.025, 0.1, 0.1])
+    st = fs.check_settings(_settings(building={"tfp": small}, records=["Kobe_1995_TAK-090", "Northridge_1994_PAC-175"],
+                                     stripes={"im": "pga", "levels": [6.0, 10.0]}, friction_samples=1))
+    with pytest.raises(solver.CapacityError, match=r"record 'Kobe_1995_TAK-090' at stripe 10\.0: .*capacity.*"
+                                                   r"fragility\.building\.tfp\.d"):
+        fs.solve_analyses(st, [1], "isolated", floor=False)
 
 
 def test_the_building_takes_storeys_and_puts_the_contents_on_a_floor_between():

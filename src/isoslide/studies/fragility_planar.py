@@ -71,14 +71,13 @@ import xarray as xr
 from . import fragility as _fit
 from .fragility_study import (REFERENCE_FRAGILITY, T_SCALE, add_curves, add_outputs, add_table_columns, analysis_frame,
                               base_label, base_stem, bootstrap_attrs, check_building, check_chunk_size, check_floor,
-                              check_level, check_stripes, chunk_indices, design_attrs, merge_chunks, n_chunks,
-                              new_outputs, stem_base)
+                              check_level, check_stripes, chunk_indices, design_attrs, isolator, merge_chunks,
+                              n_chunks, new_outputs, solved, stem_base)
 from .intensity import align_pair, pair_peaks, pair_sa, peak_abs, planar_floor_peaks
 from ..datasets import global_attrs
 from ..pulses import sampled
 from ..records import G, suite
 from ..scene import FLOORS, Scene
-from .. import solver
 
 __all__ = ["BASES", "IM_UNITS", "MOTIONS", "PLANAR_IMS", "PlanarStudy", "analysis_table", "base_of",
            "check_settings", "chunk_indices", "dataset_name", "dataset_names", "fit_curves", "merge_chunks", "n_chunks",
@@ -288,6 +287,10 @@ def check_settings(settings: dict) -> PlanarStudy:
     f = settings["fragility"]
     p = f["planar"]
     b = check_building(f)
+    tfp = b["tfp"]
+    if tfp is not None and "rate" not in isolator(b, "isolated"):
+        raise ValueError(f"fragility.building.tfp = {tfp!r} has constant friction, which a triple friction pendulum "
+                         "in the plane does not model; allowed: mu_slow below mu and rate > 0 on every surface")
     names = list(p["suites"])
     if not names or len(set(names)) != len(names):
         raise ValueError(f"fragility.planar.suites = {names!r} is invalid; allowed: one or more distinct suites")
@@ -366,11 +369,10 @@ def _pair(study_key, gm):
 def _scene(study: PlanarStudy, base: str, floor, a_ref: float, mu_k: float, pulse, pulse_y=None,
            angle: float = 0.0) -> Scene:
     b, c = study.building, study.contents
-    return Scene.from_physical(a_p=a_ref, T_p=T_SCALE, M_b=b["M_b"], T_b=0.0 if base == "fixed_base" else b["T_b"],
-                               xi_b=b["xi_b"], m_ec=c["mass"], mu_s=mu_k * c["mu_s_over_mu_k"], mu_k=mu_k,
-                               beta=c["beta"], gamma=c["gamma"], pulse=pulse, pulse_y=pulse_y, angle=angle,
-                               Q_d=b["Q_d"], D_y=b["D_y"], m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"],
-                               storeys=b["storeys"], floor=floor)
+    return Scene.from_physical(a_p=a_ref, T_p=T_SCALE, M_b=b["M_b"], xi_b=b["xi_b"], m_ec=c["mass"],
+                               mu_s=mu_k * c["mu_s_over_mu_k"], mu_k=mu_k, beta=c["beta"], gamma=c["gamma"], pulse=pulse,
+                               pulse_y=pulse_y, angle=angle, m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"],
+                               storeys=b["storeys"], floor=floor, **isolator(b, base))
 
 
 _OUT = ("scale_factor", "pga_rotd50", "pgv_rotd50", "sa_rotd50", "pfa", "pfv", "pga_x", "pga_y", "u_max", "u_max_x",
@@ -416,12 +418,13 @@ def solve_analyses(study: PlanarStudy, indices, base: str) -> xr.Dataset:
         dt = gm.x.dt / T_SCALE
         px = sampled(ax * (factor / a_ref), dt, t0 / T_SCALE, name=gm.x.name)
         py = sampled(ay * (factor / a_ref), dt, t0 / T_SCALE, name=gm.y.name)
+        what = f"pair {gm.name!r} at stripe {float(study.levels[j])!r}"
         scene = _scene(study, base, fl, a_ref, mu, px, py, theta)
-        sol = solver.solve(scene, rtol=study.rtol, history=True)
+        sol = solved(scene, what, rtol=study.rtol, history=True)
         out["pfa"][k], out["pfv"][k] = planar_floor_peaks(sol, scene)
         for label, comp in (("x", c * ax - s * ay), ("y", s * ax + c * ay)):
             one = sampled(comp * (factor / a_ref), dt, t0 / T_SCALE, name=f"{gm.name}@{label}")
-            out[f"u_max_{label}"][k] = solver.solve(_scene(study, base, fl, a_ref, mu, one), rtol=study.rtol).u_max
+            out[f"u_max_{label}"][k] = solved(_scene(study, base, fl, a_ref, mu, one), what, rtol=study.rtol).u_max
             out[f"pga_{label}"][k] = factor * peak_abs(comp)
         out["scale_factor"][k] = factor
         for name in ("pga_rotd50", "pgv_rotd50", "sa_rotd50"):

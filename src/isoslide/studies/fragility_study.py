@@ -47,7 +47,7 @@ from .intensity import IM_NAMES, IM_UNITS, floor_peaks, ground_peaks
 from ..pulses import sampled
 from .record_study import resolve_record
 from ..records import G
-from ..scene import FLOORS, MAX_STOREYS, Scene
+from ..scene import FLOORS, MAX_STOREYS, Scene, triple_friction_pendulum
 from .. import solver
 
 __all__ = ["BASES", "FIT_STATUS", "Study", "add_table_columns", "analysis_frame", "analysis_table", "base_of",
@@ -292,6 +292,7 @@ def check_building(f: dict) -> dict:
                          f"(T_s > 0); allowed range: 0 < m_st < M_b = {b['M_b']!r}")
     storeys = check_storeys(b)
     floor = check_floor("fragility.building.floor", b["floor"], storeys)
+    check_tfp(b)
     if c["mass"] / b["M_b"] > 1000.0:
         raise ValueError(f"fragility.contents.mass = {c['mass']!r} is out of range; allowed range: "
                          f"mass / building.M_b <= 1000 (Pi8)")
@@ -458,10 +459,10 @@ def scaled_pulse(record, im: str, level: float):
 
 def _scene(study: Study, pulse, pga: float, mu_k: float, base: str) -> Scene:
     b, c = study.building, study.contents
-    return Scene.from_physical(a_p=pga, T_p=T_SCALE, M_b=b["M_b"], T_b=0.0 if base == "fixed_base" else b["T_b"],
-                               xi_b=b["xi_b"], m_ec=c["mass"], mu_s=mu_k * c["mu_s_over_mu_k"], mu_k=mu_k,
-                               beta=c["beta"], gamma=c["gamma"], pulse=pulse, Q_d=b["Q_d"], D_y=b["D_y"],
-                               m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], storeys=b["storeys"], floor=b["floor"])
+    return Scene.from_physical(a_p=pga, T_p=T_SCALE, M_b=b["M_b"], xi_b=b["xi_b"], m_ec=c["mass"],
+                               mu_s=mu_k * c["mu_s_over_mu_k"], mu_k=mu_k, beta=c["beta"], gamma=c["gamma"], pulse=pulse,
+                               m_st=b["m_st"], T_s=b["T_s"], xi_s=b["xi_s"], storeys=b["storeys"], floor=b["floor"],
+                               **isolator(b, base))
 
 
 def solve_chunk(study: Study, chunk: int, base: str) -> xr.Dataset:
@@ -507,7 +508,8 @@ def solve_analyses(study: Study, indices, base: str, floor: bool = True) -> xr.D
             cache[(r, j)] = scaled_pulse(study.records[r], study.im, float(study.levels[j]))
         pulse, pga, pgv = cache[(r, j)]
         scene = _scene(study, pulse, pga, mu, base)
-        sol = solver.solve(scene, rtol=study.rtol, history=floor)
+        sol = solved(scene, f"record {study.records[r].name!r} at stripe {float(study.levels[j])!r}", rtol=study.rtol,
+                     history=floor)
         if floor:
             out["pfa"][k], out["pfv"][k] = floor_peaks(sol, scene)
         out["pga"][k], out["pgv"][k], out["u_max"][k] = pga, pgv, sol.u_max
@@ -857,6 +859,67 @@ def scatter_contributions(ds: xr.Dataset, study: Study) -> xr.Dataset:
     return out
 
 
+def check_tfp(b: dict) -> None:
+    """Check ``fragility.building.tfp`` (schema-completed): a bearing :func:`isolator` can build.
+
+    Raises
+    ------
+    ValueError
+        Naming the key, its value and the rule: the bearing's own rules
+        (:func:`isoslide.triple_friction_pendulum`), or ``Q_d`` or ``D_y`` set beside it.
+    """
+    tfp = b["tfp"]
+    if tfp is None:
+        return
+    for key in ("Q_d", "D_y"):
+        if float(b[key]) != 0.0:
+            raise ValueError(f"fragility.building.{key} = {b[key]!r} is set beside fragility.building.tfp; allowed: "
+                             f"{key} = 0 with a triple friction pendulum (its geometry and friction give it)")
+    try:
+        isolator(b, "isolated")
+    except ValueError as err:
+        raise ValueError(f"fragility.building.tfp = {tfp!r} is invalid: {err}") from None
+
+
+def isolator(b: dict, base: str) -> dict:
+    """The isolator's keyword arguments of :meth:`isoslide.Scene.from_physical` for the building ``b`` on ``base``.
+
+    Parameters
+    ----------
+    b : dict
+        The ``fragility.building`` section (schema-completed).
+    base : {"isolated", "fixed_base"}
+
+    Returns
+    -------
+    dict
+        On a fixed base ``T_b = 0`` (and the section's ``Q_d``, ``D_y``); isolated, the section's
+        ``T_b``, ``Q_d`` and ``D_y``, or with ``tfp`` those of
+        :func:`isoslide.triple_friction_pendulum` (``T_b`` [s], ``Q_d`` [N], ``D_y`` [m], ``tfp`` and,
+        with friction rising with speed, ``Q_slow`` [N] and ``rate`` [s/m]).
+    """
+    tfp = b["tfp"]
+    if base == "fixed_base" or tfp is None:
+        return {"T_b": 0.0 if base == "fixed_base" else b["T_b"], "Q_d": b["Q_d"], "D_y": b["D_y"]}
+    return triple_friction_pendulum(tfp["L"], tfp["mu"], tfp["d"], b["M_b"], mu_slow=tfp["mu_slow"], rate=tfp["rate"])
+
+
+def solved(scene: Scene, what: str, **options):
+    """:func:`isoslide.solve` of one analysis' ``scene``; a bearing past its capacity names the analysis.
+
+    Raises
+    ------
+    isoslide.solver.CapacityError
+        With ``what`` (the analysis: ground motion and stripe) and the keys that size the bearing
+        and the stripes: the model of rigid restrainers does not go past them.
+    """
+    try:
+        return solver.solve(scene, **options)
+    except solver.CapacityError as err:
+        raise solver.CapacityError(f"{what}: {err}; a larger fragility.building.tfp.d or lower stripes "
+                                   "keep the bearing within its capacity") from None
+
+
 def base_label(base: str) -> str:
     """``isolated slab`` or ``fixed base``: the base as the title of a fragility dataset names it."""
     return "isolated slab" if base == "isolated" else "fixed base"
@@ -877,16 +940,24 @@ def design_attrs(study, base: str) -> dict:
         ``T_b`` [s] (0 on a fixed base), ``xi_b`` [1], ``M_b`` [kg], ``m_ec`` [kg], ``Q_d`` [N],
         ``D_y`` [m], ``m_st`` [kg], ``T_s`` [s], ``xi_s`` [1], ``storeys`` (floors above the slab),
         ``floor`` (its label: ``base``, ``roof`` or the floor's number), ``mu_k_median`` [1],
-        ``mu_k_log_std`` [1], ``mu_s_over_mu_k`` [1], ``beta_stribeck`` [s/m], ``gamma`` [s/m].
+        ``mu_k_log_std`` [1], ``mu_s_over_mu_k`` [1], ``beta_stribeck`` [s/m], ``gamma`` [s/m]; on a
+        triple friction pendulum (``T_b``, ``Q_d``, ``D_y`` its own) also ``tfp_L`` [m], ``tfp_mu`` [1],
+        ``tfp_d`` [m] and, with ``mu_slow``, ``tfp_mu_slow`` [1] and ``tfp_rate`` [s/m] (three values each).
     """
     b, c = study.building, study.contents
-    return {"T_b": 0.0 if base == "fixed_base" else float(b["T_b"]), "xi_b": float(b["xi_b"]),
-            "M_b": float(b["M_b"]), "m_ec": float(c["mass"]), "Q_d": float(b["Q_d"]), "D_y": float(b["D_y"]),
-            "m_st": float(b["m_st"]), "T_s": float(b["T_s"]), "xi_s": float(b["xi_s"]),
-            "storeys": int(b["storeys"]), "floor": str(b["floor"]),
-            "mu_k_median": float(c["mu_k"]["median"]), "mu_k_log_std": float(c["mu_k"]["log_std"]),
-            "mu_s_over_mu_k": float(c["mu_s_over_mu_k"]), "beta_stribeck": float(c["beta"]),
-            "gamma": float(c["gamma"])}
+    iso = isolator(b, base)
+    out = {"T_b": float(iso["T_b"]), "xi_b": float(b["xi_b"]),
+           "M_b": float(b["M_b"]), "m_ec": float(c["mass"]), "Q_d": float(iso["Q_d"]), "D_y": float(iso["D_y"]),
+           "m_st": float(b["m_st"]), "T_s": float(b["T_s"]), "xi_s": float(b["xi_s"]),
+           "storeys": int(b["storeys"]), "floor": str(b["floor"]),
+           "mu_k_median": float(c["mu_k"]["median"]), "mu_k_log_std": float(c["mu_k"]["log_std"]),
+           "mu_s_over_mu_k": float(c["mu_s_over_mu_k"]), "beta_stribeck": float(c["beta"]),
+           "gamma": float(c["gamma"])}
+    tfp = b["tfp"]
+    if "tfp" in iso:
+        keys = ("L", "mu", "d") if tfp["mu_slow"] is None else ("L", "mu", "d", "mu_slow", "rate")
+        out.update({f"tfp_{k}": np.broadcast_to(np.array(tfp[k], dtype=np.float64), 3).copy() for k in keys})
+    return out
 
 
 def bootstrap_attrs(study) -> dict:
