@@ -9,7 +9,7 @@ import pytest
 import xarray as xr
 
 import isoslide.config
-from isoslide import datasets, solver
+from isoslide import solver
 from isoslide.datasets import write_netcdf
 from isoslide.pulses import sampled
 from isoslide.records import G, suite

@@ -616,16 +616,29 @@ def _events(s: Surfaces, st: _Run, Pc, code, params, ny, full, bearing_force, y,
     return evs, kinds
 
 
-def _jacobian(rhs, t, z) -> np.ndarray:
-    """Forward-difference Jacobian of ``rhs`` at ``(t, z)``, steps ``1e-8 max(|z_j|, 1e-6)``.
+def _jacobian(rhs, t, z, pairs=()) -> np.ndarray:
+    """Forward-difference Jacobian of ``rhs`` at ``(t, z)``, steps ``JAC_STEP max(|z_j|, 1e-6)``.
 
     SciPy's adaptive differences can overflow on the law's steep rise near the fast level; fixed
     relative steps keep every entry finite (the implicit integrator's Newton iteration needs no more).
+    ``pairs``: the indices ``(i, j)`` of sliding interfaces' velocities in the plane (the slab's, a
+    block's, :mod:`isoslide.engine.tfp_plane`), whose friction turns with the velocity's direction.
+    Their columns step by ``JAC_STEP |v|`` away from zero in each component (zero columns at rest), so
+    that no step turns the direction far (a step of the other columns' size near a small velocity would
+    reverse it, a spurious stiffness that pins the slide).
     """
     f0 = rhs(t, z)
-    J = np.empty((z.size, z.size))
+    J = np.zeros((z.size, z.size))
+    moving = {}
+    for i, j in pairs:
+        moving[i] = moving[j] = math.hypot(z[i], z[j])
     for j in range(z.size):
-        h = JAC_STEP * max(abs(z[j]), 1e-6)
+        if j in moving:
+            if moving[j] == 0.0:
+                continue
+            h = JAC_STEP * moving[j] * (1.0 if z[j] >= 0.0 else -1.0)
+        else:
+            h = JAC_STEP * max(abs(z[j]), 1e-6)
         zj = z.copy()
         zj[j] += h
         J[:, j] = (rhs(t, zj) - f0) / h

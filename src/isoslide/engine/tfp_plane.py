@@ -60,7 +60,7 @@ from scipy.integrate import solve_ivp
 from .. import jit_cache
 from . import building_kernel as bk
 from . import planar_kernel as pk
-from .tfp_flow import (ATOL_FACTOR, GAP_FLOOR, H_MAX, JAC_STEP, MAX_PHASES, RTOL_FACTOR, RTOL_FLOOR, Surfaces,
+from .tfp_flow import (ATOL_FACTOR, GAP_FLOOR, H_MAX, MAX_PHASES, RTOL_FACTOR, RTOL_FLOOR, Surfaces, _jacobian,
                        _law_speed, phase_end, stage)
 from .tfp_flow import _slopes as _chain
 
@@ -525,32 +525,6 @@ def excess(s: Surfaces, rim, u, F) -> float:
 def on_rims(s: Surfaces, u) -> np.ndarray:
     """Which surfaces rest on their restrainers (``|u_i| >= (1 - RIM) d_i``)."""
     return np.linalg.norm(_grid(u), axis=1) >= s.limit * (1.0 - RIM)
-
-
-def _jacobian(rhs, t, z, pairs=()) -> np.ndarray:
-    """Forward-difference Jacobian of ``rhs`` at ``(t, z)``, steps ``JAC_STEP max(|z_j|, 1e-6)``.
-
-    ``pairs``: the indices ``(i, j)`` of sliding interfaces' velocities (the slab's, a block's), whose
-    friction turns with the velocity's direction.  Their columns step by ``JAC_STEP |v|`` away from
-    zero in each component, so that no step turns the direction far (a step of the other columns'
-    size near a small velocity would reverse it, a spurious stiffness that pins the slide).
-    """
-    f0 = rhs(t, z)
-    J = np.zeros((z.size, z.size))
-    speeds = {}
-    for i, j in pairs:
-        speeds[i] = speeds[j] = math.hypot(z[i], z[j])
-    for j in range(z.size):
-        if j in speeds:
-            if speeds[j] == 0.0:
-                continue
-            h = JAC_STEP * speeds[j] * (1.0 if z[j] >= 0.0 else -1.0)
-        else:
-            h = JAC_STEP * max(abs(z[j]), 1e-6)
-        zj = z.copy()
-        zj[j] += h
-        J[:, j] = (rhs(t, zj) - f0) / h
-    return J
 
 
 class _Run:
